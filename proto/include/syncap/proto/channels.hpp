@@ -1,0 +1,43 @@
+// Channel names and the datagram budget: the parts of the contract that are not in msg/*.lcm.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace syncap::proto {
+
+// LCM (1.3/1.4 udpm) sends a message as one UDP datagram only while its 8-byte short header, the
+// channel name with its NUL and the encoded message together stay under 1400 bytes; anything
+// larger is fragmented, and losing any fragment loses the whole message.
+inline constexpr std::size_t kLcmSingleDatagramLimit = 1400;
+inline constexpr std::size_t kLcmShortHeaderSize = 8;
+// Longest channel name we publish on (SYNCAP_STATUS_99 is 16 characters).
+inline constexpr std::size_t kMaxChannelLength = 24;
+// Every syncap message type at its documented maximum content encodes to at most this many
+// bytes (1366), so it always travels as one datagram: the budget of docs/ARCHITECTURE.md.
+inline constexpr std::size_t kMaxEncodedSize =
+    kLcmSingleDatagramLimit - kLcmShortHeaderSize - (kMaxChannelLength + 1) - 1;
+
+// LCM's default multicast group with ttl=0: traffic never leaves the host (or namespace).
+inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+inline constexpr const char* kTriggerChannel = "SYNCAP_TRIGGER";
+inline constexpr const char* kEdgeCommandChannel = "SYNCAP_EDGE_CMD";
+
+// Per-camera channels carry the camera id as two decimal digits: SYNCAP_BLOBS_03.
+inline constexpr int kMaxCameraId = 99;
+inline constexpr const char* kBlobChannelPrefix = "SYNCAP_BLOBS_";
+inline constexpr const char* kSilhouetteChannelPrefix = "SYNCAP_SIL_";
+inline constexpr const char* kStatusChannelPrefix = "SYNCAP_STATUS_";
+
+// Throws std::out_of_range for a camera id outside 0..kMaxCameraId.
+std::string blob_channel(int camera_id);
+std::string silhouette_channel(int camera_id);
+std::string status_channel(int camera_id);
+
+// The camera id of a per-camera channel, or nothing for any other channel name.
+std::optional<int> camera_of_channel(std::string_view channel);
+
+}  // namespace syncap::proto

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs exactly the Debian (bookworm) packages syncap needs to build, test and run.
+# Idempotent: packages already present are skipped, and nothing is done when all are there.
+# Uses sudo when not run as root.
+set -euo pipefail
+
+# One line per purpose, so a reader sees why each package is here.
+PACKAGES=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git clang-format
+  # acquisition: Aravis 0.8 (its pkg-config file requires libusb-1.0), V4L2 headers
+  libaravis-dev libusb-1.0-0-dev aravis-tools-cli libv4l-dev
+  # messaging: LCM library, lcm-gen, lcm-logger, lcm-logplayer
+  liblcm-dev liblcm-bin
+  # trigger GPIO
+  libgpiod-dev gpiod
+  # vision and geometry
+  libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev
+  # tests and benchmarks
+  libcmocka-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # private network namespaces (ip), unshare comes with util-linux
+  iproute2 util-linux
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "deps: all ${#PACKAGES[@]} packages already installed"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+
+echo "deps: installing ${#missing[@]} package(s): ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "deps: done"

@@ -1,0 +1,106 @@
+// Every message type filled to its documented maximum content, with values that exercise the
+// whole range of each field. Shared by the budget test and the on-the-wire hil test.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "syncap/blob_frame_t.hpp"
+#include "syncap/camera_status_t.hpp"
+#include "syncap/edge_command_t.hpp"
+#include "syncap/silhouette_part_t.hpp"
+#include "syncap/trigger_t.hpp"
+
+namespace syncap::test {
+
+inline trigger_t max_trigger() {
+  trigger_t t{};
+  t.frame_number = std::numeric_limits<int64_t>::max() - 1;
+  t.monotonic_ns = 1'234'567'890'123'456'789;
+  t.realtime_ns = 1'795'000'000'000'000'000;
+  t.rate_hz = 1000.0;
+  t.pulse_width_us = 999;
+  t.trigger_id = 7;
+  t.flags = trigger_t::FLAG_LATE | trigger_t::FLAG_LAST;
+  return t;
+}
+
+inline blob_t blob_at(int i) {
+  blob_t b{};
+  b.x = 1279.5f - 0.125f * static_cast<float>(i);
+  b.y = 0.0625f * static_cast<float>(i);
+  b.area = 3.0f + static_cast<float>(i);
+  b.peak = static_cast<int16_t>(4095 - i);
+  b.bbox_x = static_cast<int16_t>(i);
+  b.bbox_y = static_cast<int16_t>(2 * i);
+  b.bbox_w = 12;
+  b.bbox_h = 13;
+  b.flags = static_cast<int8_t>(i % 16);
+  return b;
+}
+
+inline blob_frame_t blob_frame_with(int blobs) {
+  blob_frame_t f{};
+  f.camera_id = 99;
+  f.frame_number = (int64_t{1} << 40) + 17;
+  f.monotonic_ns = 987'654'321'012;
+  f.exposure_us = 2500;
+  f.processing_us = 812;
+  f.image_width = 1280;
+  f.image_height = 1024;
+  f.part_index = 0;
+  f.part_count = 1;
+  f.total_blobs = static_cast<int16_t>(blobs);
+  f.num_blobs = static_cast<int16_t>(blobs);
+  for (int i = 0; i < blobs; ++i) f.blobs.push_back(blob_at(i));
+  return f;
+}
+
+inline blob_frame_t max_blob_frame() { return blob_frame_with(blob_frame_t::MAX_BLOBS); }
+
+inline silhouette_part_t max_silhouette_part() {
+  silhouette_part_t s{};
+  s.camera_id = 99;
+  s.frame_number = (int64_t{1} << 33) + 5;
+  s.image_width = 1280;
+  s.image_height = 1024;
+  s.part_index = 3;
+  s.part_count = 9;
+  s.num_pieces = 12;
+  s.data_size = silhouette_part_t::MAX_DATA;
+  for (int i = 0; i < s.data_size; ++i) s.data.push_back(static_cast<uint8_t>(i * 37));
+  return s;
+}
+
+inline camera_status_t max_camera_status() {
+  camera_status_t s{};
+  s.camera_id = 99;
+  s.state = camera_status_t::STATE_ERROR;
+  s.monotonic_ns = 5'000'000'000;
+  s.realtime_ns = 1'795'000'000'000'000'000;
+  s.last_frame_number = 123'456'789;
+  s.frames_received = 123'456'000;
+  s.frames_lost = 12;
+  s.frames_incomplete = 3;
+  s.frame_rate_hz = 29.97f;
+  s.processing_us_mean = 640.5f;
+  s.message = std::string(camera_status_t::MAX_MESSAGE, 'e');
+  return s;
+}
+
+inline edge_command_t max_edge_command() {
+  edge_command_t c{};
+  c.camera_id = edge_command_t::ALL_CAMERAS;
+  c.sequence = 42;
+  c.command = edge_command_t::SET_ROI;
+  c.int_value = -1;
+  c.real_value = 2500.0;
+  c.roi_x = 64;
+  c.roi_y = 32;
+  c.roi_width = 640;
+  c.roi_height = 480;
+  return c;
+}
+
+}  // namespace syncap::test

@@ -1,0 +1,87 @@
+// Every message type at its documented maximum content fits one datagram and round-trips.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "max_messages.hpp"
+#include "syncap/proto/channels.hpp"
+
+namespace syncap {
+namespace {
+
+template <class Msg>
+std::vector<uint8_t> encode(const Msg& msg) {
+  std::vector<uint8_t> buf(static_cast<std::size_t>(msg.getEncodedSize()));
+  EXPECT_EQ(msg.encode(buf.data(), 0, static_cast<int>(buf.size())), static_cast<int>(buf.size()));
+  return buf;
+}
+
+template <class Msg>
+Msg decode(const std::vector<uint8_t>& buf) {
+  Msg out{};
+  EXPECT_EQ(out.decode(buf.data(), 0, static_cast<int>(buf.size())), static_cast<int>(buf.size()));
+  return out;
+}
+
+// The encoding is the wire format: equal bytes after a decode/encode cycle mean every field
+// survived.
+template <class Msg>
+void expect_fits_and_round_trips(const Msg& msg, std::size_t documented_size) {
+  const std::vector<uint8_t> bytes = encode(msg);
+  EXPECT_LE(bytes.size(), proto::kMaxEncodedSize);
+  EXPECT_EQ(bytes.size(), documented_size) << "the size comment in the .lcm file is stale";
+  EXPECT_EQ(encode(decode<Msg>(bytes)), bytes);
+}
+
+TEST(MessageBudget, TriggerFitsAndRoundTrips) {
+  expect_fits_and_round_trips(test::max_trigger(), 47);
+  EXPECT_EQ(decode<trigger_t>(encode(test::max_trigger())).frame_number,
+            test::max_trigger().frame_number);
+}
+
+TEST(MessageBudget, BlobFrameAtMaxBlobsFitsAndRoundTrips) {
+  const blob_frame_t frame = test::max_blob_frame();
+  expect_fits_and_round_trips(frame, 8 + 38 + 23 * blob_frame_t::MAX_BLOBS);
+  const blob_frame_t back = decode<blob_frame_t>(encode(frame));
+  ASSERT_EQ(back.blobs.size(), frame.blobs.size());
+  EXPECT_FLOAT_EQ(back.blobs.back().x, frame.blobs.back().x);
+  EXPECT_EQ(back.blobs.back().peak, frame.blobs.back().peak);
+}
+
+TEST(MessageBudget, OneBlobMoreThanMaxWouldNotFit) {
+  // MAX_BLOBS is the largest count that fits: one more blob breaks the budget.
+  const blob_frame_t frame = test::blob_frame_with(blob_frame_t::MAX_BLOBS + 1);
+  EXPECT_GT(static_cast<std::size_t>(frame.getEncodedSize()), proto::kMaxEncodedSize);
+}
+
+TEST(MessageBudget, SilhouettePartAtMaxDataFitsAndRoundTrips) {
+  const silhouette_part_t part = test::max_silhouette_part();
+  expect_fits_and_round_trips(part, 8 + 22 + silhouette_part_t::MAX_DATA);
+  EXPECT_EQ(decode<silhouette_part_t>(encode(part)).data, part.data);
+}
+
+TEST(MessageBudget, CameraStatusWithLongestMessageFitsAndRoundTrips) {
+  const camera_status_t status = test::max_camera_status();
+  expect_fits_and_round_trips(status, 8 + 63 + camera_status_t::MAX_MESSAGE + 1);
+  EXPECT_EQ(decode<camera_status_t>(encode(status)).message, status.message);
+}
+
+TEST(MessageBudget, EdgeCommandFitsAndRoundTrips) {
+  expect_fits_and_round_trips(test::max_edge_command(), 43);
+}
+
+TEST(MessageBudget, DecodingATruncatedBufferFails) {
+  std::vector<uint8_t> bytes = encode(test::max_blob_frame());
+  bytes.resize(bytes.size() - 5);
+  blob_frame_t out{};
+  EXPECT_LT(out.decode(bytes.data(), 0, static_cast<int>(bytes.size())), 0);
+}
+
+TEST(MessageBudget, DecodingAnotherTypeFailsOnTheFingerprint) {
+  const std::vector<uint8_t> bytes = encode(test::max_trigger());
+  edge_command_t out{};
+  EXPECT_LT(out.decode(bytes.data(), 0, static_cast<int>(bytes.size())), 0);
+}
+
+}  // namespace
+}  // namespace syncap
