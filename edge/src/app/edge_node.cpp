@@ -1,0 +1,92 @@
+#include "app/edge_node.hpp"
+
+#include <chrono>
+#include <iostream>
+
+#include "detection/blob_detector.hpp"
+#include "syncap/proto/blob_parts.hpp"
+
+namespace syncap::edge {
+namespace {
+
+int64_t now_ns(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher)
+    : options_(options),
+      source_(source),
+      publish_(std::move(publisher)),
+      interval_start_ns_(now_ns(CLOCK_MONOTONIC)) {}
+
+void EdgeNode::on_trigger(const trigger_t& trigger) {
+  if (trigger.flags & trigger_t::FLAG_LAST) saw_last_pulse_ = true;
+  const int64_t start_ns = now_ns(CLOCK_MONOTONIC);
+  std::optional<Frame> frame;
+  try {
+    frame = source_.grab(trigger.frame_number);
+  } catch (const FrameSourceError& e) {
+    note_error(e.what());
+  }
+  if (!frame) {
+    ++frames_lost_;
+    if (last_error_.empty()) {
+      note_error("no exposure for frame " + std::to_string(trigger.frame_number) + " in " +
+                 source_.describe());
+    }
+    return;
+  }
+  blob_frame_t out{};
+  out.camera_id = static_cast<int16_t>(options_.camera_id);
+  out.frame_number = trigger.frame_number;
+  out.monotonic_ns = frame->monotonic_ns;
+  out.exposure_us = frame->exposure_us;
+  out.image_width = static_cast<int16_t>(frame->image.cols);
+  out.image_height = static_cast<int16_t>(frame->image.rows);
+  out.blobs = detect_blobs(frame->image, options_.detector);
+  const int64_t done_ns = now_ns(CLOCK_MONOTONIC);
+  out.processing_us = static_cast<int32_t>((done_ns - start_ns) / 1000);
+  for (const blob_frame_t& part : proto::split_blob_frame(out)) publish_.blobs(part);
+
+  ++frames_received_;
+  ++interval_frames_;
+  interval_processing_us_ += out.processing_us;
+  last_frame_number_ = trigger.frame_number;
+}
+
+void EdgeNode::publish_status(bool final) {
+  const int64_t now = now_ns(CLOCK_MONOTONIC);
+  camera_status_t s{};
+  s.camera_id = static_cast<int16_t>(options_.camera_id);
+  s.state = final ? camera_status_t::STATE_STOPPED
+                  : (last_error_.empty() ? camera_status_t::STATE_ACQUIRING
+                                         : camera_status_t::STATE_ERROR);
+  s.monotonic_ns = now;
+  s.realtime_ns = now_ns(CLOCK_REALTIME);
+  s.last_frame_number = last_frame_number_;
+  s.frames_received = frames_received_;
+  s.frames_lost = frames_lost_;
+  s.frames_incomplete = 0;
+  const double interval_s = static_cast<double>(now - interval_start_ns_) * 1e-9;
+  s.frame_rate_hz = interval_s > 0 ? static_cast<float>(interval_frames_ / interval_s) : 0.0f;
+  s.processing_us_mean =
+      interval_frames_ > 0 ? static_cast<float>(interval_processing_us_ / interval_frames_) : 0.0f;
+  s.message = last_error_.substr(0, camera_status_t::MAX_MESSAGE);
+  publish_.status(s);
+  interval_frames_ = 0;
+  interval_processing_us_ = 0;
+  interval_start_ns_ = now;
+  last_error_.clear();
+}
+
+void EdgeNode::note_error(const std::string& message) {
+  last_error_ = message;
+  if (!options_.quiet)
+    std::cerr << "syncap-edge camera " << options_.camera_id << ": " << message << "\n";
+}
+
+}  // namespace syncap::edge

@@ -1,0 +1,51 @@
+// The edge process' core: one exposure per trigger, blobs out, a heartbeat with statistics.
+// LCM is reached only through the Publisher callback, so tests drive the node without a network.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "app/edge_options.hpp"
+#include "sensor/frame_source.hpp"
+#include "syncap/blob_frame_t.hpp"
+#include "syncap/camera_status_t.hpp"
+#include "syncap/trigger_t.hpp"
+
+namespace syncap::edge {
+
+struct EdgePublisher {
+  std::function<void(const blob_frame_t&)> blobs;
+  std::function<void(const camera_status_t&)> status;
+};
+
+class EdgeNode {
+ public:
+  EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher);
+
+  // Grabs and processes the exposure of this trigger; publishes its blob frame (in parts).
+  void on_trigger(const trigger_t& trigger);
+  // Publishes a heartbeat; `final` marks the last one before the process exits.
+  void publish_status(bool final = false);
+
+  bool saw_last_pulse() const { return saw_last_pulse_; }
+  int64_t frames_received() const { return frames_received_; }
+  int64_t frames_lost() const { return frames_lost_; }
+
+ private:
+  void note_error(const std::string& message);
+
+  EdgeOptions options_;
+  FrameSource& source_;
+  EdgePublisher publish_;
+  int64_t last_frame_number_ = -1;
+  int64_t frames_received_ = 0;
+  int64_t frames_lost_ = 0;
+  int64_t interval_frames_ = 0;
+  double interval_processing_us_ = 0;
+  int64_t interval_start_ns_ = 0;
+  bool saw_last_pulse_ = false;
+  std::string last_error_;
+};
+
+}  // namespace syncap::edge

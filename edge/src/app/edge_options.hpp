@@ -1,0 +1,33 @@
+// Command line of syncap-edge.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "detection/blob_detector.hpp"
+
+namespace syncap::edge {
+
+struct EdgeOptions {
+  int camera_id = 0;
+  std::string source;  // "replay:FOLDER"
+  std::string lcm_url;
+  BlobDetectorConfig detector;
+  double heartbeat_s = 1.0;
+  bool exit_after_last = false;  // leave after the trigger's last pulse of a run
+  bool quiet = false;
+};
+
+// A bad command line; what() names the option and the value.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Parses argv[1..]; throws UsageError. --help is reported as UsageError("help").
+EdgeOptions parse_edge_options(const std::vector<std::string>& args);
+
+std::string edge_usage();
+
+}  // namespace syncap::edge

@@ -1,0 +1,24 @@
+// Bright-target detection on a full frame: threshold, 8-connected components, intensity-weighted
+// sub-pixel centroid. (The windowed, run-based detector of the edge issue builds on this API.)
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "syncap/blob_t.hpp"
+
+namespace syncap::edge {
+
+struct BlobDetectorConfig {
+  int threshold = 128;        // pixels >= threshold belong to a blob, DN
+  float min_area = 2.0f;      // smaller components are noise, pixels
+  float max_area = 20000.0f;  // larger ones are not targets (a lamp, a window), pixels
+  int saturation = 255;       // a pixel at this value marks the blob FLAG_SATURATED
+};
+
+// Blobs of `image` (CV_8UC1), ordered by descending area. Centroids weight each pixel by its
+// intensity above the threshold minus one, so that the faint rim counts less than the core.
+std::vector<blob_t> detect_blobs(const cv::Mat& image, const BlobDetectorConfig& config);
+
+}  // namespace syncap::edge

@@ -1,0 +1,39 @@
+// Where frames come from: one interface for every kind of camera (replay now; Aravis and V4L2
+// sources implement the same interface).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace syncap::edge {
+
+struct Frame {
+  int camera_id = 0;
+  int64_t frame_number = -1;  // the trigger's frame number this exposure belongs to
+  int32_t exposure_us = 0;
+  int64_t monotonic_ns = 0;  // board clock when the frame arrived
+  cv::Mat image;             // CV_8UC1
+};
+
+// A frame source failed in a way the caller should report (missing file, corrupt image, ...);
+// what() names the input and the place.
+class FrameSourceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  // The exposure that belongs to trigger `frame_number`, or nothing when the source has none
+  // for it (a lost frame). Throws FrameSourceError for a frame that exists but cannot be read.
+  virtual std::optional<Frame> grab(int64_t frame_number) = 0;
+  // Human-readable description for logs and status messages.
+  virtual std::string describe() const = 0;
+};
+
+}  // namespace syncap::edge

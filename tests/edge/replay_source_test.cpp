@@ -1,0 +1,85 @@
+#include "sensor/replay_source.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+namespace syncap::edge {
+namespace {
+
+class ReplaySourceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("syncap_replay_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  void write_image(const std::string& name, uint8_t value) {
+    cv::imwrite((dir_ / name).string(), cv::Mat(6, 8, CV_8UC1, cv::Scalar(value)));
+  }
+  std::filesystem::path dir_;
+};
+
+TEST(FrameNumberFromName, TakesTheLastRunOfDigits) {
+  EXPECT_EQ(frame_number_from_name("frame_000042.pgm"), 42);
+  EXPECT_EQ(frame_number_from_name("cam3_in000017.png"), 17);
+  EXPECT_EQ(frame_number_from_name("background.png"), std::nullopt);
+}
+
+TEST_F(ReplaySourceTest, GrabsTheFileOfTheFrameNumber) {
+  write_image("frame_000003.pgm", 30);
+  write_image("frame_000004.pgm", 40);
+  ReplaySource source(dir_, 2, 1500);
+  EXPECT_EQ(source.size(), 2u);
+  const auto frame = source.grab(4);
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_EQ(frame->camera_id, 2);
+  EXPECT_EQ(frame->frame_number, 4);
+  EXPECT_EQ(frame->exposure_us, 1500);
+  EXPECT_EQ(frame->image.at<uint8_t>(0, 0), 40);
+  EXPECT_FALSE(source.grab(5).has_value());
+}
+
+TEST_F(ReplaySourceTest, MissingFolderNamesIt) {
+  try {
+    ReplaySource source(dir_ / "nope", 0);
+    FAIL();
+  } catch (const FrameSourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("nope"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ReplaySourceTest, FolderWithoutImagesIsAnError) {
+  std::ofstream(dir_ / "notes.txt") << "hello";
+  EXPECT_THROW(ReplaySource(dir_, 0), FrameSourceError);
+}
+
+TEST_F(ReplaySourceTest, DuplicateFrameNumbersAreAnError) {
+  write_image("a_1.pgm", 1);
+  write_image("b_001.png", 1);
+  EXPECT_THROW(ReplaySource(dir_, 0), FrameSourceError);
+}
+
+TEST_F(ReplaySourceTest, CorruptImageNamesFileAndFrame) {
+  write_image("frame_000001.pgm", 10);
+  std::ofstream(dir_ / "frame_000002.pgm") << "P5 garbage";
+  ReplaySource source(dir_, 0);
+  EXPECT_TRUE(source.grab(1).has_value());
+  try {
+    source.grab(2);
+    FAIL();
+  } catch (const FrameSourceError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("frame_000002.pgm"), std::string::npos) << what;
+    EXPECT_NE(what.find("frame 2"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(source.grab(1).has_value());  // the source stays usable
+}
+
+}  // namespace
+}  // namespace syncap::edge
