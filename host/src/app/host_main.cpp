@@ -133,6 +133,21 @@ struct Tally {
   std::map<int, syncap::camera_status_t> status;
 };
 
+const char* state_name(int8_t state) {
+  switch (state) {
+    case syncap::camera_status_t::STATE_IDLE:
+      return "idle";
+    case syncap::camera_status_t::STATE_ACQUIRING:
+      return "acquiring";
+    case syncap::camera_status_t::STATE_ERROR:
+      return "error";
+    case syncap::camera_status_t::STATE_STOPPED:
+      return "stopped";
+    default:
+      return "unknown";
+  }
+}
+
 void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
                    const syncap::host::FrameGrouper& grouper) {
   std::cout << "host summary: " << t.groups << " frame groups (" << t.complete << " complete, "
@@ -140,8 +155,8 @@ void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
             << t.blob_parts << " blob messages, " << sub.malformed() << " malformed, " << t.rejected
             << " rejected (" << grouper.late_messages() << " late)\n";
   for (const auto& [id, s] : t.status) {
-    std::cout << "  camera " << id << " status: state " << int{s.state} << ", " << s.frames_received
-              << " frames received, " << s.frames_lost << " lost"
+    std::cout << "  camera " << id << " status: " << state_name(s.state) << ", "
+              << s.frames_received << " frames received, " << s.frames_lost << " lost"
               << (s.message.empty() ? "" : ", note: " + s.message) << "\n";
   }
 }

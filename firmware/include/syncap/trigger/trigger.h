@@ -1,0 +1,88 @@
+// One trigger output: its pulse schedule, run state and deadline accounting. Pure C, no I/O; the
+// only allocation is syncap_trigger_new. All times are CLOCK_MONOTONIC nanoseconds.
+//
+// A run: syncap_trigger_start, then per pulse
+//   sleep until syncap_trigger_next_rise_ns();
+//   syncap_trigger_due_pulse(now)        -> which pulse to drive (skips whole missed periods);
+//   drive the edge, then syncap_trigger_edge_driven(edge time) -> LATE or not, advance;
+// until the state leaves RUNNING (count reached) or syncap_trigger_stop.
+#pragma once
+
+#include <stdint.h>
+
+#include "syncap/trigger/config.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+// Pulse flags; the same bits as syncap_trigger_t.flags (proto/msg/trigger_t.lcm).
+#define SYNCAP_TRIGGER_FLAG_LATE 0x1u
+#define SYNCAP_TRIGGER_FLAG_MISSED 0x2u
+#define SYNCAP_TRIGGER_FLAG_LAST 0x4u
+
+// idle --start--> running --stop or last pulse--> stopped --start--> running (a new run)
+enum syncap_trigger_state {
+  SYNCAP_TRIGGER_IDLE,
+  SYNCAP_TRIGGER_RUNNING,
+  SYNCAP_TRIGGER_STOPPED,
+};
+
+struct syncap_trigger;
+
+struct syncap_trigger_pulse {
+  uint64_t index;   // position in the schedule, 0 for the first pulse: the frame number
+  int64_t rise_ns;  // scheduled rising edge
+  int64_t fall_ns;  // scheduled falling edge
+  uint64_t missed;  // pulses skipped right before this one
+  unsigned flags;   // SYNCAP_TRIGGER_FLAG_*
+};
+
+// Counts of the current (or last) run.
+struct syncap_trigger_stats {
+  uint64_t pulses;  // rising edges driven
+  uint64_t late;    // of those, driven beyond the tolerance
+  uint64_t missed;  // pulses skipped because their time had passed
+};
+
+// A trigger in state IDLE, or NULL with *error set (config violation or no memory).
+struct syncap_trigger* syncap_trigger_new(const struct syncap_trigger_config* config,
+                                          enum syncap_trigger_error* error);
+void syncap_trigger_free(struct syncap_trigger* trigger);
+
+// Starts a run whose pulse 0 rises at start_ns; resets frame numbers and stats.
+// SYNCAP_TRIGGER_ERR_ALREADY_RUNNING while a run is on.
+enum syncap_trigger_error syncap_trigger_start(struct syncap_trigger* trigger, int64_t start_ns);
+// Ends the run. SYNCAP_TRIGGER_ERR_NOT_RUNNING when there is none.
+enum syncap_trigger_error syncap_trigger_stop(struct syncap_trigger* trigger);
+enum syncap_trigger_state syncap_trigger_state(const struct syncap_trigger* trigger);
+
+// Scheduled edges of pulse `index` of the current run (start time 0 before the first run):
+// start + floor(index * 1e9 / rate) exactly, without accumulated rounding, for any index whose
+// time fits in int64_t (about 292 years).
+int64_t syncap_trigger_rise_ns(const struct syncap_trigger* trigger, uint64_t index);
+int64_t syncap_trigger_fall_ns(const struct syncap_trigger* trigger, uint64_t index);
+// Rising edge of the next pulse not yet driven.
+int64_t syncap_trigger_next_rise_ns(const struct syncap_trigger* trigger);
+
+// The pulse to drive when the daemon is awake at now_ns: the next pulse, or, when the next
+// pulse's successor is already due, the latest due pulse, with the skipped ones counted in
+// `missed` and SYNCAP_TRIGGER_FLAG_MISSED set. A count run never skips its last pulse, which is
+// flagged SYNCAP_TRIGGER_FLAG_LAST. Changes nothing; SYNCAP_TRIGGER_ERR_NOT_RUNNING outside a run.
+enum syncap_trigger_error syncap_trigger_due_pulse(const struct syncap_trigger* trigger,
+                                                   int64_t now_ns,
+                                                   struct syncap_trigger_pulse* pulse);
+
+// Records that the rising edge of `pulse` (from syncap_trigger_due_pulse) was driven at edge_ns:
+// adds SYNCAP_TRIGGER_FLAG_LATE to pulse->flags when beyond the tolerance, updates the stats,
+// moves on to the following pulse, and stops the run after its last pulse.
+enum syncap_trigger_error syncap_trigger_edge_driven(struct syncap_trigger* trigger,
+                                                     struct syncap_trigger_pulse* pulse,
+                                                     int64_t edge_ns);
+
+void syncap_trigger_get_stats(const struct syncap_trigger* trigger,
+                              struct syncap_trigger_stats* stats);
+
+#ifdef __cplusplus
+}
+#endif

@@ -1,0 +1,30 @@
+// Internal: what a GPIO backend provides. gpio.c does the bookkeeping common to all backends
+// (argument checks, requested lines, current level), so a backend only touches its hardware.
+#pragma once
+
+#include <stddef.h>
+
+#include "syncap/trigger/gpio.h"
+
+struct syncap_gpio_backend {
+  const char* name;
+  // New backend state for the spec's argument (the text after "name:", or NULL); NULL + errno.
+  void* (*open)(const char* argument);
+  int (*request_outputs)(void* state, const unsigned* offsets, size_t num_lines,
+                         const char* consumer);
+  // Called only when the level changes.
+  int (*set_all)(void* state, const unsigned* offsets, size_t num_lines, int value);
+  // Called with the lines already driven low.
+  void (*release)(void* state, const unsigned* offsets, size_t num_lines);
+  void (*close)(void* state);
+};
+
+extern const struct syncap_gpio_backend syncap_gpio_sim_backend;
+
+struct syncap_gpio {
+  const struct syncap_gpio_backend* backend;
+  void* state;
+  unsigned offsets[SYNCAP_GPIO_MAX_LINES];
+  size_t num_lines;  // 0 while no lines are requested
+  int value;         // current level of all requested lines
+};

@@ -1,0 +1,116 @@
+#include "syncap/trigger/trigger.h"
+
+#include <stdbool.h>
+#include <stdlib.h>
+
+#include "schedule.h"
+
+struct syncap_trigger {
+  struct syncap_trigger_config config;
+  uint64_t rate_uhz;
+  enum syncap_trigger_state state;
+  int64_t start_ns;
+  uint64_t next_index;  // the 64-bit frame counter: next pulse not yet driven
+  struct syncap_trigger_stats stats;
+};
+
+struct syncap_trigger* syncap_trigger_new(const struct syncap_trigger_config* config,
+                                          enum syncap_trigger_error* error) {
+  *error = syncap_trigger_config_validate(config);
+  if (*error != SYNCAP_TRIGGER_OK) return NULL;
+  struct syncap_trigger* trigger = calloc(1, sizeof(*trigger));
+  if (trigger == NULL) {
+    *error = SYNCAP_TRIGGER_ERR_NO_MEMORY;
+    return NULL;
+  }
+  trigger->config = *config;
+  trigger->rate_uhz = syncap_schedule_rate_uhz(config->rate_hz);
+  trigger->state = SYNCAP_TRIGGER_IDLE;
+  return trigger;
+}
+
+void syncap_trigger_free(struct syncap_trigger* trigger) { free(trigger); }
+
+enum syncap_trigger_error syncap_trigger_start(struct syncap_trigger* trigger, int64_t start_ns) {
+  if (trigger->state == SYNCAP_TRIGGER_RUNNING) return SYNCAP_TRIGGER_ERR_ALREADY_RUNNING;
+  trigger->state = SYNCAP_TRIGGER_RUNNING;
+  trigger->start_ns = start_ns;
+  trigger->next_index = 0;
+  trigger->stats = (struct syncap_trigger_stats){0};
+  return SYNCAP_TRIGGER_OK;
+}
+
+enum syncap_trigger_error syncap_trigger_stop(struct syncap_trigger* trigger) {
+  if (trigger->state != SYNCAP_TRIGGER_RUNNING) return SYNCAP_TRIGGER_ERR_NOT_RUNNING;
+  trigger->state = SYNCAP_TRIGGER_STOPPED;
+  return SYNCAP_TRIGGER_OK;
+}
+
+enum syncap_trigger_state syncap_trigger_state(const struct syncap_trigger* trigger) {
+  return trigger->state;
+}
+
+int64_t syncap_trigger_rise_ns(const struct syncap_trigger* trigger, uint64_t index) {
+  return trigger->start_ns + syncap_schedule_offset_ns(trigger->rate_uhz, index);
+}
+
+int64_t syncap_trigger_fall_ns(const struct syncap_trigger* trigger, uint64_t index) {
+  return syncap_trigger_rise_ns(trigger, index) + trigger->config.pulse_width_ns;
+}
+
+int64_t syncap_trigger_next_rise_ns(const struct syncap_trigger* trigger) {
+  return syncap_trigger_rise_ns(trigger, trigger->next_index);
+}
+
+static bool is_count_run(const struct syncap_trigger* trigger) {
+  return trigger->config.count != SYNCAP_TRIGGER_FOREVER;
+}
+
+// The pulse to drive at now_ns: the next one unless its successor is already due too, in which
+// case the whole periods that passed are skipped (frame numbers stay pulse indices).
+static uint64_t due_index(const struct syncap_trigger* trigger, int64_t now_ns) {
+  uint64_t index = trigger->next_index;
+  if (syncap_trigger_rise_ns(trigger, index + 1) <= now_ns) {
+    index = syncap_schedule_index_at(trigger->rate_uhz, now_ns - trigger->start_ns);
+  }
+  if (is_count_run(trigger) && index >= trigger->config.count) index = trigger->config.count - 1;
+  return index;
+}
+
+enum syncap_trigger_error syncap_trigger_due_pulse(const struct syncap_trigger* trigger,
+                                                   int64_t now_ns,
+                                                   struct syncap_trigger_pulse* pulse) {
+  if (trigger->state != SYNCAP_TRIGGER_RUNNING) return SYNCAP_TRIGGER_ERR_NOT_RUNNING;
+  const uint64_t index = due_index(trigger, now_ns);
+  *pulse = (struct syncap_trigger_pulse){
+      .index = index,
+      .rise_ns = syncap_trigger_rise_ns(trigger, index),
+      .fall_ns = syncap_trigger_fall_ns(trigger, index),
+      .missed = index - trigger->next_index,
+  };
+  if (pulse->missed > 0) pulse->flags |= SYNCAP_TRIGGER_FLAG_MISSED;
+  if (is_count_run(trigger) && index == trigger->config.count - 1) {
+    pulse->flags |= SYNCAP_TRIGGER_FLAG_LAST;
+  }
+  return SYNCAP_TRIGGER_OK;
+}
+
+enum syncap_trigger_error syncap_trigger_edge_driven(struct syncap_trigger* trigger,
+                                                     struct syncap_trigger_pulse* pulse,
+                                                     int64_t edge_ns) {
+  if (trigger->state != SYNCAP_TRIGGER_RUNNING) return SYNCAP_TRIGGER_ERR_NOT_RUNNING;
+  if (edge_ns - pulse->rise_ns > trigger->config.late_tolerance_ns) {
+    pulse->flags |= SYNCAP_TRIGGER_FLAG_LATE;
+    ++trigger->stats.late;
+  }
+  ++trigger->stats.pulses;
+  trigger->stats.missed += pulse->missed;
+  trigger->next_index = pulse->index + 1;
+  if (pulse->flags & SYNCAP_TRIGGER_FLAG_LAST) trigger->state = SYNCAP_TRIGGER_STOPPED;
+  return SYNCAP_TRIGGER_OK;
+}
+
+void syncap_trigger_get_stats(const struct syncap_trigger* trigger,
+                              struct syncap_trigger_stats* stats) {
+  *stats = trigger->stats;
+}

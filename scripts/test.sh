@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Installs, configures, builds and runs every test through ctest (unit, hil, data), warnings as
+# errors. Ends with ctest's summary line. .ci/run calls exactly this.
+# Extra arguments go to ctest (e.g. -L unit, -R proto, --output-on-failure is always on).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${SYNCAP_BUILD_DIR:-build}
+scripts/build.sh -DSYNCAP_WERROR=ON
+export SYNCAP_DATA=${SYNCAP_DATA:-$(cd .. && pwd)/shared/data}
+[ -d "$SYNCAP_DATA" ] || echo "test: real data absent at $SYNCAP_DATA; 'data' tests will skip"
+exec ctest --test-dir "$build_dir" --output-on-failure --timeout 300 -j "$(nproc)" "$@"

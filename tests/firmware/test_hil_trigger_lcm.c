@@ -1,0 +1,94 @@
+// HIL: syncap-trigger publishes one syncap_trigger_t per pulse over real LCM multicast. Runs in a
+// private network namespace (hil/netns-run), so the multicast never leaves it.
+#include "cmocka_main.h"
+
+#include <sys/wait.h>
+#include <time.h>
+
+#include "child_process.h"
+#include "syncap_trigger_t.h"
+
+#ifndef SYNCAP_TRIGGER_EXE
+#error "SYNCAP_TRIGGER_EXE must be the path of syncap-trigger"
+#endif
+
+#define LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+#define PULSES 20
+#define PERIOD_NS 5000000  // 200 Hz
+#define SPACING_TOLERANCE_NS 2000000
+#define MAX_MESSAGES 64
+
+struct received {
+  size_t count;
+  syncap_trigger_t messages[MAX_MESSAGES];
+};
+
+static void on_trigger(const lcm_recv_buf_t* buffer, const char* channel,
+                       const syncap_trigger_t* message, void* user) {
+  (void)buffer;
+  (void)channel;
+  struct received* received = user;
+  if (received->count < MAX_MESSAGES) received->messages[received->count] = *message;
+  ++received->count;
+}
+
+static int64_t monotonic_ms(void) {
+  struct timespec now;
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return (int64_t)now.tv_sec * 1000 + now.tv_nsec / 1000000;
+}
+
+// Handles messages until `count` arrived or timeout_ms passed, then until 200 ms pass quietly
+// (so that any message too many is seen).
+static void receive(lcm_t* lcm, const struct received* received, size_t count, int timeout_ms) {
+  const int64_t deadline_ms = monotonic_ms() + timeout_ms;
+  while (received->count < count && monotonic_ms() < deadline_ms) lcm_handle_timeout(lcm, 50);
+  while (lcm_handle_timeout(lcm, 200) > 0) {
+  }
+}
+
+static void assert_pulse_train(const struct received* received) {
+  assert_int_equal(received->count, PULSES);
+  for (size_t i = 0; i < PULSES; ++i) {
+    const syncap_trigger_t* message = &received->messages[i];
+    assert_int_equal(message->frame_number, i);
+    assert_int_equal(message->flags & SYNCAP_TRIGGER_T_FLAG_LAST,
+                     i == PULSES - 1 ? SYNCAP_TRIGGER_T_FLAG_LAST : 0);
+    assert_true(message->rate_hz == 200.0);
+    assert_int_equal(message->pulse_width_us, 1000);
+    if (i > 0) {
+      const int64_t spacing = message->monotonic_ns - received->messages[i - 1].monotonic_ns;
+      assert_in_range(spacing, PERIOD_NS - SPACING_TOLERANCE_NS, PERIOD_NS + SPACING_TOLERANCE_NS);
+    }
+  }
+}
+
+static void count_run_publishes_every_pulse_in_order(void** state) {
+  (void)state;
+  lcm_t* lcm = lcm_create(LCM_URL);
+  assert_non_null(lcm);
+  static struct received received;
+  syncap_trigger_t_subscription_t* subscription =
+      syncap_trigger_t_subscribe(lcm, "SYNCAP_TRIGGER", on_trigger, &received);
+  assert_non_null(subscription);
+
+  char* argv[] = {
+      SYNCAP_TRIGGER_EXE, "--count", "20",      "--rate", "200", "--start-delay-ms", "300",
+      "--lcm-url",        LCM_URL,   "--quiet", NULL};
+  const pid_t pid = child_spawn(argv, -1);
+  assert_true(pid > 0);
+  receive(lcm, &received, PULSES, 5000);
+  const int status = child_wait(pid, 5000);
+
+  syncap_trigger_t_unsubscribe(lcm, subscription);
+  lcm_destroy(lcm);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), 0);
+  assert_pulse_train(&received);
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(count_run_publishes_every_pulse_in_order),
+};
+
+SYNCAP_CMOCKA_MAIN(tests)
