@@ -97,7 +97,7 @@ TEST(LcmExchange, MalformedMessageIsNamedAndLaterOnesStillArrive) {
   lcm.publish(proto::blob_channel(5), &good);
   for (int i = 0; i < 40 && frames.empty(); ++i) lcm.handleTimeout(50);
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_NE(errors[0].find("malformed syncap.blob_frame_t on channel SYNCAP_BLOBS_05 (40 bytes)"),
+  EXPECT_NE(errors[0].find("malformed blob_frame_t on channel SYNCAP_BLOBS_05 (40 bytes)"),
             std::string::npos)
       << errors[0];
   ASSERT_EQ(frames.size(), 1u);

@@ -1,0 +1,134 @@
+#include "log_command.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "lcm_log_reader.hpp"
+#include "message_json.hpp"
+#include "subcommand.hpp"
+
+namespace syncap::tools {
+namespace {
+
+constexpr const char* kErrorPrefix = "syncap log: ";
+
+struct LogArgs {
+  std::string file;
+  std::optional<std::regex> channel_filter;
+};
+
+nlohmann::ordered_json event_json(const LogEvent& event, const DecodedMessage& decoded) {
+  nlohmann::ordered_json line = {{"event", event.event_number},
+                                 {"timestamp_us", event.timestamp_us},
+                                 {"channel", event.channel},
+                                 {"type", nullptr}};
+  if (decoded.type) line["type"] = *decoded.type;
+  if (decoded.fields) line["fields"] = *decoded.fields;
+  return line;
+}
+
+// Prints the reader's queued damage reports; true when there were any.
+bool report_reader_errors(LcmLogReader& reader, std::ostream& err) {
+  const auto errors = reader.take_errors();
+  for (const LogError& error : errors) err << kErrorPrefix << error.message << '\n';
+  return !errors.empty();
+}
+
+// LCM itself publishes a plain-text probe on this channel when a process opens udpm; lcm-logger
+// records it. It is not ours and not damage: shown as its text, never reported.
+constexpr const char* kLcmSelfTestChannel = "LCM_SELF_TEST";
+
+DecodedMessage decode_event(const LogEvent& event) {
+  if (event.channel != kLcmSelfTestChannel) return decode_message(event.data);
+  DecodedMessage decoded;
+  decoded.type = "lcm.self_test";
+  decoded.fields =
+      nlohmann::ordered_json{{"text", std::string(event.data.begin(), event.data.end())}};
+  return decoded;
+}
+
+// Prints one event; true when its payload could not be fully decoded (reported on `err`).
+bool print_event(const LogEvent& event, std::ostream& out, std::ostream& err) {
+  const DecodedMessage decoded = decode_event(event);
+  // Channel names and string fields are not guaranteed UTF-8; replace rather than throw.
+  out << event_json(event, decoded).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+      << '\n';
+  if (decoded.error.empty()) return false;
+  err << kErrorPrefix << "event " << event.event_number << " on channel " << event.channel
+      << " at offset " << event.offset << ": " << decoded.error << '\n';
+  return true;
+}
+
+// Fills `parsed` from the arguments; returns an error message for bad ones.
+std::optional<std::string> parse_log_args(std::span<const std::string> args, LogArgs& parsed) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--channel" || arg == "-c") {
+      if (i + 1 == args.size()) return arg + " needs a REGEX";
+      try {
+        parsed.channel_filter.emplace(args[++i]);
+      } catch (const std::regex_error& error) {
+        return "bad channel REGEX '" + args[i] + "': " + error.what();
+      }
+    } else if (arg.starts_with("-")) {
+      return "unknown option " + arg;
+    } else if (parsed.file.empty()) {
+      parsed.file = arg;
+    } else {
+      return "more than one FILE given";
+    }
+  }
+  if (parsed.file.empty()) return std::string("no FILE given");
+  return std::nullopt;
+}
+
+bool wants_help(std::span<const std::string> args) {
+  for (const std::string& arg : args) {
+    if (arg == "--help" || arg == "-h") return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int print_log(std::istream& log, const std::optional<std::regex>& channel_filter, std::ostream& out,
+              std::ostream& err) {
+  LcmLogReader reader(log);
+  bool reported = false;
+  while (const auto event = reader.next()) {
+    reported |= report_reader_errors(reader, err);
+    if (channel_filter && !std::regex_match(event->channel, *channel_filter)) continue;
+    reported |= print_event(*event, out, err);
+  }
+  reported |= report_reader_errors(reader, err);
+  return reported ? kExitReportedErrors : kExitOk;
+}
+
+int log_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+  if (wants_help(args)) {
+    out << kLogUsage;
+    return kExitOk;
+  }
+  LogArgs parsed;
+  if (const auto problem = parse_log_args(args, parsed)) {
+    err << kErrorPrefix << *problem << '\n' << kLogUsage;
+    return kExitUsage;
+  }
+  std::error_code error;
+  if (std::filesystem::is_directory(parsed.file, error)) {
+    err << kErrorPrefix << "cannot read " << parsed.file << ": is a directory\n";
+    return kExitUsage;
+  }
+  std::ifstream log(parsed.file, std::ios::binary);
+  if (!log) {
+    err << kErrorPrefix << "cannot open " << parsed.file << ": " << std::strerror(errno) << '\n';
+    return kExitUsage;
+  }
+  return print_log(log, parsed.channel_filter, out, err);
+}
+
+}  // namespace syncap::tools

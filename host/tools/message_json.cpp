@@ -1,0 +1,171 @@
+#include "message_json.hpp"
+
+#include <array>
+#include <iomanip>
+#include <sstream>
+
+namespace syncap {
+
+void to_json(nlohmann::ordered_json& json, const trigger_t& msg) {
+  json = {
+      {"frame_number", msg.frame_number},
+      {"monotonic_ns", msg.monotonic_ns},
+      {"realtime_ns", msg.realtime_ns},
+      {"rate_hz", msg.rate_hz},
+      {"pulse_width_us", msg.pulse_width_us},
+      {"trigger_id", msg.trigger_id},
+      {"flags", msg.flags},
+  };
+}
+
+void to_json(nlohmann::ordered_json& json, const blob_t& msg) {
+  json = {
+      {"x", msg.x},           {"y", msg.y},           {"area", msg.area},
+      {"peak", msg.peak},     {"bbox_x", msg.bbox_x}, {"bbox_y", msg.bbox_y},
+      {"bbox_w", msg.bbox_w}, {"bbox_h", msg.bbox_h}, {"flags", msg.flags},
+  };
+}
+
+void to_json(nlohmann::ordered_json& json, const blob_frame_t& msg) {
+  json = {
+      {"camera_id", msg.camera_id},         {"frame_number", msg.frame_number},
+      {"monotonic_ns", msg.monotonic_ns},   {"exposure_us", msg.exposure_us},
+      {"processing_us", msg.processing_us}, {"image_width", msg.image_width},
+      {"image_height", msg.image_height},   {"part_index", msg.part_index},
+      {"part_count", msg.part_count},       {"total_blobs", msg.total_blobs},
+      {"num_blobs", msg.num_blobs},         {"blobs", msg.blobs},
+  };
+}
+
+void to_json(nlohmann::ordered_json& json, const silhouette_part_t& msg) {
+  json = {
+      {"camera_id", msg.camera_id},
+      {"frame_number", msg.frame_number},
+      {"image_width", msg.image_width},
+      {"image_height", msg.image_height},
+      {"part_index", msg.part_index},
+      {"part_count", msg.part_count},
+      {"num_pieces", msg.num_pieces},
+      {"data_size", msg.data_size},
+      {"data", tools::base64_encode(msg.data)},
+  };
+}
+
+void to_json(nlohmann::ordered_json& json, const camera_status_t& msg) {
+  json = {
+      {"camera_id", msg.camera_id},
+      {"state", msg.state},
+      {"monotonic_ns", msg.monotonic_ns},
+      {"realtime_ns", msg.realtime_ns},
+      {"last_frame_number", msg.last_frame_number},
+      {"frames_received", msg.frames_received},
+      {"frames_lost", msg.frames_lost},
+      {"frames_incomplete", msg.frames_incomplete},
+      {"frame_rate_hz", msg.frame_rate_hz},
+      {"processing_us_mean", msg.processing_us_mean},
+      {"message", msg.message},
+  };
+}
+
+void to_json(nlohmann::ordered_json& json, const edge_command_t& msg) {
+  json = {
+      {"camera_id", msg.camera_id}, {"sequence", msg.sequence},     {"command", msg.command},
+      {"int_value", msg.int_value}, {"real_value", msg.real_value}, {"roi_x", msg.roi_x},
+      {"roi_y", msg.roi_y},         {"roi_width", msg.roi_width},   {"roi_height", msg.roi_height},
+  };
+}
+
+}  // namespace syncap
+
+namespace syncap::tools {
+namespace {
+
+constexpr std::size_t kFingerprintSize = 8;
+
+template <class Message>
+DecodedMessage decode_as(std::span<const std::uint8_t> payload) {
+  DecodedMessage decoded;
+  decoded.type = std::string("syncap.") + Message::getTypeName();
+  Message msg;
+  const int size = static_cast<int>(payload.size());
+  const int used = msg.decode(payload.data(), 0, size);
+  if (used < 0) {
+    decoded.error =
+        "payload of " + std::to_string(size) + " bytes does not decode as " + *decoded.type;
+    return decoded;
+  }
+  decoded.fields = nlohmann::ordered_json(msg);
+  if (used != size) {
+    decoded.error = *decoded.type + " decoded from " + std::to_string(used) + " of " +
+                    std::to_string(size) + " payload bytes; the rest is trailing garbage";
+  }
+  return decoded;
+}
+
+struct KnownType {
+  std::int64_t fingerprint;
+  DecodedMessage (*decode)(std::span<const std::uint8_t>);
+};
+
+template <class Message>
+KnownType known() {
+  return {Message::getHash(), &decode_as<Message>};
+}
+
+const std::array<KnownType, 6>& known_types() {
+  static const std::array<KnownType, 6> types{known<trigger_t>(),       known<blob_t>(),
+                                              known<blob_frame_t>(),    known<silhouette_part_t>(),
+                                              known<camera_status_t>(), known<edge_command_t>()};
+  return types;
+}
+
+std::int64_t read_fingerprint(std::span<const std::uint8_t> payload) {
+  std::uint64_t value = 0;
+  for (const std::uint8_t byte : payload.first(kFingerprintSize)) value = (value << 8) | byte;
+  return static_cast<std::int64_t>(value);
+}
+
+std::string hex64(std::int64_t value) {
+  std::ostringstream text;
+  text << "0x" << std::hex << std::setw(16) << std::setfill('0')
+       << static_cast<std::uint64_t>(value);
+  return text.str();
+}
+
+DecodedMessage undecoded(std::string error) {
+  DecodedMessage decoded;
+  decoded.error = std::move(error);
+  return decoded;
+}
+
+}  // namespace
+
+DecodedMessage decode_message(std::span<const std::uint8_t> payload) {
+  if (payload.size() < kFingerprintSize) {
+    return undecoded("payload of " + std::to_string(payload.size()) +
+                     " bytes is too short for a type fingerprint");
+  }
+  const std::int64_t fingerprint = read_fingerprint(payload);
+  for (const KnownType& type : known_types()) {
+    if (type.fingerprint == fingerprint) return type.decode(payload);
+  }
+  return undecoded("unknown type fingerprint " + hex64(fingerprint));
+}
+
+std::string base64_encode(std::span<const std::uint8_t> bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t count = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t group = 0;
+    for (std::size_t k = 0; k < 3; ++k) group = (group << 8) | (k < count ? bytes[i + k] : 0u);
+    for (std::size_t k = 0; k < 4; ++k) {
+      text += k <= count ? kAlphabet[(group >> (18 - 6 * k)) & 0x3f] : '=';
+    }
+  }
+  return text;
+}
+
+}  // namespace syncap::tools
