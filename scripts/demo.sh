@@ -31,7 +31,7 @@ hil/netns-run hil/run-slice --build "$build" --out "$out" --frames "$frames" --r
 
 echo "demo: [3/3] outputs in $out/:"
 echo "      groups.jsonl      one JSON line per frame group the host formed"
-echo "      traffic.lcmlog    all LCM traffic (decode: $build/host/tools/syncap log $out/traffic.lcmlog)"
+echo "      traffic.lcmlog    all LCM traffic (decode: $build/bin/syncap log $out/traffic.lcmlog)"
 echo "      camera*/          rendered frames and truth.csv per camera"
 echo "      *.log             each process' own output"
 exit "$status"
