@@ -15,7 +15,7 @@ PACKAGES=(
   # trigger GPIO
   libgpiod-dev gpiod
   # vision and geometry
-  libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev
+  libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
   # tests and benchmarks
   libcmocka-dev libgtest-dev libgmock-dev libbenchmark-dev
   # private network namespaces (ip), unshare comes with util-linux
