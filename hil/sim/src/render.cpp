@@ -1,0 +1,206 @@
+#include "render.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "disc_coverage.hpp"
+
+namespace syncap::sim {
+namespace {
+
+// Pixel rectangle (inclusive) an ellipsoid can cover: projection of its bounding box corners.
+// A corner behind the camera makes the box the whole image.
+cv::Rect ellipsoid_box(const View& view, const Ellipsoid& e) {
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  for (int i = 0; i < 8; ++i) {
+    Eigen::Vector3d corner = e.centre_mm;
+    for (int a = 0; a < 3; ++a)
+      corner += ((i >> a) & 1 ? 1.0 : -1.0) * e.radii_mm[a] * e.axes.col(a);
+    const auto p = view.project(corner);
+    if (!p) return {0, 0, view.width, view.height};
+    x0 = std::min(x0, p->x()), x1 = std::max(x1, p->x());
+    y0 = std::min(y0, p->y()), y1 = std::max(y1, p->y());
+  }
+  // A margin of 2 px covers distortion between corners.
+  const cv::Rect box(
+      cv::Point(static_cast<int>(std::floor(x0)) - 2, static_cast<int>(std::floor(y0)) - 2),
+      cv::Point(static_cast<int>(std::ceil(x1)) + 3, static_cast<int>(std::ceil(y1)) + 3));
+  return box & cv::Rect(0, 0, view.width, view.height);
+}
+
+// Stripes around each limb and Lambert shading: texture for matching, shape for the eye.
+float body_shade(const Ellipsoid& e, const Eigen::Vector3d& hit, const Eigen::Vector3d& light_dir,
+                 int index) {
+  const Eigen::Vector3d local = e.axes.transpose() * (hit - e.centre_mm);
+  const Eigen::Vector3d normal =
+      (e.axes * local.cwiseQuotient(e.radii_mm.cwiseProduct(e.radii_mm))).normalized();
+  const double lambert = std::max(0.0, -normal.dot(light_dir));
+  const double stripes = 0.5 + 0.5 * std::sin(local.z() * 0.12 + index * 1.7);
+  return static_cast<float>((70.0 + 50.0 * stripes) * (0.45 + 0.75 * lambert));
+}
+
+struct BodyHit {
+  cv::Mat depth;  // CV_32F, +inf where no hit
+};
+
+void paint_body(const View& view, const FrameContent& content, cv::Mat& radiance, cv::Mat& mask) {
+  cv::Mat depth(view.height, view.width, CV_32F,
+                cv::Scalar(std::numeric_limits<float>::infinity()));
+  for (std::size_t i = 0; i < content.body.size(); ++i) {
+    const Ellipsoid& e = content.body[i];
+    const cv::Rect box = ellipsoid_box(view, e);
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      for (int x = box.x; x < box.x + box.width; ++x) {
+        const Eigen::Vector3d dir =
+            view.rays[static_cast<std::size_t>(y) * view.width + x].cast<double>();
+        const auto t = ray_ellipsoid(view.centre_mm, dir, e);
+        if (!t || *t >= depth.at<float>(y, x)) continue;
+        depth.at<float>(y, x) = static_cast<float>(*t);
+        radiance.at<float>(y, x) =
+            body_shade(e, view.centre_mm + *t * dir, content.light_dir, static_cast<int>(i));
+        mask.at<uint8_t>(y, x) = 255;
+      }
+    }
+  }
+}
+
+// Floor points whose path to the light is blocked by the body are darkened.
+void paint_shadow(const View& view, const FrameContent& content, cv::Mat& radiance,
+                  const cv::Mat& mask) {
+  if (content.body.empty() || !view.floor_xy.data) return;
+  const Eigen::Vector3d to_light = -content.light_dir.normalized();
+  // Floor rectangle the shadow can fall in: every ellipsoid's box corners cast along the light.
+  double fx0 = 1e18, fy0 = 1e18, fx1 = -1e18, fy1 = -1e18;
+  for (const auto& e : content.body) {
+    const double reach = e.radii_mm.maxCoeff();
+    const double t = e.centre_mm.z() / to_light.z();
+    const Eigen::Vector3d foot = e.centre_mm - t * to_light;
+    const double spread = reach * (1 + std::abs(1 / to_light.z()));
+    fx0 = std::min(fx0, foot.x() - spread), fx1 = std::max(fx1, foot.x() + spread);
+    fy0 = std::min(fy0, foot.y() - spread), fy1 = std::max(fy1, foot.y() + spread);
+  }
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  for (int i = 0; i < 4; ++i) {
+    const auto p = view.project({i & 1 ? fx1 : fx0, i & 2 ? fy1 : fy0, 0.0});
+    if (!p) return;  // a camera that sees the shadow region from behind: none drawn (documented)
+    x0 = std::min(x0, p->x()), x1 = std::max(x1, p->x()), y0 = std::min(y0, p->y()),
+    y1 = std::max(y1, p->y());
+  }
+  const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(x0) - 2, static_cast<int>(y0) - 2),
+                                cv::Point(static_cast<int>(x1) + 3, static_cast<int>(y1) + 3)) &
+                       cv::Rect(0, 0, view.width, view.height);
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      const cv::Vec2f f = view.floor_xy.at<cv::Vec2f>(y, x);
+      if (std::isnan(f[0]) || mask.at<uint8_t>(y, x)) continue;
+      const Eigen::Vector3d point(f[0], f[1], 0.0);
+      for (const auto& e : content.body) {
+        if (ray_ellipsoid(point, to_light, e)) {
+          radiance.at<float>(y, x) *= static_cast<float>(1.0 - content.shadow_darkening);
+          break;
+        }
+      }
+    }
+  }
+}
+
+// Paints a sphere as a disc of exactly covered pixels, averaged over its exposure path.
+SphereTruth paint_sphere(const View& view, const Sphere& s, cv::Mat& radiance) {
+  SphereTruth truth;
+  const auto centre = view.project(s.centre_mm);
+  if (!centre) return truth;
+  const double depth = (s.centre_mm - view.centre_mm).dot(view.axis);
+  truth.pixel = *centre;
+  truth.radius_px = view.focal_px * s.radius_mm / depth;
+  truth.visible = centre->x() >= -0.5 && centre->y() >= -0.5 && centre->x() < view.width - 0.5 &&
+                  centre->y() < view.height - 0.5;
+  std::vector<Eigen::Vector2d> positions;
+  for (const auto& p : s.exposure_path_mm) {
+    if (auto px = view.project(p)) positions.push_back(*px);
+  }
+  if (positions.empty()) positions.push_back(*centre);
+  // Only the rectangle the disc can touch is worked on.
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  for (const auto& p : positions) {
+    x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x()), y0 = std::min(y0, p.y()),
+    y1 = std::max(y1, p.y());
+  }
+  const double r = truth.radius_px + 1;
+  const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(x0 - r)),
+                                          static_cast<int>(std::floor(y0 - r))),
+                                cv::Point(static_cast<int>(std::ceil(x1 + r)) + 1,
+                                          static_cast<int>(std::ceil(y1 + r)) + 1)) &
+                       cv::Rect(0, 0, view.width, view.height);
+  if (box.empty()) return truth;
+  const double share = 1.0 / static_cast<double>(positions.size());
+  cv::Mat coverage(box.size(), CV_32F, cv::Scalar(0));
+  for (const auto& p : positions) {
+    for_each_covered_pixel(
+        p.x() - box.x, p.y() - box.y, truth.radius_px, box.width, box.height,
+        [&](int x, int y, double a) { coverage.at<float>(y, x) += static_cast<float>(a * share); });
+  }
+  // The target hides what is behind it: blend towards its brightness by coverage.
+  cv::Mat patch = radiance(box);
+  patch += coverage.mul(cv::Scalar(s.brightness_dn) - patch);
+  return truth;
+}
+
+}  // namespace
+
+std::optional<double> ray_ellipsoid(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                                    const Ellipsoid& e) {
+  // In the ellipsoid's frame scaled to a unit sphere: |o + t d| = 1.
+  const Eigen::Vector3d inv = e.radii_mm.cwiseInverse();
+  const Eigen::Vector3d o = (e.axes.transpose() * (origin - e.centre_mm)).cwiseProduct(inv);
+  const Eigen::Vector3d d = (e.axes.transpose() * dir).cwiseProduct(inv);
+  const double a = d.squaredNorm(), b = o.dot(d), c = o.squaredNorm() - 1.0;
+  const double disc = b * b - a * c;
+  if (disc < 0) return std::nullopt;
+  const double root = std::sqrt(disc);
+  double t = (-b - root) / a;
+  if (t <= 1e-9) t = (-b + root) / a;  // origin inside: the exit point
+  if (t <= 1e-9) return std::nullopt;
+  return t;
+}
+
+RenderedView render_view(const View& view, const FrameContent& content, const ImageSpec& image,
+                         uint64_t noise_seed) {
+  RenderedView out;
+  cv::Mat radiance = content.room_background
+                         ? view.room.clone()
+                         : cv::Mat(view.height, view.width, CV_32F, cv::Scalar(image.dark_dn));
+  out.mask = cv::Mat(view.height, view.width, CV_8UC1, cv::Scalar(0));
+  if (!content.body.empty()) {
+    paint_body(view, content, radiance, out.mask);
+    paint_shadow(view, content, radiance, out.mask);
+  }
+  for (const auto& s : content.spheres) out.spheres.push_back(paint_sphere(view, s, radiance));
+  radiance *= content.gain;
+  if (image.noise_sigma_dn > 0) {
+    cv::Mat noise(radiance.size(), CV_32F);
+    cv::RNG rng(noise_seed);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, image.noise_sigma_dn);
+    radiance += noise;
+  }
+  radiance.convertTo(out.image, CV_8U);  // rounds to nearest and saturates at 0 and 255
+  return out;
+}
+
+cv::Mat silhouette_brute_force(const View& view, const std::vector<Ellipsoid>& body) {
+  cv::Mat mask(view.height, view.width, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const Eigen::Vector3d dir =
+          view.rays[static_cast<std::size_t>(y) * view.width + x].cast<double>();
+      for (const auto& e : body) {
+        if (ray_ellipsoid(view.centre_mm, dir, e)) {
+          mask.at<uint8_t>(y, x) = 255;
+          break;
+        }
+      }
+    }
+  }
+  return mask;
+}
+
+}  // namespace syncap::sim

@@ -1,0 +1,307 @@
+#include "scenario.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace syncap::sim {
+namespace {
+
+// A YAML mapping being read: typed getters that name file and line on error, and a check that
+// no key was left unread (a typo must not be silently ignored).
+class Section {
+ public:
+  Section(const YAML::Node& node, const std::filesystem::path& file, std::string what)
+      : node_(node), file_(file), what_(std::move(what)) {
+    if (!node_.IsMap()) fail(node_, what_ + " must be a mapping of key: value");
+  }
+
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& problem) const {
+    throw ScenarioError(file_.string() + ":" + std::to_string(at.Mark().line + 1) + ": " + problem);
+  }
+  int line() const { return node_.Mark().line + 1; }
+
+  bool has(const std::string& key) const { return static_cast<bool>(node_[key]); }
+
+  // A mapping inside this one (or inside a list of this one), read with the same file name.
+  Section nested(const YAML::Node& node, std::string what) const {
+    return Section(node, file_, std::move(what));
+  }
+
+  YAML::Node child(const std::string& key) {
+    read_.insert(key);
+    return node_[key];
+  }
+
+  double number(const std::string& key, double fallback, double low, double high) {
+    const YAML::Node n = child(key);
+    if (!n) return fallback;
+    double v = 0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) {
+      fail(n, what_ + "." + key + " must be a number");
+    }
+    if (!(v >= low && v <= high)) {
+      fail(n,
+           what_ + "." + key + " = " + n.Scalar() + " is outside " + fmt(low) + ".." + fmt(high));
+    }
+    return v;
+  }
+
+  int integer(const std::string& key, int fallback, int low, int high) {
+    const YAML::Node n = child(key);
+    if (!n) return fallback;
+    int v = 0;
+    if (!n.IsScalar() || !YAML::convert<int>::decode(n, v)) {
+      fail(n, what_ + "." + key + " must be a whole number");
+    }
+    if (v < low || v > high) {
+      fail(n, what_ + "." + key + " = " + n.Scalar() + " is outside " + std::to_string(low) + ".." +
+                  std::to_string(high));
+    }
+    return v;
+  }
+
+  std::string text(const std::string& key, const std::string& fallback,
+                   const std::set<std::string>& allowed = {}) {
+    const YAML::Node n = child(key);
+    if (!n) return fallback;
+    if (!n.IsScalar()) fail(n, what_ + "." + key + " must be text");
+    const std::string v = n.Scalar();
+    if (!allowed.empty() && !allowed.contains(v)) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(n, what_ + "." + key + " '" + v + "' is not one of: " + list);
+    }
+    return v;
+  }
+
+  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback) {
+    const YAML::Node n = child(key);
+    if (!n) return fallback;
+    std::vector<double> v;
+    if (!n.IsSequence() || n.size() != 3 || !YAML::convert<std::vector<double>>::decode(n, v)) {
+      fail(n, what_ + "." + key + " must be a list of three numbers [x, y, z]");
+    }
+    return {v[0], v[1], v[2]};
+  }
+
+  std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback) {
+    const YAML::Node n = child(key);
+    if (!n) return fallback;
+    std::vector<double> v;
+    if (!n.IsSequence() || !YAML::convert<std::vector<double>>::decode(n, v)) {
+      fail(n, what_ + "." + key + " must be a list of numbers");
+    }
+    return v;
+  }
+
+  void require(const std::string& key) {
+    if (!has(key)) fail(node_, what_ + " needs '" + key + "'");
+  }
+
+  // Every key of the mapping must have been read.
+  void finish() const {
+    for (const auto& kv : node_) {
+      const std::string key = kv.first.as<std::string>();
+      if (!read_.contains(key)) fail(kv.first, "unknown key '" + key + "' in " + what_);
+    }
+  }
+
+ private:
+  static std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+  YAML::Node node_;
+  std::filesystem::path file_;
+  std::string what_;
+  std::set<std::string> read_;
+};
+
+constexpr double kHuge = 1e9;
+
+CameraPoseSpec read_pose(Section& s) {
+  CameraPoseSpec p;
+  s.require("position_mm");
+  p.position_mm = s.vec3("position_mm", p.position_mm);
+  p.omega = s.number("omega", 0, -10, 10);
+  p.phi = s.number("phi", 0, -10, 10);
+  p.kappa = s.number("kappa", 0, -10, 10);
+  s.finish();
+  return p;
+}
+
+CameraSpec read_cameras(Section& s) {
+  CameraSpec c;
+  c.layout = s.text("layout", c.layout, {"ring", "half_circle", "explicit"});
+  if (c.layout == "explicit") {
+    s.require("poses");
+    const YAML::Node poses = s.child("poses");
+    if (!poses.IsSequence() || poses.size() == 0) s.fail(poses, "cameras.poses must be a list");
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      Section pose = s.nested(poses[i], "cameras.poses[" + std::to_string(i) + "]");
+      c.poses.push_back(read_pose(pose));
+    }
+    c.count = s.integer("count", static_cast<int>(c.poses.size()), 1, 99);
+    if (c.count != static_cast<int>(c.poses.size())) {
+      s.fail(poses, "cameras.count differs from the number of poses");
+    }
+  } else {
+    s.require("count");
+    c.count = s.integer("count", 0, 1, 99);
+  }
+  c.radius_mm = s.number("radius_mm", c.radius_mm, 100, kHuge);
+  c.height_mm = s.number("height_mm", c.height_mm, -kHuge, kHuge);
+  c.arc_deg = s.number("arc_deg", c.arc_deg, 1, 360);
+  c.look_at_mm = s.vec3("look_at_mm", c.look_at_mm);
+  c.width_px = s.integer("width_px", c.width_px, 16, 8192);
+  c.height_px = s.integer("height_px", c.height_px, 16, 8192);
+  c.pixel_size_mm = s.number("pixel_size_mm", c.pixel_size_mm, 1e-4, 0.1);
+  c.c_mm = s.number("c_mm", c.c_mm, 0.5, 500);
+  c.xp_mm = s.number("xp_mm", 0, -10, 10);
+  c.yp_mm = s.number("yp_mm", 0, -10, 10);
+  c.k1 = s.number("k1", 0, -1, 1);
+  c.k2 = s.number("k2", 0, -1, 1);
+  c.k3 = s.number("k3", 0, -1, 1);
+  c.p1 = s.number("p1", 0, -1, 1);
+  c.p2 = s.number("p2", 0, -1, 1);
+  c.sc = s.number("sc", 0, -0.1, 0.1);
+  c.sh = s.number("sh", 0, -0.1, 0.1);
+  s.finish();
+  return c;
+}
+
+ImageSpec read_image(Section& s) {
+  ImageSpec im;
+  im.noise_sigma_dn = s.number("noise_sigma_dn", im.noise_sigma_dn, 0, 50);
+  im.drift = s.number("drift", im.drift, -0.9, 0.9);
+  im.flicker_hz = s.number("flicker_hz", im.flicker_hz, 0, 1000);
+  im.flicker_amplitude = s.number("flicker_amplitude", im.flicker_amplitude, 0, 0.5);
+  im.dark_dn = s.number("dark_dn", im.dark_dn, 0, 200);
+  s.finish();
+  return im;
+}
+
+void read_wand(Section& s, WandSpec& w) {
+  w.target_offsets_mm = s.numbers("target_offsets_mm", w.target_offsets_mm);
+  if (w.target_offsets_mm.size() < 2 || w.target_offsets_mm.size() > 3) {
+    s.fail(s.child("target_offsets_mm"), "a wand has 2 or 3 targets (target_offsets_mm)");
+  }
+  w.target_radius_mm = s.number("target_radius_mm", w.target_radius_mm, 0.5, 200);
+  w.brightness_dn = s.number("brightness_dn", w.brightness_dn, 1, 255);
+  w.speed_mm_s = s.number("speed_mm_s", w.speed_mm_s, 0, 20000);
+  w.exposure_ms = s.number("exposure_ms", w.exposure_ms, 0, 1000);
+}
+
+void read_led(Section& s, LedSpec& l) {
+  l.radius_mm = s.number("radius_mm", l.radius_mm, 0.5, 100);
+  l.brightness_dn = s.number("brightness_dn", l.brightness_dn, 1, 255);
+  l.speed_mm_s = s.number("speed_mm_s", l.speed_mm_s, 0, 20000);
+  l.on_frames = s.integer("on_frames", l.on_frames, 1, 100000);
+  l.off_frames = s.integer("off_frames", l.off_frames, 0, 100000);
+}
+
+void read_person(Section& s, PersonSpec& p, const std::filesystem::path& file) {
+  s.require("bvh");
+  p.bvh = s.text("bvh", "");
+  p.start_s = s.number("start_s", p.start_s, 0, kHuge);
+  p.speed = s.number("speed", p.speed, 0.01, 100);
+  p.light_dir = s.vec3("light_dir", p.light_dir);
+  if (p.light_dir.z() >= 0)
+    s.fail(s.child("light_dir"), "person.light_dir must point down (z < 0)");
+  p.shadow_darkening = s.number("shadow_darkening", p.shadow_darkening, 0, 1);
+  (void)file;
+}
+
+PhaseSpec read_phase(Section& s, const std::filesystem::path& file) {
+  PhaseSpec ph;
+  ph.line = s.line();
+  s.require("type");
+  s.require("frames");
+  ph.type = s.text("type", "", {"wand", "led", "room", "person"});
+  ph.frames = s.integer("frames", 0, 1, 10'000'000);
+  const bool lit = ph.type == "room" || ph.type == "person";
+  ph.background = s.text("background", lit ? "room" : "dark", {"dark", "room"});
+  if (ph.type == "wand") read_wand(s, ph.wand);
+  if (ph.type == "led") read_led(s, ph.led);
+  if (ph.type == "person") read_person(s, ph.person, file);
+  s.finish();
+  return ph;
+}
+
+// A relative BVH path is looked for beside the scenario, then under $SYNCAP_DATA.
+std::filesystem::path resolve_data_path(const std::filesystem::path& p,
+                                        const std::filesystem::path& scenario_file) {
+  if (p.is_absolute()) return p;
+  const auto beside = scenario_file.parent_path() / p;
+  if (std::filesystem::exists(beside)) return beside;
+  if (const char* data = std::getenv("SYNCAP_DATA"); data != nullptr && *data != '\0') {
+    const auto in_data = std::filesystem::path(data) / p;
+    if (std::filesystem::exists(in_data)) return in_data;
+  }
+  return beside;
+}
+
+}  // namespace
+
+int Scenario::total_frames() const {
+  int n = 0;
+  for (const auto& p : phases) n += p.frames;
+  return n;
+}
+
+Scenario parse_scenario(const std::string& text, const std::filesystem::path& file) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file.string() + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (!root || root.IsNull()) throw ScenarioError(file.string() + ":1: the scenario is empty");
+  Section top(root, file, "scenario");
+  Scenario sc;
+  sc.file = file;
+  sc.name = top.text("name", file.stem().string());
+  sc.seed = static_cast<unsigned>(top.integer("seed", 1, 0, 1 << 30));
+  sc.frame_rate_hz = top.number("frame_rate_hz", sc.frame_rate_hz, 0.01, 1000);
+  sc.volume_min_mm = top.vec3("volume_min_mm", sc.volume_min_mm);
+  sc.volume_max_mm = top.vec3("volume_max_mm", sc.volume_max_mm);
+  if ((sc.volume_max_mm.array() <= sc.volume_min_mm.array()).any()) {
+    top.fail(top.child("volume_max_mm"), "volume_max_mm must exceed volume_min_mm on every axis");
+  }
+  sc.room_size_mm = top.vec3("room_size_mm", sc.room_size_mm);
+  top.require("cameras");
+  Section cams(top.child("cameras"), file, "cameras");
+  sc.cameras = read_cameras(cams);
+  if (top.has("image")) {
+    Section im(top.child("image"), file, "image");
+    sc.image = read_image(im);
+  }
+  top.require("phases");
+  const YAML::Node phases = top.child("phases");
+  if (!phases.IsSequence() || phases.size() == 0)
+    top.fail(phases, "phases must be a non-empty list");
+  for (std::size_t i = 0; i < phases.size(); ++i) {
+    Section ph(phases[i], file, "phases[" + std::to_string(i) + "]");
+    sc.phases.push_back(read_phase(ph, file));
+    auto& person = sc.phases.back().person;
+    if (sc.phases.back().type == "person") person.bvh = resolve_data_path(person.bvh, file);
+  }
+  top.finish();
+  return sc;
+}
+
+Scenario load_scenario(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw ScenarioError(file.string() + ": cannot read the scenario file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), file);
+}
+
+}  // namespace syncap::sim

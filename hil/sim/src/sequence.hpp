@@ -1,0 +1,54 @@
+// What is in front of the cameras at each frame of a scenario: the phase, the wand targets or
+// LED (with their exposure paths for motion blur), the person's ellipsoids, the lamp gain.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "motion.hpp"
+#include "render.hpp"
+#include "scenario.hpp"
+
+namespace syncap::sim {
+
+// The person at time t: joint positions and one ellipsoid per bone, mm, Z up.
+struct BodyFrame {
+  std::vector<std::pair<std::string, Eigen::Vector3d>> joints;
+  std::vector<Ellipsoid> ellipsoids;
+};
+using BodySource = std::function<BodyFrame(double t_s)>;
+// Opens the motion of a person phase (its BVH); throws with file and line on a broken file.
+using BodySourceFactory = std::function<BodySource(const PersonSpec&, const Scenario&)>;
+
+struct FrameState {
+  int frame = 0;
+  int phase_index = 0;
+  const PhaseSpec* phase = nullptr;
+  double time_s = 0;        // since the first frame
+  double phase_time_s = 0;  // since the phase's first frame
+  bool led_on = false;
+  FrameContent content;
+  BodyFrame body;  // person phases only
+};
+
+class Sequence {
+ public:
+  Sequence(const Scenario& scenario, const BodySourceFactory& bodies);
+
+  int frames() const { return scenario_.total_frames(); }
+  FrameState at(int frame);
+
+ private:
+  Sphere sphere_at(WaypointPath& path, double t, double offset_mm, double radius_mm,
+                   double brightness, double exposure_ms) const;
+  double gain_at(int frame) const;
+
+  const Scenario& scenario_;
+  std::vector<int> first_frame_;                      // per phase
+  std::vector<std::unique_ptr<WaypointPath>> paths_;  // per phase (wand and LED)
+  std::vector<BodySource> bodies_;                    // per phase (person)
+};
+
+}  // namespace syncap::sim
