@@ -1,6 +1,11 @@
 // syncap: the command-line tool. `syncap SUBCOMMAND ARGS...`; each subcommand lives in its own
 // file and is listed in kSubcommands.
+#include <unistd.h>
+
 #include <array>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <span>
 #include <string>
@@ -25,6 +30,17 @@ constexpr std::array kSubcommands{
                &syncap::tools::log_command},
 };
 
+// Subcommands that are programs of their own, `syncap-NAME`, looked for beside this program,
+// then on PATH (as git does): they link libraries the log decoder has no business with.
+struct ProgramSubcommand {
+  std::string_view name;
+  std::string_view summary;
+};
+
+constexpr std::array kProgramSubcommands{
+    ProgramSubcommand{"sim", "render a scenario into camera images and ground truth"},
+};
+
 void print_usage(std::ostream& out) {
   out << "usage: syncap SUBCOMMAND [ARGS...]\n"
          "       syncap SUBCOMMAND --help\n\n"
@@ -32,6 +48,35 @@ void print_usage(std::ostream& out) {
   for (const Subcommand& subcommand : kSubcommands) {
     out << "  " << subcommand.name << "  " << subcommand.summary << '\n';
   }
+  for (const ProgramSubcommand& subcommand : kProgramSubcommands) {
+    out << "  " << subcommand.name << "  " << subcommand.summary << '\n';
+  }
+}
+
+bool is_program_subcommand(std::string_view name) {
+  for (const ProgramSubcommand& subcommand : kProgramSubcommands) {
+    if (subcommand.name == name) return true;
+  }
+  return false;
+}
+
+// Replaces this process with syncap-NAME; returns only on failure.
+int exec_program_subcommand(const std::vector<std::string>& args) {
+  const std::string program = "syncap-" + args[0];
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(program.c_str()));
+  for (std::size_t i = 1; i < args.size(); ++i) argv.push_back(const_cast<char*>(args[i].c_str()));
+  argv.push_back(nullptr);
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::string beside = (self.parent_path() / program).string();
+    if (::access(beside.c_str(), X_OK) == 0) ::execv(beside.c_str(), argv.data());
+  }
+  ::execvp(program.c_str(), argv.data());
+  std::cerr << "syncap: cannot run " << program << " (beside " << self.parent_path().string()
+            << " or on PATH): " << std::strerror(errno) << '\n';
+  return syncap::tools::kExitUsage;
 }
 
 const Subcommand* find_subcommand(std::string_view name) {
@@ -53,6 +98,7 @@ int main(int argc, char** argv) {
     print_usage(std::cout);
     return syncap::tools::kExitOk;
   }
+  if (is_program_subcommand(args[0])) return exec_program_subcommand(args);
   const Subcommand* subcommand = find_subcommand(args[0]);
   if (subcommand == nullptr) {
     std::cerr << "syncap: unknown subcommand '" << args[0] << "'\n";

@@ -1,0 +1,224 @@
+#include "sensor/camera_file.hpp"
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace syncap::sensor {
+namespace {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+// The estimated parameters in file order; the same names serve the "std" object.
+struct InteriorField {
+  const char* name;
+  double InteriorOrientation::*member;
+};
+struct ExteriorField {
+  const char* name;
+  double ExteriorOrientation::*member;
+};
+
+constexpr InteriorField kInteriorFields[] = {
+    {"c", &InteriorOrientation::c},   {"xp", &InteriorOrientation::xp},
+    {"yp", &InteriorOrientation::yp}, {"k1", &InteriorOrientation::k1},
+    {"k2", &InteriorOrientation::k2}, {"k3", &InteriorOrientation::k3},
+    {"p1", &InteriorOrientation::p1}, {"p2", &InteriorOrientation::p2},
+    {"sc", &InteriorOrientation::sc}, {"sh", &InteriorOrientation::sh}};
+
+constexpr ExteriorField kExteriorFields[] = {
+    {"X0", &ExteriorOrientation::X0},   {"Y0", &ExteriorOrientation::Y0},
+    {"Z0", &ExteriorOrientation::Z0},   {"omega", &ExteriorOrientation::omega},
+    {"phi", &ExteriorOrientation::phi}, {"kappa", &ExteriorOrientation::kappa}};
+
+constexpr int kMaxCameraId = 99;  // channel names carry the id as two digits
+
+std::set<std::string> camera_field_names() {
+  std::set<std::string> names{"id", "image_size", "pixel_size", "std"};
+  for (const auto& f : kInteriorFields) names.insert(f.name);
+  for (const auto& f : kExteriorFields) names.insert(f.name);
+  return names;
+}
+
+// Reads one camera object; every error names the source, the camera and the field.
+class CameraReader {
+ public:
+  // Until the id is known the camera is named by its place in the list.
+  CameraReader(std::string_view source, std::size_t index)
+      : source_(source), where_(source_ + ": cameras[" + std::to_string(index) + "]") {}
+
+  CameraModel read(const json& object) {
+    if (!object.is_object()) fail("must be an object");
+    CameraModel camera;
+    camera.id = read_id(object);
+    where_ = source_ + ": camera " + std::to_string(camera.id);
+    reject_unknown_fields(object, camera_field_names(), "");
+    camera.sensor = read_sensor(object);
+    for (const auto& f : kInteriorFields) camera.interior.*f.member = number(object, f.name, "");
+    for (const auto& f : kExteriorFields) camera.exterior.*f.member = number(object, f.name, "");
+    if (!(camera.interior.c > 0.0)) fail_field("c", "must be a positive number");
+    const double affinity_determinant =
+        1.0 - camera.interior.sc - camera.interior.sh * camera.interior.sh;
+    if (!(affinity_determinant > 0.0)) {
+      fail("fields \"sc\" and \"sh\" must satisfy 1 - sc - sh^2 > 0 (an invertible affinity)");
+    }
+    if (object.contains("std")) camera.std_devs = read_std_devs(object.at("std"));
+    return camera;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw CameraFileError(where_ + ": " + what);
+  }
+  [[noreturn]] void fail_field(const std::string& field, const std::string& what) const {
+    fail("field \"" + field + "\" " + what);
+  }
+
+  const json& field(const json& object, const std::string& name, const std::string& prefix) {
+    const auto it = object.find(name);
+    if (it == object.end()) fail_field(prefix + name, "is missing");
+    return *it;
+  }
+
+  double number(const json& object, const std::string& name, const std::string& prefix) {
+    const json& value = field(object, name, prefix);
+    if (!value.is_number()) fail_field(prefix + name, "must be a number");
+    return value.get<double>();
+  }
+
+  void reject_unknown_fields(const json& object, const std::set<std::string>& known,
+                             const std::string& prefix) {
+    for (const auto& item : object.items()) {
+      if (known.count(item.key()) == 0) fail_field(prefix + item.key(), "is unknown");
+    }
+  }
+
+  int read_id(const json& object) {
+    const json& id = field(object, "id", "");
+    if (!id.is_number_integer() || id.get<long long>() < 0 || id.get<long long>() > kMaxCameraId) {
+      fail_field("id", "must be an integer from 0 to " + std::to_string(kMaxCameraId));
+    }
+    return id.get<int>();
+  }
+
+  SensorGeometry read_sensor(const json& object) {
+    const json& size = field(object, "image_size", "");
+    const auto positive_integer = [](const json& v) {
+      return v.is_number_integer() && v.get<long long>() > 0 && v.get<long long>() < (1 << 20);
+    };
+    if (!size.is_array() || size.size() != 2 || !positive_integer(size[0]) ||
+        !positive_integer(size[1])) {
+      fail_field("image_size", "must be [width, height] in pixels, two positive integers");
+    }
+    const json& pixel = field(object, "pixel_size", "");
+    const auto positive_number = [](const json& v) {
+      return v.is_number() && v.get<double>() > 0.0;
+    };
+    if (!pixel.is_array() || pixel.size() != 2 || !positive_number(pixel[0]) ||
+        !positive_number(pixel[1])) {
+      fail_field("pixel_size", "must be [width, height] in mm, two positive numbers");
+    }
+    return {size[0].get<int>(), size[1].get<int>(), pixel[0].get<double>(), pixel[1].get<double>()};
+  }
+
+  CameraStdDevs read_std_devs(const json& object) {
+    if (!object.is_object()) fail_field("std", "must be an object");
+    std::set<std::string> known;
+    for (const auto& f : kInteriorFields) known.insert(f.name);
+    for (const auto& f : kExteriorFields) known.insert(f.name);
+    reject_unknown_fields(object, known, "std.");
+    CameraStdDevs s;
+    const auto non_negative = [&](const char* name) {
+      const double v = number(object, name, "std.");
+      if (!(v >= 0.0)) fail_field(std::string("std.") + name, "must be a non-negative number");
+      return v;
+    };
+    for (const auto& f : kInteriorFields) s.interior.*f.member = non_negative(f.name);
+    for (const auto& f : kExteriorFields) s.exterior.*f.member = non_negative(f.name);
+    return s;
+  }
+
+  std::string source_;
+  std::string where_;  // "<source>: camera <id>", the start of every message
+};
+
+ordered_json parameters_json(const InteriorOrientation& interior,
+                             const ExteriorOrientation& exterior) {
+  ordered_json j;
+  for (const auto& f : kInteriorFields) j[f.name] = interior.*f.member;
+  for (const auto& f : kExteriorFields) j[f.name] = exterior.*f.member;
+  return j;
+}
+
+}  // namespace
+
+std::vector<CameraModel> parse_cameras(std::string_view text, std::string_view source) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw CameraFileError(std::string(source) + ": not valid JSON: " + e.what());
+  }
+  const std::string where(source);
+  if (!document.is_object() || !document.contains("cameras") || !document["cameras"].is_array()) {
+    throw CameraFileError(where + ": the top level must be an object with a \"cameras\" array");
+  }
+  for (const auto& item : document.items()) {
+    if (item.key() != "cameras") {
+      throw CameraFileError(where + ": field \"" + item.key() + "\" is unknown");
+    }
+  }
+  std::vector<CameraModel> cameras;
+  std::map<int, std::size_t> index_of_id;
+  const json& list = document["cameras"];
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    cameras.push_back(CameraReader(source, i).read(list[i]));
+    const auto [it, inserted] = index_of_id.emplace(cameras.back().id, i);
+    if (!inserted) {
+      throw CameraFileError(where + ": cameras[" + std::to_string(i) + "]: id " +
+                            std::to_string(cameras.back().id) + " is already used by cameras[" +
+                            std::to_string(it->second) + "]");
+    }
+  }
+  return cameras;
+}
+
+std::string format_cameras(const std::vector<CameraModel>& cameras) {
+  ordered_json list = ordered_json::array();
+  for (const CameraModel& camera : cameras) {
+    ordered_json j;
+    j["id"] = camera.id;
+    j["image_size"] = {camera.sensor.width_px, camera.sensor.height_px};
+    j["pixel_size"] = {camera.sensor.pixel_width_mm, camera.sensor.pixel_height_mm};
+    j.update(parameters_json(camera.interior, camera.exterior));
+    if (camera.std_devs) {
+      j["std"] = parameters_json(camera.std_devs->interior, camera.std_devs->exterior);
+    }
+    list.push_back(std::move(j));
+  }
+  ordered_json document;
+  document["cameras"] = std::move(list);
+  return document.dump(2) + "\n";
+}
+
+std::vector<CameraModel> read_cameras(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw CameraFileError(file.string() + ": cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw CameraFileError(file.string() + ": read error");
+  return parse_cameras(text.str(), file.string());
+}
+
+void write_cameras(const std::filesystem::path& file, const std::vector<CameraModel>& cameras) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) throw CameraFileError(file.string() + ": cannot open for writing");
+  out << format_cameras(cameras);
+  out.close();
+  if (!out) throw CameraFileError(file.string() + ": write error");
+}
+
+}  // namespace syncap::sensor

@@ -1,0 +1,167 @@
+#include "sensor/camera_file.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "test_cameras.hpp"
+
+namespace syncap::sensor {
+namespace {
+
+std::vector<CameraModel> two_cameras() {
+  std::mt19937 rng(41);
+  CameraModel a = test::basler_camera();
+  a.id = 0;
+  CameraModel b = test::random_camera(rng, true);
+  b.id = 7;
+  CameraStdDevs s;
+  s.interior = {1e-3, 2e-3, 3e-3, 1e-5, 1e-7, 0.0, 1e-6, 2e-6, 1e-5, 2e-5};
+  s.exterior = {0.5, 0.6, 0.7, 1e-4, 2e-4, 3e-4};
+  b.std_devs = s;
+  return {a, b};
+}
+
+void expect_same(const InteriorOrientation& a, const InteriorOrientation& b) {
+  EXPECT_EQ(interior_block(a), interior_block(b));
+}
+void expect_same(const ExteriorOrientation& a, const ExteriorOrientation& b) {
+  EXPECT_EQ(exterior_block(a), exterior_block(b));
+}
+
+TEST(CameraFile, WriteThenReadGivesTheSameCamerasBitForBit) {
+  const auto cameras = two_cameras();
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("syncap-cameras-" + std::to_string(getpid()) + ".json");
+  write_cameras(file, cameras);
+  const auto read = read_cameras(file);
+  std::filesystem::remove(file);
+  ASSERT_EQ(read.size(), cameras.size());
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].id, cameras[i].id);
+    EXPECT_EQ(read[i].sensor.width_px, cameras[i].sensor.width_px);
+    EXPECT_EQ(read[i].sensor.height_px, cameras[i].sensor.height_px);
+    EXPECT_EQ(read[i].sensor.pixel_width_mm, cameras[i].sensor.pixel_width_mm);
+    EXPECT_EQ(read[i].sensor.pixel_height_mm, cameras[i].sensor.pixel_height_mm);
+    expect_same(read[i].interior, cameras[i].interior);
+    expect_same(read[i].exterior, cameras[i].exterior);
+    ASSERT_EQ(read[i].std_devs.has_value(), cameras[i].std_devs.has_value());
+    if (read[i].std_devs) {
+      expect_same(read[i].std_devs->interior, cameras[i].std_devs->interior);
+      expect_same(read[i].std_devs->exterior, cameras[i].std_devs->exterior);
+    }
+  }
+  EXPECT_EQ(format_cameras(read), format_cameras(cameras));
+}
+
+TEST(CameraFile, DocumentedExampleReads) {
+  // The example of docs/camera-model.md.
+  const char* text = R"({
+  "cameras": [
+    {
+      "id": 3,
+      "image_size": [1280, 1024],
+      "pixel_size": [0.0067, 0.0067],
+      "c": 6.1, "xp": 0.021, "yp": -0.034,
+      "k1": 2.1e-3, "k2": -3.0e-5, "k3": 1.0e-7, "p1": 2.0e-5, "p2": -1.5e-5,
+      "sc": 1.2e-4, "sh": -6.0e-5,
+      "X0": 4200.0, "Y0": -800.0, "Z0": 2300.0,
+      "omega": 1.275273, "phi": -0.047836, "kappa": 1.397131,
+      "std": {"c": 0.002, "xp": 0.001, "yp": 0.001, "k1": 1e-5, "k2": 1e-7, "k3": 0,
+              "p1": 1e-6, "p2": 1e-6, "sc": 1e-5, "sh": 1e-5,
+              "X0": 0.9, "Y0": 0.7, "Z0": 1.1, "omega": 1e-4, "phi": 1e-4, "kappa": 1e-4}
+    }
+  ]
+})";
+  const auto cameras = parse_cameras(text, "cameras.json");
+  ASSERT_EQ(cameras.size(), 1u);
+  EXPECT_EQ(cameras[0].id, 3);
+  EXPECT_EQ(cameras[0].sensor.width_px, 1280);
+  EXPECT_EQ(cameras[0].interior.c, 6.1);
+  EXPECT_EQ(cameras[0].exterior.kappa, 1.397131);
+  ASSERT_TRUE(cameras[0].std_devs.has_value());
+  EXPECT_EQ(cameras[0].std_devs->exterior.Z0, 1.1);
+}
+
+// The error for a camera file whose first camera (id 3) was changed by `edit`.
+std::string error_after(const std::function<void(nlohmann::json&)>& edit) {
+  auto cameras = two_cameras();
+  cameras[0].id = 3;
+  nlohmann::json document = nlohmann::json::parse(format_cameras(cameras));
+  edit(document["cameras"][0]);
+  try {
+    parse_cameras(document.dump(), "cameras.json");
+  } catch (const CameraFileError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(CameraFile, ErrorsNameTheFileTheCameraAndTheField) {
+  using nlohmann::json;
+  EXPECT_EQ(error_after([](json& c) { c["c"] = -6.0; }),
+            "cameras.json: camera 3: field \"c\" must be a positive number");
+  EXPECT_EQ(error_after([](json& c) { c["c"] = "6"; }),
+            "cameras.json: camera 3: field \"c\" must be a number");
+  EXPECT_EQ(error_after([](json& c) { c.erase("kappa"); }),
+            "cameras.json: camera 3: field \"kappa\" is missing");
+  EXPECT_EQ(error_after([](json& c) { c["k4"] = 0.0; }),
+            "cameras.json: camera 3: field \"k4\" is unknown");
+  EXPECT_EQ(error_after([](json& c) {
+              c["image_size"] = {1280.5, 1024};
+            }),
+            "cameras.json: camera 3: field \"image_size\" must be [width, height] in pixels, two "
+            "positive integers");
+  EXPECT_EQ(error_after([](json& c) { c["pixel_size"] = {0.0067}; }),
+            "cameras.json: camera 3: field \"pixel_size\" must be [width, height] in mm, two "
+            "positive numbers");
+  EXPECT_EQ(error_after([](json& c) { c["sc"] = 1.5; }),
+            "cameras.json: camera 3: fields \"sc\" and \"sh\" must satisfy 1 - sc - sh^2 > 0 (an "
+            "invertible affinity)");
+  EXPECT_EQ(error_after([](json& c) {
+              c["std"] = json::object();
+              c["std"]["c"] = 0.1;
+            }),
+            "cameras.json: camera 3: field \"std.xp\" is missing");
+  EXPECT_EQ(error_after([](json& c) {
+              c["std"] = nlohmann::json::parse(format_cameras(two_cameras()))["cameras"][1]["std"];
+              c["std"]["phi"] = -1.0;
+            }),
+            "cameras.json: camera 3: field \"std.phi\" must be a non-negative number");
+  EXPECT_EQ(error_after([](json& c) { c["id"] = 100; }),
+            "cameras.json: cameras[0]: field \"id\" must be an integer from 0 to 99");
+  EXPECT_EQ(error_after([](json& c) { c["id"] = 7; }),
+            "cameras.json: cameras[1]: id 7 is already used by cameras[0]");
+}
+
+TEST(CameraFile, ErrorsForTheFileAsAWhole) {
+  const auto message = [](const std::string& text) {
+    try {
+      parse_cameras(text, "setup/cameras.json");
+    } catch (const CameraFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("[]"),
+            "setup/cameras.json: the top level must be an object with a \"cameras\" array");
+  EXPECT_EQ(message(R"({"cameras": [], "units": "mm"})"),
+            "setup/cameras.json: field \"units\" is unknown");
+  EXPECT_EQ(message(R"({"cameras": [42]})"), "setup/cameras.json: cameras[0]: must be an object");
+  EXPECT_EQ(message(R"({"cameras": [)").rfind("setup/cameras.json: not valid JSON: ", 0), 0u);
+  EXPECT_TRUE(parse_cameras(R"({"cameras": []})", "x").empty());
+
+  try {
+    read_cameras("/nonexistent/cameras.json");
+    FAIL() << "no error";
+  } catch (const CameraFileError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/cameras.json: cannot open for reading");
+  }
+}
+
+}  // namespace
+}  // namespace syncap::sensor
