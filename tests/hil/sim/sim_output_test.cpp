@@ -1,0 +1,143 @@
+// syncap-sim end to end: what it writes is deterministic, its truth projections are the camera
+// model's, and its person silhouettes are exact.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "camera_rig.hpp"
+#include "render.hpp"
+#include "scenario.hpp"
+#include "sensor/camera_file.hpp"
+
+namespace syncap::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kWandAndRoom = R"(
+name: tiny-wand
+seed: 5
+frame_rate_hz: 25
+cameras:
+  count: 3
+  layout: half_circle
+  arc_deg: 120
+  radius_mm: 3500
+  height_mm: 2000
+  width_px: 320
+  height_px: 240
+  pixel_size_mm: 0.012
+  c_mm: 4.0
+  k1: 4.0e-3
+  p1: 2.0e-5
+  sh: 1.0e-4
+image: {noise_sigma_dn: 2.0, drift: 0.05, flicker_hz: 100, flicker_amplitude: 0.02}
+phases:
+  - {type: wand, frames: 12, target_offsets_mm: [0, 300, 800], exposure_ms: 5}
+  - {type: led, frames: 6, on_frames: 2, off_frames: 1}
+  - {type: room, frames: 3}
+)";
+
+class SimOutput : public ::testing::Test {
+ protected:
+  static fs::path run_sim(const std::string& scenario_text, const std::string& tag) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("syncap_sim_" + tag + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "scenario.yaml") << scenario_text;
+    const std::string command = std::string(SYNCAP_SIM_EXE) + " --quiet --scenario " +
+                                (dir / "scenario.yaml").string() + " --out " +
+                                (dir / "out").string();
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return dir / "out";
+  }
+  static std::string read(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+};
+
+TEST_F(SimOutput, TruthProjectionsAreTheCameraModels) {
+  const fs::path out = run_sim(kWandAndRoom, "proj");
+  const auto cameras = sensor::read_cameras(out / "cameras.json");
+  ASSERT_EQ(cameras.size(), 3u);
+  // targets.csv: frame,target,X,Y,Z,r ; projections.csv: frame,camera,target,x,y,r,visible
+  std::map<std::pair<int, int>, Eigen::Vector3d> targets;
+  std::ifstream t(out / "truth" / "targets.csv");
+  std::string line;
+  std::getline(t, line);
+  while (std::getline(t, line)) {
+    int frame, target;
+    double x, y, z, r;
+    char c;
+    std::istringstream(line) >> frame >> c >> target >> c >> x >> c >> y >> c >> z >> c >> r;
+    targets[{frame, target}] = {x, y, z};
+  }
+  EXPECT_EQ(targets.size(), 12u * 3 + 4u);  // LED on in 4 of its 6 frames
+  std::ifstream p(out / "truth" / "projections.csv");
+  std::getline(p, line);
+  int checked = 0;
+  while (std::getline(p, line)) {
+    int frame, camera, target, visible;
+    double x, y, r;
+    char c;
+    std::istringstream(line) >> frame >> c >> camera >> c >> target >> c >> x >> c >> y >> c >> r >>
+        c >> visible;
+    const auto projected =
+        cameras[static_cast<std::size_t>(camera)].project(targets.at({frame, target}));
+    ASSERT_TRUE(projected.ok());
+    EXPECT_NEAR(projected.pixel.x(), x, 1e-6);
+    EXPECT_NEAR(projected.pixel.y(), y, 1e-6);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3 * (12 * 3 + 4));
+}
+
+TEST_F(SimOutput, SameScenarioSameBytes) {
+  const fs::path a = run_sim(kWandAndRoom, "a");
+  const fs::path b = run_sim(kWandAndRoom, "b");
+  for (const char* file : {"camera00/frame_000000.pgm", "camera02/frame_000011.pgm",
+                           "camera01/frame_000020.pgm", "truth/projections.csv", "cameras.json"}) {
+    EXPECT_EQ(read(a / file), read(b / file)) << file;
+  }
+  EXPECT_NE(read(a / "camera00/frame_000000.pgm"), read(a / "camera00/frame_000001.pgm"));
+}
+
+TEST_F(SimOutput, EveryFrameOfEveryCameraIsWritten) {
+  const fs::path out = run_sim(kWandAndRoom, "count");
+  for (int c = 0; c < 3; ++c) {
+    int images = 0;
+    for (const auto& e : fs::directory_iterator(out / ("camera0" + std::to_string(c))))
+      images += e.path().extension() == ".pgm";
+    EXPECT_EQ(images, 21);
+    const cv::Mat first =
+        cv::imread((out / ("camera0" + std::to_string(c)) / "frame_000000.pgm").string(),
+                   cv::IMREAD_UNCHANGED);
+    EXPECT_EQ(first.cols, 320);
+    EXPECT_EQ(first.type(), CV_8UC1);
+  }
+}
+
+TEST_F(SimOutput, BrokenScenarioIsReportedWithFileAndLine) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("syncap_sim_broken_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.yaml") << "cameras: {count: 2}\nphases:\n  - {type: wand, frames: 0}\n";
+  const std::string command = std::string(SYNCAP_SIM_EXE) + " --scenario " +
+                              (dir / "bad.yaml").string() + " --out " + (dir / "out").string() +
+                              " 2> " + (dir / "err.txt").string();
+  EXPECT_NE(std::system(command.c_str()), 0);
+  EXPECT_NE(read(dir / "err.txt").find("bad.yaml:3: phases[0].frames = 0 is outside"),
+            std::string::npos)
+      << read(dir / "err.txt");
+}
+
+}  // namespace
+}  // namespace syncap::sim
