@@ -1,0 +1,105 @@
+// syncap-hil-compare: what the system produced (the host's frame groups) against the simulator's
+// ground truth; prints a summary and PASS or FAIL: reasons (hil/compare/README.md).
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "comparison.hpp"
+#include "groups.hpp"
+#include "input_error.hpp"
+#include "summary.hpp"
+#include "truth.hpp"
+
+namespace {
+
+const char* kUsage =
+    "usage: syncap-hil-compare --truth DIR --groups FILE [--json FILE] [--max-rms-px 0.1]\n"
+    "                          [--min-detection 0.98] [--match-radius-px 3] [--min-frames 0.99]\n"
+    "  --truth DIR            the simulator's output: DIR/cameras.json, DIR/truth/*.csv\n"
+    "  --groups FILE          the host's frame groups (syncap-host --out), JSON lines\n"
+    "  --json FILE            also write the figures as JSON\n"
+    "  --max-rms-px PX        per camera: RMS centroid error of matched targets at most PX\n"
+    "  --min-detection SHARE  per camera: matched / visible targets in reported frames\n"
+    "  --match-radius-px PX   a blob matches the nearest free target within PX\n"
+    "  --min-frames SHARE     complete groups / truth frames\n"
+    "exit 0 PASS, 1 FAIL, 2 unusable inputs\n";
+
+struct Options {
+  std::string truth, groups, json;
+  syncap::compare::Thresholds thresholds;
+};
+
+[[noreturn]] void usage_error(const std::string& message) {
+  std::cerr << "syncap-hil-compare: " << message << "\n" << kUsage;
+  std::exit(2);
+}
+
+double positive_number(const std::string& option, const std::string& text) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value < 0) {
+    usage_error(option + " '" + text + "' is not a non-negative number");
+  }
+  return value;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  std::map<std::string, std::string*> paths{
+      {"--truth", &o.truth}, {"--groups", &o.groups}, {"--json", &o.json}};
+  std::map<std::string, double*> numbers{{"--max-rms-px", &o.thresholds.max_rms_px},
+                                         {"--min-detection", &o.thresholds.min_detection},
+                                         {"--match-radius-px", &o.thresholds.match_radius_px},
+                                         {"--min-frames", &o.thresholds.min_frames}};
+  for (int i = 1; i < argc; ++i) {
+    const std::string option = argv[i];
+    if (option == "--help" || option == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    }
+    if (i + 1 >= argc) usage_error("option '" + option + "' needs a value");
+    const std::string value = argv[++i];
+    if (auto p = paths.find(option); p != paths.end()) {
+      *p->second = value;
+    } else if (auto n = numbers.find(option); n != numbers.end()) {
+      *n->second = positive_number(option, value);
+    } else {
+      usage_error("unknown option '" + option + "'");
+    }
+  }
+  if (o.truth.empty() || o.groups.empty()) usage_error("--truth and --groups are required");
+  if (o.thresholds.min_detection > 1 || o.thresholds.min_frames > 1) {
+    usage_error("--min-detection and --min-frames are shares from 0 to 1");
+  }
+  return o;
+}
+
+void write_json(const std::string& file, const syncap::compare::Report& report) {
+  std::ofstream out(file);
+  out << syncap::compare::report_json(report).dump(2) << "\n";
+  if (!out) throw syncap::compare::InputError(file + ": cannot write");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  try {
+    const auto truth = syncap::compare::read_truth(o.truth);
+    const auto groups = syncap::compare::read_groups(o.groups);
+    const auto report = syncap::compare::compare(truth, groups, o.thresholds);
+    const std::string heading = "syncap-hil-compare: truth " + o.truth + " (" +
+                                std::to_string(truth.images.size()) + " cameras, " +
+                                std::to_string(truth.frames.size()) + " frames), groups " +
+                                o.groups + " (" + std::to_string(groups.size()) + " lines)";
+    std::cout << syncap::compare::format_summary(report, heading) << std::flush;
+    if (!o.json.empty()) write_json(o.json, report);
+    return report.pass() ? 0 : 1;
+  } catch (const syncap::compare::InputError& e) {
+    std::cerr << "syncap-hil-compare: " << e.what() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,133 @@
+#include "comparison.hpp"
+
+#include <cstdio>
+
+#include "matcher.hpp"
+
+namespace syncap::compare {
+namespace {
+
+// Two decimals more than the summary's tables, so that a failing figure never prints equal to
+// its limit.
+std::string percent(double share) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f%%", 100.0 * share);
+  return text;
+}
+
+std::string pixels(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f px", value);
+  return text;
+}
+
+void count_frames(FrameCounts& counts, const Group& g) {
+  ++counts.at_host;
+  counts.complete += g.complete ? 1 : 0;
+}
+
+// Truth targets, blobs, and matches counted into `tally` by the class of each target.
+void tally_matching(const std::vector<TargetClass>& kinds, const Matching& m, Tally& tally) {
+  for (const TargetClass kind : kinds) {
+    ++(kind == TargetClass::counted ? tally.counted : tally.border).targets;
+  }
+  for (const Match& match : m.matches) {
+    Detection& d = kinds[match.target] == TargetClass::counted ? tally.counted : tally.border;
+    ++d.matched;
+    d.errors.add(match.error);
+  }
+  tally.false_blobs += static_cast<long>(m.unmatched_blobs.size());
+}
+
+void compare_group(const Truth& truth, const Group& g, const std::string& phase_type,
+                   Report& report) {
+  static const std::vector<Projection> kNoTargets;
+  for (const auto& [id, image] : truth.images) {
+    if (!g.cameras.contains(id)) ++report.cameras[id].groups_without;
+  }
+  for (const auto& [id, camera] : g.cameras) {
+    const auto targets = truth.projections.find({g.frame, id});
+    const auto image = truth.images.find(id);
+    // A camera the truth does not know has no targets: all its blobs are false.
+    const Tally tally = compare_camera_frame(
+        targets == truth.projections.end() ? kNoTargets : targets->second, camera.blobs,
+        image == truth.images.end() ? ImageSize{} : image->second,
+        report.thresholds.match_radius_px);
+    CameraReport& c = report.cameras[id];
+    ++c.groups_with;
+    c.tally += tally;
+    c.processing_us.add(camera.processing_us);
+    report.phases[phase_type].tally += tally;
+    report.overall.tally += tally;
+  }
+}
+
+void judge_frames(Report& r) {
+  const FrameCounts& f = r.overall.frames;
+  const double share = f.complete_share();
+  if (share < r.thresholds.min_frames) {
+    r.failures.push_back("frames: " + std::to_string(f.complete) + "/" + std::to_string(f.truth) +
+                         " complete groups (" + percent(share) + " < " +
+                         percent(r.thresholds.min_frames) + ")");
+  }
+}
+
+void judge_camera(int id, const CameraReport& c, Report& r) {
+  const std::string name = "camera " + std::to_string(id) + ": ";
+  if (const auto rate = c.tally.counted.rate(); rate && *rate < r.thresholds.min_detection) {
+    r.failures.push_back(name + "detection " + percent(*rate) + " < " +
+                         percent(r.thresholds.min_detection));
+  }
+  if (const auto rms = c.tally.counted.errors.rms(); rms && *rms > r.thresholds.max_rms_px) {
+    r.failures.push_back(name + "RMS " + pixels(*rms) + " > " + pixels(r.thresholds.max_rms_px));
+  }
+}
+
+}  // namespace
+
+Tally compare_camera_frame(const std::vector<Projection>& targets, const std::vector<Blob>& blobs,
+                           const ImageSize& image, double match_radius_px) {
+  Tally tally;
+  std::vector<TargetClass> kinds;  // of the visible targets, in the order of target_points
+  std::vector<Eigen::Vector2d> target_points, blob_points;
+  for (const Projection& p : targets) {
+    const TargetClass kind = classify(p, image);
+    if (kind == TargetClass::hidden) {
+      ++tally.hidden;
+      continue;
+    }
+    kinds.push_back(kind);
+    target_points.emplace_back(p.x_px, p.y_px);
+  }
+  for (const Blob& b : blobs) blob_points.emplace_back(b.x, b.y);
+  tally.blobs = static_cast<long>(blobs.size());
+  tally_matching(kinds, match_nearest(blob_points, target_points, match_radius_px), tally);
+  return tally;
+}
+
+Report compare(const Truth& truth, const std::vector<Group>& groups, const Thresholds& thresholds) {
+  Report report;
+  report.thresholds = thresholds;
+  for (const auto& [number, f] : truth.frames) {
+    ++report.overall.frames.truth;
+    auto [phase, added] = report.phases.try_emplace(f.phase_type);
+    if (added) report.phase_types.push_back(f.phase_type);
+    ++phase->second.frames.truth;
+  }
+  for (const auto& [id, image] : truth.images) report.cameras[id];
+  for (const Group& g : groups) {
+    const auto f = truth.frames.find(g.frame);
+    if (f == truth.frames.end()) {
+      ++report.groups_outside_truth;
+      continue;
+    }
+    count_frames(report.overall.frames, g);
+    count_frames(report.phases[f->second.phase_type].frames, g);
+    compare_group(truth, g, f->second.phase_type, report);
+  }
+  judge_frames(report);
+  for (const auto& [id, camera] : report.cameras) judge_camera(id, camera, report);
+  return report;
+}
+
+}  // namespace syncap::compare

@@ -1,0 +1,175 @@
+#include "summary.hpp"
+
+#include <cstdarg>
+#include <cstdio>
+#include <optional>
+
+namespace syncap::compare {
+namespace {
+
+using nlohmann::ordered_json;
+
+std::string printed(const char* format, ...) __attribute__((format(printf, 1, 2)));
+std::string printed(const char* format, ...) {
+  char text[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  return text;
+}
+
+// A number right-aligned in `width` columns after a space, or "-" when there is none.
+std::string cell(std::optional<double> value, int width, int decimals, bool sign = false) {
+  if (!value) return printed(" %*s", width, "-");
+  return sign ? printed(" %+*.*f", width, decimals, *value)
+              : printed(" %*.*f", width, decimals, *value);
+}
+
+std::string percent_cell(std::optional<double> share) {
+  if (!share) return printed(" %7s", "-");
+  return printed(" %6.1f%%", 100.0 * *share);
+}
+
+// The target columns both tables share; every cell starts with a space, so that wide numbers
+// never run into each other.
+const char* const kTallyHeader =
+    " targets matched  detect   false   rms_px   max_px   bias_x   bias_y    border  brd_rms "
+    "hidden";
+
+std::string tally_cells(const Tally& t) {
+  const Detection& c = t.counted;
+  const auto bias = c.errors.bias();
+  const std::string border =
+      std::to_string(t.border.matched) + "/" + std::to_string(t.border.targets);
+  return printed(" %7ld %7ld", c.targets, c.matched) + percent_cell(c.rate()) +
+         printed(" %7ld", t.false_blobs) + cell(c.errors.rms(), 8, 4) + cell(c.errors.max(), 8, 4) +
+         cell(bias ? std::optional(bias->x()) : std::nullopt, 8, 4, true) +
+         cell(bias ? std::optional(bias->y()) : std::nullopt, 8, 4, true) +
+         printed(" %9s", border.c_str()) + cell(t.border.errors.rms(), 8, 4) +
+         printed(" %6ld", t.hidden);
+}
+
+std::string camera_table(const Report& r) {
+  std::string out = "per camera (targets: visible, disc wholly inside the image):\n";
+  out +=
+      printed("  %-6s %7s %7s %8s", "camera", "groups", "missing", "proc_us") + kTallyHeader + "\n";
+  for (const auto& [id, c] : r.cameras) {
+    out += printed("  %-6d %7ld %7ld", id, c.groups_with, c.groups_without) +
+           cell(c.processing_us.mean(), 8, 1) + tally_cells(c.tally) + "\n";
+  }
+  return out;
+}
+
+std::string phase_row(const std::string& name, const PhaseReport& p) {
+  return printed("  %-6s %7ld %7ld %8ld", name.c_str(), p.frames.truth, p.frames.at_host,
+                 p.frames.complete) +
+         tally_cells(p.tally) + "\n";
+}
+
+std::string phase_table(const Report& r) {
+  std::string out = "per phase type (all cameras):\n";
+  out +=
+      printed("  %-6s %7s %7s %8s", "phase", "frames", "at_host", "complete") + kTallyHeader + "\n";
+  for (const std::string& type : r.phase_types) out += phase_row(type, r.phases.at(type));
+  return out + phase_row("all", r.overall);
+}
+
+std::string frames_line(const Report& r) {
+  const FrameCounts& f = r.overall.frames;
+  return printed("frames: %ld/%ld truth frames at the host, %ld complete (%.1f%%)", f.at_host,
+                 f.truth, f.complete, 100.0 * f.complete_share()) +
+         (r.groups_outside_truth
+              ? printed("; %ld groups for frames outside the truth", r.groups_outside_truth)
+              : std::string()) +
+         "\n";
+}
+
+std::string thresholds_line(const Thresholds& t) {
+  return printed(
+      "limits: RMS <= %.3f px and detection >= %.1f%% per camera, complete frames >= %.1f%%, "
+      "match radius %.2f px\n",
+      t.max_rms_px, 100.0 * t.min_detection, 100.0 * t.min_frames, t.match_radius_px);
+}
+
+ordered_json optional_json(std::optional<double> value) {
+  return value ? ordered_json(*value) : ordered_json(nullptr);
+}
+
+ordered_json detection_json(const Detection& d) {
+  const auto bias = d.errors.bias();
+  return {{"targets", d.targets},
+          {"matched", d.matched},
+          {"detection", optional_json(d.rate())},
+          {"rms_px", optional_json(d.errors.rms())},
+          {"max_px", optional_json(d.errors.max())},
+          {"bias_x_px", bias ? ordered_json(bias->x()) : ordered_json(nullptr)},
+          {"bias_y_px", bias ? ordered_json(bias->y()) : ordered_json(nullptr)}};
+}
+
+ordered_json tally_json(const Tally& t) {
+  return {{"counted", detection_json(t.counted)},
+          {"border", detection_json(t.border)},
+          {"hidden", t.hidden},
+          {"blobs", t.blobs},
+          {"false_blobs", t.false_blobs}};
+}
+
+ordered_json frames_json(const FrameCounts& f) {
+  return {{"truth", f.truth}, {"at_host", f.at_host}, {"complete", f.complete}};
+}
+
+ordered_json camera_json(int id, const CameraReport& c) {
+  ordered_json j{{"id", id},
+                 {"groups_with", c.groups_with},
+                 {"groups_without", c.groups_without},
+                 {"processing_us_mean", optional_json(c.processing_us.mean())},
+                 {"processing_us_max", optional_json(c.processing_us.max())}};
+  j.update(tally_json(c.tally));
+  return j;
+}
+
+ordered_json phase_json(const std::string& type, const PhaseReport& p) {
+  ordered_json j{{"type", type}, {"frames", frames_json(p.frames)}};
+  j.update(tally_json(p.tally));
+  return j;
+}
+
+}  // namespace
+
+std::string verdict_line(const Report& report) {
+  if (report.pass()) return "PASS";
+  std::string line = "FAIL: ";
+  for (std::size_t i = 0; i < report.failures.size(); ++i) {
+    line += (i ? "; " : "") + report.failures[i];
+  }
+  return line;
+}
+
+std::string format_summary(const Report& report, const std::string& heading) {
+  return heading + "\n" + thresholds_line(report.thresholds) + frames_line(report) +
+         camera_table(report) + phase_table(report) + verdict_line(report) + "\n";
+}
+
+ordered_json report_json(const Report& r) {
+  const Thresholds& t = r.thresholds;
+  ordered_json j{{"pass", r.pass()},
+                 {"failures", r.failures},
+                 {"thresholds",
+                  {{"max_rms_px", t.max_rms_px},
+                   {"min_detection", t.min_detection},
+                   {"match_radius_px", t.match_radius_px},
+                   {"min_frames", t.min_frames}}},
+                 {"frames", frames_json(r.overall.frames)},
+                 {"groups_outside_truth", r.groups_outside_truth}};
+  j["cameras"] = ordered_json::array();
+  for (const auto& [id, c] : r.cameras) j["cameras"].push_back(camera_json(id, c));
+  j["phases"] = ordered_json::array();
+  for (const std::string& type : r.phase_types) {
+    j["phases"].push_back(phase_json(type, r.phases.at(type)));
+  }
+  j["overall"] = tally_json(r.overall.tally);
+  return j;
+}
+
+}  // namespace syncap::compare

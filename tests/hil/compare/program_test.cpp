@@ -1,0 +1,133 @@
+// syncap-hil-compare end to end on hand-written truth and frame groups.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scratch_files.hpp"
+
+namespace syncap::compare {
+namespace {
+
+using testing::ScratchDir;
+
+struct ProgramRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+ProgramRun run_compare(const std::string& arguments) {
+  const std::string command = std::string(SYNCAP_COMPARE_PATH) + " " + arguments + " 2>&1";
+  ProgramRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  char buffer[4096];
+  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string last_line(const std::string& text) {
+  const std::size_t end = text.find_last_not_of('\n');
+  const std::size_t start = text.rfind('\n', end);
+  return text.substr(start == std::string::npos ? 0 : start + 1, end - start);
+}
+
+// Two cameras 640x480, three wand frames with two targets each, one LED-off frame without
+// targets. Target 1 of camera 1 lies at the image edge in every frame: it must not count.
+void write_truth(const ScratchDir& dir) {
+  dir.write("cameras.json", testing::cameras_json(2));
+  dir.write("truth/frames.csv",
+            "frame,time_s,phase,phase_type,led_on,gain\n"
+            "0,0,0,wand,0,1\n1,0.0333333,0,wand,0,1\n2,0.0666667,0,wand,0,1\n"
+            "3,0.1,1,led,0,1\n");
+  std::string rows = "frame,camera,target,x_px,y_px,radius_px,visible\n";
+  for (int k = 0; k < 3; ++k) {
+    const std::string f = std::to_string(k);
+    rows += f + ",0,0,100,100,4,1\n" + f + ",0,1,300,200,4,1\n";
+    rows += f + ",1,0,120,110,4,1\n" + f + ",1,1,637,240,4,1\n";
+  }
+  dir.write("truth/targets.csv", "frame,target,X_mm,Y_mm,Z_mm,radius_mm\n");
+  dir.write("truth/projections.csv", rows);
+}
+
+// The host's lines; camera 1 finds its targets `offset_px` right of the truth.
+void write_groups(const ScratchDir& dir, double offset_px) {
+  std::string lines;
+  for (int k = 0; k < 4; ++k) {
+    nlohmann::json g{
+        {"frame", k}, {"complete", true}, {"missing_cameras", nlohmann::json::array()}};
+    nlohmann::json blobs0 = nlohmann::json::array(), blobs1 = nlohmann::json::array();
+    if (k < 3) {
+      blobs0 = {{{"x", 100.02}, {"y", 99.97}, {"area", 50}},
+                {{"x", 300}, {"y", 200.03}, {"area", 50}}};
+      blobs1 = {{{"x", 120 + offset_px}, {"y", 110}, {"area", 50}},
+                {{"x", 637.9}, {"y", 240}, {"area", 20}}};  // cut by the border
+    }
+    g["cameras"] = {{"0", {{"processing_us", 150}, {"blobs", blobs0}}},
+                    {"1", {{"processing_us", 170}, {"blobs", blobs1}}}};
+    lines += g.dump() + "\n";
+  }
+  dir.write("groups.jsonl", lines);
+}
+
+std::string arguments(const ScratchDir& dir) {
+  return "--truth " + dir.path().string() + " --groups " + (dir.path() / "groups.jsonl").string();
+}
+
+TEST(Program, PassesOnGoodData) {
+  ScratchDir dir;
+  write_truth(dir);
+  write_groups(dir, 0.05);
+  const ProgramRun run =
+      run_compare(arguments(dir) + " --json " + (dir.path() / "r.json").string());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(last_line(run.output), "PASS") << run.output;
+  EXPECT_NE(run.output.find("frames: 4/4 truth frames at the host, 4 complete"), std::string::npos)
+      << run.output;
+  const auto report = nlohmann::json::parse(std::ifstream(dir.path() / "r.json"));
+  EXPECT_TRUE(report["pass"].get<bool>());
+  EXPECT_EQ(report["cameras"][1]["counted"]["targets"], 3);
+  EXPECT_EQ(report["cameras"][1]["border"]["matched"], 3);
+  EXPECT_NEAR(report["cameras"][1]["counted"]["bias_x_px"].get<double>(), 0.05, 1e-9);
+  EXPECT_EQ(report["phases"][1]["type"], "led");
+}
+
+TEST(Program, FailsNamingTheReason) {
+  ScratchDir dir;
+  write_truth(dir);
+  write_groups(dir, 0.2);
+  const ProgramRun run = run_compare(arguments(dir));
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_EQ(last_line(run.output), "FAIL: camera 1: RMS 0.2000 px > 0.1000 px") << run.output;
+  // A looser limit passes the same data.
+  EXPECT_EQ(run_compare(arguments(dir) + " --max-rms-px 0.25").exit_code, 0);
+}
+
+TEST(Program, RejectsUnusableInputNamingFileAndLine) {
+  ScratchDir dir;
+  write_truth(dir);
+  dir.write("groups.jsonl", "{\"frame\":0,\"complete\":true,\"cameras\":{}}\n{oops\n");
+  const ProgramRun run = run_compare(arguments(dir));
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.output.find("groups.jsonl:2: not JSON"), std::string::npos) << run.output;
+  dir.write("truth/projections.csv", "frame,camera,target,x_px,y_px,radius_px,visible\n0,0,0,1\n");
+  const ProgramRun bad_truth = run_compare(arguments(dir));
+  EXPECT_EQ(bad_truth.exit_code, 2);
+  EXPECT_NE(bad_truth.output.find("projections.csv:2: expected 7 fields, got 4"), std::string::npos)
+      << bad_truth.output;
+}
+
+TEST(Program, RejectsBadOptions) {
+  EXPECT_EQ(run_compare("--truth x").exit_code, 2);
+  EXPECT_EQ(run_compare("--truth x --groups y --max-rms-px fast").exit_code, 2);
+  EXPECT_EQ(run_compare("--truth x --groups y --min-detection 98").exit_code, 2);
+  EXPECT_EQ(run_compare("--help").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace syncap::compare
