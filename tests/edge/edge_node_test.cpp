@@ -113,6 +113,10 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   }
   EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "v4l2:/dev/video0"}),
                UsageError);
+  const auto camera = parse_edge_options(
+      {"--camera-id", "2", "--source", "aravis:127.0.0.4", "--trigger-source", "Line1"});
+  EXPECT_EQ(camera.source, "aravis:127.0.0.4");
+  EXPECT_EQ(camera.trigger_source, "Line1");
   EXPECT_THROW(parse_edge_options({"--source", "replay:/x"}), UsageError);
   EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--bogus"}),
                UsageError);

@@ -10,6 +10,7 @@
 
 #include "app/edge_node.hpp"
 #include "app/edge_options.hpp"
+#include "sensor/aravis_source.hpp"
 #include "sensor/replay_source.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/proto/channels.hpp"
@@ -22,7 +23,15 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
 std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeOptions& o) {
-  return std::make_unique<syncap::edge::ReplaySource>(o.source.substr(7), o.camera_id);
+  const std::string target = o.source.substr(7);
+  if (o.source.starts_with("aravis:")) {
+    syncap::edge::AravisOptions aravis;
+    aravis.device_address = target;
+    aravis.trigger_source = o.trigger_source;
+    aravis.exposure_us = o.exposure_us;
+    return std::make_unique<syncap::edge::AravisSource>(aravis, o.camera_id);
+  }
+  return std::make_unique<syncap::edge::ReplaySource>(target, o.camera_id);
 }
 
 int run(const syncap::edge::EdgeOptions& options) {

@@ -70,7 +70,7 @@ void EdgeNode::publish_status(bool final) {
   s.last_frame_number = last_frame_number_;
   s.frames_received = frames_received_;
   s.frames_lost = frames_lost_;
-  s.frames_incomplete = 0;
+  s.frames_incomplete = source_.frames_incomplete();
   const double interval_s = static_cast<double>(now - interval_start_ns_) * 1e-9;
   s.frame_rate_hz = interval_s > 0 ? static_cast<float>(interval_frames_ / interval_s) : 0.0f;
   s.processing_us_mean =

@@ -24,6 +24,10 @@ std::string edge_usage() {
   return "usage: syncap-edge --camera-id N --source replay:FOLDER [options]\n"
          "  --camera-id N       camera id 0..99 (channel SYNCAP_BLOBS_NN)\n"
          "  --source SPEC       replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
+         "                      aravis:ADDRESS GigE Vision camera at this IPv4 address (no "
+         "discovery)\n"
+         "  --trigger-source S  aravis: the camera's TriggerSource (Line1, Software, ...)\n"
+         "  --exposure-us US    aravis: exposure time\n"
          "  --threshold DN      blob threshold 1..255 (default 128)\n"
          "  --min-area PX       smallest blob area (default 2)\n"
          "  --max-area PX       largest blob area (default 20000)\n"
@@ -51,6 +55,10 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
       have_camera = true;
     } else if (a == "--source") {
       o.source = value();
+    } else if (a == "--trigger-source") {
+      o.trigger_source = value();
+    } else if (a == "--exposure-us") {
+      o.exposure_us = parse_number<int>(a, value(), 1, 10'000'000);
     } else if (a == "--threshold") {
       o.detector.threshold = parse_number<int>(a, value(), 1, 255);
     } else if (a == "--min-area") {
@@ -70,8 +78,11 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
     }
   }
   if (!have_camera) throw UsageError("syncap-edge: --camera-id is required");
-  if (!o.source.starts_with("replay:") || o.source.size() == 7) {
-    throw UsageError("syncap-edge: --source '" + o.source + "': expected replay:FOLDER");
+  const bool replay = o.source.starts_with("replay:") && o.source.size() > 7;
+  const bool aravis = o.source.starts_with("aravis:") && o.source.size() > 7;
+  if (!replay && !aravis) {
+    throw UsageError("syncap-edge: --source '" + o.source +
+                     "': expected replay:FOLDER or aravis:ADDRESS");
   }
   return o;
 }

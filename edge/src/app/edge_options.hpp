@@ -11,7 +11,9 @@ namespace syncap::edge {
 
 struct EdgeOptions {
   int camera_id = 0;
-  std::string source;  // "replay:FOLDER"
+  std::string source;          // "replay:FOLDER" or "aravis:ADDRESS"
+  std::string trigger_source;  // aravis: camera TriggerSource; empty: as configured
+  double exposure_us = 0;      // aravis: 0 = as configured
   std::string lcm_url;
   BlobDetectorConfig detector;
   double heartbeat_s = 1.0;

@@ -34,6 +34,8 @@ class FrameSource {
   virtual std::optional<Frame> grab(int64_t frame_number) = 0;
   // Human-readable description for logs and status messages.
   virtual std::string describe() const = 0;
+  // Buffers the camera delivered incomplete (lost packets), since start.
+  virtual int64_t frames_incomplete() const { return 0; }
 };
 
 }  // namespace syncap::edge

@@ -1,0 +1,187 @@
+#include "sensor/aravis_source.hpp"
+
+#include <arpa/inet.h>
+#include <arv.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+
+namespace syncap::edge {
+namespace {
+
+template <class T>
+struct Unref {
+  void operator()(T* object) const {
+    if (object) g_object_unref(object);
+  }
+};
+template <class T>
+using GPtr = std::unique_ptr<T, Unref<T>>;
+
+int64_t monotonic_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// The local address the kernel would send from to reach `device`: a connected UDP socket sends
+// nothing but tells.
+std::string route_source_address(const std::string& device) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(3956);  // GVCP
+  if (fd < 0 || inet_pton(AF_INET, device.c_str(), &to.sin_addr) != 1 ||
+      connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) != 0) {
+    if (fd >= 0) close(fd);
+    throw FrameSourceError("camera " + device + ": not an IPv4 address with a route");
+  }
+  sockaddr_in local{};
+  socklen_t length = sizeof local;
+  getsockname(fd, reinterpret_cast<sockaddr*>(&local), &length);
+  close(fd);
+  char text[INET_ADDRSTRLEN] = "";
+  inet_ntop(AF_INET, &local.sin_addr, text, sizeof text);
+  return text;
+}
+
+// Throws with the camera's address and what was being done when `error` is set.
+void check(GError* error, const std::string& address, const std::string& what) {
+  if (!error) return;
+  const std::string message = error->message;
+  g_error_free(error);
+  throw FrameSourceError("camera " + address + ": " + what + ": " + message);
+}
+
+}  // namespace
+
+uint64_t BlockIdUnwrapper::next(uint16_t block_id) {
+  if (!last_) {
+    count_ = block_id;
+  } else {
+    // Ids run 1..65535; the step from the last id, forward, skipping 0.
+    const int step = (block_id - *last_ + 65535) % 65535;
+    count_ += step;
+  }
+  last_ = block_id;
+  return count_;
+}
+
+struct AravisSource::Camera {
+  GPtr<ArvCamera> camera;
+  GPtr<ArvStream> stream;
+};
+
+AravisSource::AravisSource(const AravisOptions& options, int camera_id)
+    : options_(options), camera_id_(camera_id), camera_(std::make_unique<Camera>()) {
+  const std::string& address = options_.device_address;
+  const std::string local = options_.interface_address.empty() ? route_source_address(address)
+                                                               : options_.interface_address;
+  GPtr<GInetAddress> local_address(g_inet_address_new_from_string(local.c_str()));
+  GPtr<GInetAddress> device_address(g_inet_address_new_from_string(address.c_str()));
+  if (!local_address || !device_address)
+    throw FrameSourceError("camera " + address + ": bad address");
+  GError* error = nullptr;
+  GPtr<ArvDevice> device(arv_gv_device_new(local_address.get(), device_address.get(), &error));
+  check(error, address, "opening by address from " + local);
+  // Plain UDP sockets: packet sockets need privileges a board process may lack.
+  arv_gv_device_set_stream_options(ARV_GV_DEVICE(device.get()),
+                                   ARV_GV_STREAM_OPTION_PACKET_SOCKET_DISABLED);
+  camera_->camera.reset(arv_camera_new_with_device(device.get(), &error));
+  check(error, address, "creating the camera");
+  ArvCamera* cam = camera_->camera.get();
+  arv_camera_set_pixel_format(cam, ARV_PIXEL_FORMAT_MONO_8, &error);
+  check(error, address, "setting Mono8");
+  arv_camera_set_acquisition_mode(cam, ARV_ACQUISITION_MODE_CONTINUOUS, &error);
+  check(error, address, "setting continuous acquisition");
+  if (!options_.trigger_source.empty()) {
+    arv_camera_set_trigger(cam, options_.trigger_source.c_str(), &error);
+    check(error, address, "setting TriggerSource " + options_.trigger_source);
+  }
+  if (options_.exposure_us > 0) {
+    arv_camera_set_exposure_time(cam, options_.exposure_us, &error);
+    check(error, address, "setting the exposure");
+  }
+  const guint payload = arv_camera_get_payload(cam, &error);
+  check(error, address, "reading the payload size");
+  camera_->stream.reset(arv_camera_create_stream(cam, nullptr, nullptr, &error));
+  check(error, address, "creating the stream");
+  for (int i = 0; i < options_.buffers; ++i) {
+    arv_stream_push_buffer(camera_->stream.get(), arv_buffer_new_allocate(payload));
+  }
+  arv_camera_start_acquisition(cam, &error);
+  check(error, address, "starting acquisition");
+}
+
+AravisSource::~AravisSource() {
+  if (camera_ && camera_->camera) arv_camera_stop_acquisition(camera_->camera.get(), nullptr);
+}
+
+void AravisSource::software_trigger() {
+  GError* error = nullptr;
+  arv_camera_software_trigger(camera_->camera.get(), &error);
+  check(error, options_.device_address, "software trigger");
+}
+
+Frame AravisSource::copy_frame(ArvBuffer* buffer, int64_t number) const {
+  Frame frame;
+  frame.camera_id = camera_id_;
+  frame.frame_number = number;
+  frame.monotonic_ns = monotonic_now_ns();
+  frame.exposure_us = static_cast<int32_t>(options_.exposure_us);
+  size_t size = 0;
+  const void* data = arv_buffer_get_image_data(buffer, &size);
+  const cv::Mat view(arv_buffer_get_image_height(buffer), arv_buffer_get_image_width(buffer),
+                     CV_8UC1, const_cast<void*>(data));
+  frame.image = view.clone();  // the buffer goes back to the pool right after
+  return frame;
+}
+
+std::optional<Frame> AravisSource::grab(int64_t frame_number) {
+  if (pending_) {
+    if (pending_->frame_number > frame_number) return std::nullopt;  // this one was lost
+    Frame frame = std::move(*pending_);
+    pending_.reset();
+    if (frame.frame_number == frame_number) return frame;
+    ++stale_;
+  }
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.frame_timeout_ms);
+  for (auto now = std::chrono::steady_clock::now(); now < deadline;
+       now = std::chrono::steady_clock::now()) {
+    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - now).count();
+    ArvBuffer* buffer =
+        arv_stream_timeout_pop_buffer(camera_->stream.get(), static_cast<guint64>(left));
+    if (!buffer) break;
+    const int64_t number = static_cast<int64_t>(block_ids_.next(
+                               static_cast<uint16_t>(arv_buffer_get_frame_id(buffer)))) -
+                           1;
+    const bool complete = arv_buffer_get_status(buffer) == ARV_BUFFER_STATUS_SUCCESS;
+    std::optional<Frame> frame;
+    if (complete && number >= frame_number) frame = copy_frame(buffer, number);
+    arv_stream_push_buffer(camera_->stream.get(), buffer);
+    if (!complete) {
+      ++incomplete_;
+      if (number >= frame_number) return std::nullopt;
+      continue;
+    }
+    if (number < frame_number) {
+      ++stale_;  // an exposure whose trigger this process never saw
+      continue;
+    }
+    if (number == frame_number) return frame;
+    pending_ = std::move(frame);  // a later exposure came first: ours was lost
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::string AravisSource::describe() const {
+  return "GigE Vision camera " + options_.device_address +
+         (options_.trigger_source.empty() ? "" : ", trigger " + options_.trigger_source);
+}
+
+}  // namespace syncap::edge
