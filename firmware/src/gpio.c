@@ -72,8 +72,12 @@ int syncap_gpio_set_all(struct syncap_gpio* gpio, int value) {
   }
   value = value != 0;
   if (value == gpio->value) return 0;
-  if (gpio->backend->set_all(gpio->state, gpio->offsets, gpio->num_lines, value) < 0) return -1;
+  int64_t time_ns = 0;
+  if (gpio->backend->set_all(gpio->state, gpio->offsets, gpio->num_lines, value, &time_ns) < 0) {
+    return -1;
+  }
   gpio->value = value;
+  gpio->last_change_ns = time_ns;
   return 0;
 }
 
@@ -93,3 +97,5 @@ void syncap_gpio_close(struct syncap_gpio* gpio) {
 }
 
 const char* syncap_gpio_backend_name(const struct syncap_gpio* gpio) { return gpio->backend->name; }
+
+int64_t syncap_gpio_last_change_ns(const struct syncap_gpio* gpio) { return gpio->last_change_ns; }

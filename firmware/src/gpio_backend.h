@@ -3,6 +3,7 @@
 #pragma once
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "syncap/trigger/gpio.h"
 
@@ -12,8 +13,9 @@ struct syncap_gpio_backend {
   void* (*open)(const char* argument);
   int (*request_outputs)(void* state, const unsigned* offsets, size_t num_lines,
                          const char* consumer);
-  // Called only when the level changes.
-  int (*set_all)(void* state, const unsigned* offsets, size_t num_lines, int value);
+  // Called only when the level changes; stores the CLOCK_MONOTONIC time the lines switched at.
+  int (*set_all)(void* state, const unsigned* offsets, size_t num_lines, int value,
+                 int64_t* time_ns);
   // Called with the lines already driven low.
   void (*release)(void* state, const unsigned* offsets, size_t num_lines);
   void (*close)(void* state);
@@ -25,6 +27,7 @@ struct syncap_gpio {
   const struct syncap_gpio_backend* backend;
   void* state;
   unsigned offsets[SYNCAP_GPIO_MAX_LINES];
-  size_t num_lines;  // 0 while no lines are requested
-  int value;         // current level of all requested lines
+  size_t num_lines;        // 0 while no lines are requested
+  int value;               // current level of all requested lines
+  int64_t last_change_ns;  // when the backend last switched them, 0 before that
 };

@@ -1,11 +1,17 @@
-// The "sim" backend: records edges instead of driving pins, for tests and dry runs.
+// The "sim" backend: records edges instead of driving pins, for tests and dry runs; with a chip
+// name it also drives the shared chip of that name (gpiosim.h), which other processes watch.
 #include "syncap/trigger/gpio_sim.h"
 
 #include <errno.h>
+#include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "gpio_backend.h"
+#include "syncap/trigger/gpiosim.h"
+
+_Static_assert(SYNCAP_GPIO_SIM_NUM_LINES == SYNCAP_GPIOSIM_NUM_LINES, "both chips have 64 lines");
 
 struct sim_chip {
   struct syncap_gpio_edge* ring;
@@ -13,25 +19,22 @@ struct sim_chip {
   size_t head;   // index of the oldest edge
   size_t count;  // edges held
   uint64_t dropped;
+  struct syncap_gpiosim* shared;  // NULL for the in-process chip
 };
 
-// "N" -> N edges of ring, 1..SYNCAP_GPIO_SIM_MAX_EDGES; 0 when malformed.
+static bool is_decimal(const char* text) {
+  return text[0] != '\0' && strspn(text, "0123456789") == strlen(text);
+}
+
+// "N" -> N edges of ring, 1..SYNCAP_GPIO_SIM_MAX_EDGES; 0 when out of range.
 static size_t parse_capacity(const char* argument) {
-  if (argument == NULL) return SYNCAP_GPIO_SIM_DEFAULT_EDGES;
-  char* end = NULL;
   errno = 0;
-  const unsigned long long value = strtoull(argument, &end, 10);
-  if (errno != 0 || end == argument || *end != '\0' || argument[0] == '-') return 0;
-  if (value < 1 || value > SYNCAP_GPIO_SIM_MAX_EDGES) return 0;
+  const unsigned long long value = strtoull(argument, NULL, 10);
+  if (errno != 0 || value < 1 || value > SYNCAP_GPIO_SIM_MAX_EDGES) return 0;
   return (size_t)value;
 }
 
-static void* sim_open(const char* argument) {
-  const size_t capacity = parse_capacity(argument);
-  if (capacity == 0) {
-    errno = EINVAL;
-    return NULL;
-  }
+static struct sim_chip* new_chip(size_t capacity) {
   struct sim_chip* chip = calloc(1, sizeof(*chip));
   if (chip == NULL) return NULL;
   chip->ring = calloc(capacity, sizeof(chip->ring[0]));
@@ -44,17 +47,48 @@ static void* sim_open(const char* argument) {
   return chip;
 }
 
+static void sim_close(void* state) {
+  struct sim_chip* chip = state;
+  syncap_gpiosim_close(chip->shared);
+  free(chip->ring);
+  free(chip);
+}
+
+// NULL -> in-process chip with the default ring; "N" -> ring of N edges; anything else names the
+// shared chip, created when missing.
+static void* sim_open(const char* argument) {
+  const bool shared = argument != NULL && !is_decimal(argument);
+  size_t capacity = SYNCAP_GPIO_SIM_DEFAULT_EDGES;
+  if (argument != NULL && !shared) capacity = parse_capacity(argument);
+  if (capacity == 0 || (shared && !syncap_gpiosim_name_is_valid(argument))) {
+    errno = EINVAL;
+    return NULL;
+  }
+  struct sim_chip* chip = new_chip(capacity);
+  if (chip == NULL || !shared) return chip;
+  chip->shared = syncap_gpiosim_open(argument, true);
+  if (chip->shared == NULL) {
+    const int error = errno;
+    sim_close(chip);
+    errno = error;
+    return NULL;
+  }
+  return chip;
+}
+
+// A shared chip's lines start a new run, so that watchers number this writer's edges from 1.
 static int sim_request_outputs(void* state, const unsigned* offsets, size_t num_lines,
                                const char* consumer) {
-  (void)state;
   (void)consumer;
+  struct sim_chip* chip = state;
   for (size_t i = 0; i < num_lines; ++i) {
     if (offsets[i] >= SYNCAP_GPIO_SIM_NUM_LINES) {
       errno = EINVAL;
       return -1;
     }
   }
-  return 0;
+  if (chip->shared == NULL) return 0;
+  return syncap_gpiosim_claim_lines(chip->shared, offsets, num_lines);
 }
 
 static void record_edge(struct sim_chip* chip, struct syncap_gpio_edge edge) {
@@ -73,10 +107,17 @@ static int64_t monotonic_ns(void) {
   return (int64_t)now.tv_sec * 1000000000 + now.tv_nsec;
 }
 
-static int sim_set_all(void* state, const unsigned* offsets, size_t num_lines, int value) {
-  const int64_t time_ns = monotonic_ns();  // all lines switch at one instant, as in a bulk set
+static int sim_set_all(void* state, const unsigned* offsets, size_t num_lines, int value,
+                       int64_t* time_ns) {
+  struct sim_chip* chip = state;
+  if (chip->shared != NULL) {
+    // The shared chip takes the time under its lock, so watchers see exactly this edge time.
+    if (syncap_gpiosim_set_lines(chip->shared, offsets, num_lines, value, time_ns) < 0) return -1;
+  } else {
+    *time_ns = monotonic_ns();  // all lines switch at one instant, as in a bulk set
+  }
   for (size_t i = 0; i < num_lines; ++i) {
-    record_edge(state, (struct syncap_gpio_edge){offsets[i], value, time_ns});
+    record_edge(chip, (struct syncap_gpio_edge){offsets[i], value, *time_ns});
   }
   return 0;
 }
@@ -85,12 +126,6 @@ static void sim_release(void* state, const unsigned* offsets, size_t num_lines) 
   (void)state;
   (void)offsets;
   (void)num_lines;
-}
-
-static void sim_close(void* state) {
-  struct sim_chip* chip = state;
-  free(chip->ring);
-  free(chip);
 }
 
 const struct syncap_gpio_backend syncap_gpio_sim_backend = {

@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "syncap/trigger/gpio.h"
+#include "syncap/trigger/gpiosim.h"
 #include "syncap/trigger/trigger.h"
 #include "syncap_trigger_t.h"
 #include "trigger_options.h"
@@ -120,7 +121,8 @@ static bool drive_pulse(struct daemon* d) {
   const int64_t now_ns = clock_ns(CLOCK_MONOTONIC);
   if (syncap_trigger_due_pulse(d->trigger, now_ns, &pulse) != SYNCAP_TRIGGER_OK) return true;
   if (!set_lines(d, 1)) return false;
-  const int64_t edge_ns = clock_ns(CLOCK_MONOTONIC);
+  // The backend's own edge time: on a shared chip it is exactly the time its watchers see.
+  const int64_t edge_ns = syncap_gpio_last_change_ns(d->gpio);
   const int64_t realtime_ns = clock_ns(CLOCK_REALTIME);
   syncap_trigger_edge_driven(d->trigger, &pulse, edge_ns);
   publish_pulse(d, &pulse, edge_ns, realtime_ns);
@@ -181,13 +183,27 @@ static struct syncap_trigger* create_trigger(const struct trigger_options* optio
   return NULL;
 }
 
+// "sim:NAME" (a name, not a ring size): the chip shared with other processes.
+static bool is_shared_sim(const char* chip) {
+  return strncmp(chip, "sim:", 4) == 0 && strspn(chip + 4, "0123456789") != strlen(chip + 4);
+}
+
 // The chip with the lines requested, or NULL after printing why (*status says usage or runtime).
 static struct syncap_gpio* open_lines(const struct trigger_options* options, int* status) {
   struct syncap_gpio* gpio = syncap_gpio_open(options->chip);
   if (gpio == NULL) {
     *status = errno == ENODEV || errno == EINVAL ? STATUS_USAGE : STATUS_RUNTIME_ERROR;
     if (errno == ENODEV) {
-      trigger_options_reject("--chip", options->chip, "unknown chip (only 'sim' in this build)");
+      trigger_options_reject("--chip", options->chip,
+                             "unknown chip (this build has sim, sim:N and sim:NAME)");
+    } else if (errno == EINVAL) {
+      trigger_options_reject("--chip", options->chip,
+                             "sim:N needs 1 to 1000000 edges, sim:NAME a name of A-Z a-z 0-9 . _ - "
+                             "(at most 64, not starting with . or -)");
+    } else if (is_shared_sim(options->chip)) {
+      char why[256];
+      fprintf(stderr, "syncap-trigger: cannot open chip '%s': %s\n", options->chip,
+              syncap_gpiosim_describe_error(options->chip + 4, errno, why, sizeof(why)));
     } else {
       fprintf(stderr, "syncap-trigger: cannot open chip '%s': %s\n", options->chip,
               strerror(errno));

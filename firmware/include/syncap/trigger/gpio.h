@@ -1,10 +1,12 @@
 // Output lines of a GPIO chip, driven together: a tiny API after libgpiod's chip/line-bulk model.
-// A backend spec picks the chip: "sim" (in-process simulation, see gpio_sim.h) is the only one in
-// this build; a libgpiod backend ("gpiochip0", "/dev/gpiochip0") slots in behind the same calls.
+// A backend spec picks the chip: "sim" (in-process simulation) and "sim:NAME" (the simulated chip
+// shared with other processes, gpiosim.h) are the ones in this build, see gpio_sim.h; a libgpiod
+// backend ("gpiochip0", "/dev/gpiochip0") slots in behind the same calls.
 // Functions returning int give 0, or -1 with errno set.
 #pragma once
 
 #include <stddef.h>
+#include <stdint.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -33,6 +35,11 @@ void syncap_gpio_release(struct syncap_gpio* gpio);
 
 // Releases the lines (so they are left low) and closes the chip. NULL is allowed.
 void syncap_gpio_close(struct syncap_gpio* gpio);
+
+// CLOCK_MONOTONIC time at which the last syncap_gpio_set_all that changed the level switched the
+// lines, as the backend saw it (so that it equals the time a shared chip's watchers see); 0 before
+// the first change.
+int64_t syncap_gpio_last_change_ns(const struct syncap_gpio* gpio);
 
 // The backend's name, e.g. "sim".
 const char* syncap_gpio_backend_name(const struct syncap_gpio* gpio);

@@ -1,6 +1,12 @@
-// The "sim" GPIO backend: an in-process chip with SYNCAP_GPIO_SIM_NUM_LINES lines that records
-// every edge in a bounded ring (default SYNCAP_GPIO_SIM_DEFAULT_EDGES; spec "sim:N" for N edges).
-// When the ring is full the oldest edge is dropped and counted.
+// The "sim" GPIO backend: a chip with SYNCAP_GPIO_SIM_NUM_LINES lines that records every edge in a
+// bounded ring (default SYNCAP_GPIO_SIM_DEFAULT_EDGES; spec "sim:N" for N edges). When the ring is
+// full the oldest edge is dropped and counted.
+//   "sim", "sim:N"  in-process only;
+//   "sim:NAME"      (NAME not all digits, see gpiosim.h) also drives the shared chip NAME, created
+//                   when missing, so that other processes can watch the lines: requesting lines
+//                   starts a new run on them (rising-edge counts from 1), every set is one instant
+//                   on the shared chip, and syncap_gpio_last_change_ns() is the time its watchers
+//                   see. A bad NAME is EINVAL; a chip that cannot be opened keeps shm's errno.
 #pragma once
 
 #include <stddef.h>
