@@ -28,8 +28,11 @@ TEST(ReplayRealData, IndexesAndDecodesTheHighwaySequence) {
     for (const auto& b : detect_blobs(frame->image, config)) {
       EXPECT_GE(b.area, config.min_area);
       EXPECT_LE(b.area, config.max_area);
-      EXPECT_GE(b.x, b.bbox_x);
-      EXPECT_LE(b.x, b.bbox_x + b.bbox_w - 1);
+      // The centroid weighs the box grown by window_margin: it stays inside that window.
+      EXPECT_GE(b.x, b.bbox_x - config.window_margin);
+      EXPECT_LE(b.x, b.bbox_x + b.bbox_w - 1 + config.window_margin);
+      EXPECT_GE(b.y, b.bbox_y - config.window_margin);
+      EXPECT_LE(b.y, b.bbox_y + b.bbox_h - 1 + config.window_margin);
     }
   }
 }

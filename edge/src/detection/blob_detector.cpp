@@ -13,19 +13,47 @@ struct Moments {
   int peak = 0;
 };
 
+// The background around a blob: the median of the ring of pixels just outside its window.
+double ring_background(const cv::Mat& image, cv::Rect window) {
+  std::vector<uint8_t> ring;
+  const cv::Rect inside(0, 0, image.cols, image.rows);
+  for (int x = window.x - 1; x <= window.x + window.width; ++x) {
+    for (int y : {window.y - 1, window.y + window.height}) {
+      if (inside.contains({x, y})) ring.push_back(image.at<uint8_t>(y, x));
+    }
+  }
+  for (int y = window.y; y < window.y + window.height; ++y) {
+    for (int x : {window.x - 1, window.x + window.width}) {
+      if (inside.contains({x, y})) ring.push_back(image.at<uint8_t>(y, x));
+    }
+  }
+  if (ring.empty()) return 0.0;
+  std::nth_element(ring.begin(), ring.begin() + static_cast<long>(ring.size() / 2), ring.end());
+  return ring[ring.size() / 2];
+}
+
+// Intensity-weighted moments over the blob's box grown by `margin` pixels, each pixel weighted
+// by its brightness above the local background: the faint rim below the threshold counts too,
+// which removes the bias a threshold-cut centroid has. Pixels of other blobs in the window are
+// skipped.
 Moments weighted_moments(const cv::Mat& image, const cv::Mat& labels, int label, cv::Rect box,
-                         int threshold) {
+                         int margin) {
+  const cv::Rect window =
+      cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin) &
+      cv::Rect(0, 0, image.cols, image.rows);
+  const double background = ring_background(image, window);
   Moments m;
-  for (int y = box.y; y < box.y + box.height; ++y) {
+  for (int y = window.y; y < window.y + window.height; ++y) {
     const uint8_t* pixel = image.ptr<uint8_t>(y);
     const int32_t* lab = labels.ptr<int32_t>(y);
-    for (int x = box.x; x < box.x + box.width; ++x) {
-      if (lab[x] != label) continue;
-      const double w = pixel[x] - threshold + 1;
+    for (int x = window.x; x < window.x + window.width; ++x) {
+      if (lab[x] != label && lab[x] != 0) continue;
+      const double w = pixel[x] - background;
+      if (w <= 0) continue;
       m.weight += w;
       m.sx += w * x;
       m.sy += w * y;
-      m.peak = std::max<int>(m.peak, pixel[x]);
+      if (lab[x] == label) m.peak = std::max<int>(m.peak, pixel[x]);
     }
   }
   return m;
@@ -67,7 +95,7 @@ std::vector<blob_t> detect_blobs(const cv::Mat& image, const BlobDetectorConfig&
     const cv::Rect box(
         stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
         stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
-    const Moments m = weighted_moments(image, labels, label, box, config.threshold);
+    const Moments m = weighted_moments(image, labels, label, box, config.window_margin);
     blobs.push_back(make_blob(m, box, area, image.size(), config));
   }
   std::sort(blobs.begin(), blobs.end(),

@@ -15,10 +15,12 @@ struct BlobDetectorConfig {
   float min_area = 2.0f;      // smaller components are noise, pixels
   float max_area = 20000.0f;  // larger ones are not targets (a lamp, a window), pixels
   int saturation = 255;       // a pixel at this value marks the blob FLAG_SATURATED
+  int window_margin = 2;      // pixels around the blob's box that its centroid also weighs
 };
 
-// Blobs of `image` (CV_8UC1), ordered by descending area. Centroids weight each pixel by its
-// intensity above the threshold minus one, so that the faint rim counts less than the core.
+// Blobs of `image` (CV_8UC1), ordered by descending area. Centroids weight each pixel of the
+// blob's box, grown by window_margin, by its intensity above the local background (the median of
+// the ring around that window).
 std::vector<blob_t> detect_blobs(const cv::Mat& image, const BlobDetectorConfig& config);
 
 }  // namespace syncap::edge

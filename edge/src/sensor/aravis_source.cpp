@@ -109,6 +109,12 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
   check(error, address, "reading the payload size");
   camera_->stream.reset(arv_camera_create_stream(cam, nullptr, nullptr, &error));
   check(error, address, "creating the stream");
+  // A frame is hundreds of packets and lost ones are not resent: give the socket room for a
+  // few whole frames instead of Aravis' default.
+  if (ARV_IS_GV_STREAM(camera_->stream.get())) {
+    g_object_set(camera_->stream.get(), "socket-buffer", ARV_GV_STREAM_SOCKET_BUFFER_FIXED,
+                 "socket-buffer-size", 4 << 20, nullptr);
+  }
   for (int i = 0; i < options_.buffers; ++i) {
     arv_stream_push_buffer(camera_->stream.get(), arv_buffer_new_allocate(payload));
   }
