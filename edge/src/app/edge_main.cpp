@@ -29,6 +29,7 @@ std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeO
     aravis.device_address = target;
     aravis.trigger_source = o.trigger_source;
     aravis.exposure_us = o.exposure_us;
+    aravis.udp_socket = o.udp_socket;
     return std::make_unique<syncap::edge::AravisSource>(aravis, o.camera_id);
   }
   return std::make_unique<syncap::edge::ReplaySource>(target, o.camera_id);

@@ -28,6 +28,8 @@ std::string edge_usage() {
          "discovery)\n"
          "  --trigger-source S  aravis: the camera's TriggerSource (Line1, Software, ...)\n"
          "  --exposure-us US    aravis: exposure time\n"
+         "  --udp-socket        aravis: receive with a UDP socket, not a packet socket (no\n"
+         "                      CAP_NET_RAW needed; its buffer grows only after the first frame)\n"
          "  --threshold DN      blob threshold 1..255 (default 128)\n"
          "  --min-area PX       smallest blob area (default 2)\n"
          "  --max-area PX       largest blob area (default 20000)\n"
@@ -59,6 +61,8 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
       o.trigger_source = value();
     } else if (a == "--exposure-us") {
       o.exposure_us = parse_number<int>(a, value(), 1, 10'000'000);
+    } else if (a == "--udp-socket") {
+      o.udp_socket = true;
     } else if (a == "--threshold") {
       o.detector.threshold = parse_number<int>(a, value(), 1, 255);
     } else if (a == "--min-area") {

@@ -14,6 +14,7 @@ struct EdgeOptions {
   std::string source;          // "replay:FOLDER" or "aravis:ADDRESS"
   std::string trigger_source;  // aravis: camera TriggerSource; empty: as configured
   double exposure_us = 0;      // aravis: 0 = as configured
+  bool udp_socket = false;     // aravis: plain UDP socket instead of a packet socket
   std::string lcm_url;
   BlobDetectorConfig detector;
   double heartbeat_s = 1.0;

@@ -87,9 +87,10 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
   GError* error = nullptr;
   GPtr<ArvDevice> device(arv_gv_device_new(local_address.get(), device_address.get(), &error));
   check(error, address, "opening by address from " + local);
-  // Plain UDP sockets: packet sockets need privileges a board process may lack.
-  arv_gv_device_set_stream_options(ARV_GV_DEVICE(device.get()),
-                                   ARV_GV_STREAM_OPTION_PACKET_SOCKET_DISABLED);
+  if (options_.udp_socket) {
+    arv_gv_device_set_stream_options(ARV_GV_DEVICE(device.get()),
+                                     ARV_GV_STREAM_OPTION_PACKET_SOCKET_DISABLED);
+  }
   camera_->camera.reset(arv_camera_new_with_device(device.get(), &error));
   check(error, address, "creating the camera");
   ArvCamera* cam = camera_->camera.get();
@@ -112,8 +113,10 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
   // A frame is hundreds of packets and lost ones are not resent: give the socket room for a
   // few whole frames instead of Aravis' default.
   if (ARV_IS_GV_STREAM(camera_->stream.get())) {
+    // And wait longer for a frame's last packets than Aravis' 100 ms before calling it
+    // incomplete: a loaded board (or six cameras' bursts at once) delays the receiving thread.
     g_object_set(camera_->stream.get(), "socket-buffer", ARV_GV_STREAM_SOCKET_BUFFER_FIXED,
-                 "socket-buffer-size", 4 << 20, nullptr);
+                 "socket-buffer-size", 4 << 20, "frame-retention", 500000u, nullptr);
   }
   for (int i = 0; i < options_.buffers; ++i) {
     arv_stream_push_buffer(camera_->stream.get(), arv_buffer_new_allocate(payload));

@@ -27,6 +27,11 @@ struct AravisOptions {
   double exposure_us = 0;         // 0: as configured
   int buffers = 16;               // buffer pool size
   int frame_timeout_ms = 1000;    // how long grab() waits for a frame
+  // Receive with a plain UDP socket instead of Aravis' packet socket (which needs CAP_NET_RAW
+  // and falls back to UDP without it). Aravis sizes a UDP socket's buffer only when the first
+  // frame starts, so under load the first frame's burst can overflow the default buffer: the
+  // replay bench lost frame 0 in 2 of 5 short runs that way, and none with packet sockets.
+  bool udp_socket = false;
 };
 
 // Unwraps GigE Vision block ids (1..65535, then 1 again) into a running 64-bit count.
