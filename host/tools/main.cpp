@@ -39,6 +39,7 @@ struct ProgramSubcommand {
 
 constexpr std::array kProgramSubcommands{
     ProgramSubcommand{"sim", "render a scenario into camera images and ground truth"},
+    ProgramSubcommand{"segment-eval", "score foreground masking on a CDnet 2014 folder"},
 };
 
 void print_usage(std::ostream& out) {

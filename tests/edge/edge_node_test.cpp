@@ -111,8 +111,10 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("--camera-id '300'"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "v4l2:/dev/video0"}),
+  EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "gige:/dev/video0"}),
                UsageError);
+  EXPECT_EQ(parse_edge_options({"--camera-id", "1", "--source", "v4l2:/dev/video0"}).source,
+            "v4l2:/dev/video0");
   const auto camera = parse_edge_options(
       {"--camera-id", "2", "--source", "aravis:127.0.0.4", "--trigger-source", "Line1"});
   EXPECT_EQ(camera.source, "aravis:127.0.0.4");

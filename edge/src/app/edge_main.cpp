@@ -12,6 +12,7 @@
 #include "app/edge_options.hpp"
 #include "sensor/aravis_source.hpp"
 #include "sensor/replay_source.hpp"
+#include "sensor/v4l2/v4l2_source.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/subscriber.hpp"
@@ -31,6 +32,12 @@ std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeO
     aravis.exposure_us = o.exposure_us;
     aravis.udp_socket = o.udp_socket;
     return std::make_unique<syncap::edge::AravisSource>(aravis, o.camera_id);
+  }
+  if (o.source.starts_with("v4l2:")) {
+    syncap::edge::v4l2::V4l2Options v4l2;
+    v4l2.device_path = target;
+    v4l2.exposure_us = static_cast<int32_t>(o.exposure_us);
+    return syncap::edge::v4l2::make_v4l2_source(v4l2, o.camera_id);
   }
   return std::make_unique<syncap::edge::ReplaySource>(target, o.camera_id);
 }

@@ -24,8 +24,8 @@ std::string edge_usage() {
   return "usage: syncap-edge --camera-id N --source replay:FOLDER [options]\n"
          "  --camera-id N       camera id 0..99 (channel SYNCAP_BLOBS_NN)\n"
          "  --source SPEC       replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
-         "                      aravis:ADDRESS GigE Vision camera at this IPv4 address (no "
-         "discovery)\n"
+         "                      aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
+         "                      v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/v4l2.md)\n"
          "  --trigger-source S  aravis: the camera's TriggerSource (Line1, Software, ...)\n"
          "  --exposure-us US    aravis: exposure time\n"
          "  --udp-socket        aravis: receive with a UDP socket, not a packet socket (no\n"
@@ -84,9 +84,10 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
   if (!have_camera) throw UsageError("syncap-edge: --camera-id is required");
   const bool replay = o.source.starts_with("replay:") && o.source.size() > 7;
   const bool aravis = o.source.starts_with("aravis:") && o.source.size() > 7;
-  if (!replay && !aravis) {
+  const bool v4l2 = o.source.starts_with("v4l2:") && o.source.size() > 5;
+  if (!replay && !aravis && !v4l2) {
     throw UsageError("syncap-edge: --source '" + o.source +
-                     "': expected replay:FOLDER or aravis:ADDRESS");
+                     "': expected replay:FOLDER, aravis:ADDRESS or v4l2:DEVICE");
   }
   return o;
 }

@@ -1,0 +1,88 @@
+// Medi-picture foreground masking (thesis 5.1.2, eqs 5.5-5.11): a per-pixel model of the empty
+// scene learnt from N training frames, a frame classified against it, darker pixels whose
+// neighbourhood correlates with the background's taken back as shadow, then closing, removal of
+// small components and an optional clip polygon. Grey images (CV_8UC1) throughout.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace syncap::edge {
+
+// The empty scene as eq 5.5 describes it, each image the size of the training frames.
+struct MediPictureModel {
+  cv::Mat median;          // lambda, CV_32FC1: also the background image B of the NCC test
+  cv::Mat sigma;           // sigma, CV_32FC1: 1.4826 x median absolute deviation from lambda
+  cv::Mat minimum;         // m, CV_32FC1: minimum over the stationary frames
+  cv::Mat maximum;         // n, CV_32FC1: maximum over the stationary frames
+  cv::Mat max_difference;  // d, CV_32FC1: largest step between consecutive stationary frames
+};
+
+// Learns the model from frames of the empty scene (at least 2, all CV_8UC1 of one size). A frame
+// z counts as stationary at a pixel when |S_z - lambda| <= 2 sigma there; d takes only steps
+// between two consecutive stationary frames. Throws std::invalid_argument on bad input.
+MediPictureModel train_medi_picture(std::span<const cv::Mat> frames);
+
+struct MediPictureOptions {
+  // A pixel is foreground outside [m - k d', n + k d'] with d' = max(d, min_difference).
+  float k = 3.0f;
+  float min_difference = 6.0f;  // DN: d of a pixel still in training is not its noise
+  // Shadow test (eqs 5.6-5.11) on a (2 ncc_half_window + 1)^2 window.
+  bool remove_shadows = true;
+  int ncc_half_window = 2;
+  float ncc_threshold = 0.98f;  // L_NCC
+  // Our addition: a shadow keeps at least this share of the background's energy (E_T / E_B);
+  // without it a uniform dark object on a uniform floor passes eqs 5.10/5.11.
+  float min_shadow_energy_ratio = 0.5f;
+  int closing_diameter = 9;     // elliptical element, pixels; 0 disables the closing
+  int min_component_area = 40;  // smaller 8-connected components are noise, pixels
+  float update_rate = 0.0f;     // slow update where the mask is background, 0 = frozen model
+  std::vector<cv::Point> clip_polygon;  // when not empty, pixels outside it are background
+};
+
+// Classifies frames against a trained model; holds the thresholds derived from it.
+class MediPicture {
+ public:
+  // Keeps its own copy of the model's images.
+  MediPicture(const MediPictureModel& model, MediPictureOptions options);
+
+  // The foreground mask of `frame` (CV_8UC1, the model's size): 255 foreground, 0 background.
+  // With update_rate > 0 the model then follows the scene where the mask is background.
+  cv::Mat apply(const cv::Mat& frame);
+
+  const MediPictureModel& model() const { return model_; }
+  const MediPictureOptions& options() const { return options_; }
+
+ private:
+  void derive_thresholds();
+  void update_model(const cv::Mat& frame, const cv::Mat& mask);
+
+  MediPictureModel model_;
+  MediPictureOptions options_;
+  cv::Mat lower_, upper_;      // CV_8UC1 bounds of the background interval
+  cv::Mat background_;         // CV_8UC1 median, the B of the NCC test
+  cv::Mat background_energy_;  // CV_32FC1 window sums of B^2
+  cv::Mat clip_;               // CV_8UC1 255 inside the clip polygon, empty when none
+};
+
+// The steps of MediPicture::apply, each usable on its own.
+
+// 255 where `frame` lies outside the model's interval [m - k d', n + k d'].
+cv::Mat classify_against_model(const MediPictureModel& model, const cv::Mat& frame,
+                               const MediPictureOptions& options);
+
+// 255 where a pixel of `candidates` is shadow by eqs 5.10/5.11 (and the energy ratio bound):
+// the window of `frame` correlates with that of `background` and holds less energy.
+cv::Mat shadow_pixels(const cv::Mat& background, const cv::Mat& frame, const cv::Mat& candidates,
+                      const MediPictureOptions& options);
+
+// Closing with an elliptical element of `closing_diameter`, then removal of 8-connected
+// components smaller than `min_component_area`. Works in place.
+void clean_mask(cv::Mat& mask, int closing_diameter, int min_component_area);
+
+// Sets the pixels of `mask` outside `polygon` to background (nothing when it is empty).
+void clip_to_polygon(cv::Mat& mask, std::span<const cv::Point> polygon);
+
+}  // namespace syncap::edge

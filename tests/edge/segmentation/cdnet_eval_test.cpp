@@ -1,0 +1,78 @@
+#include "segmentation/cdnet_eval.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+namespace syncap::edge {
+namespace {
+
+// A tiny CDnet folder: frames 1-4 train, 5-6 are scored; a square appears in frame 6.
+std::filesystem::path make_folder(const std::string& name) {
+  const auto folder = std::filesystem::path(testing::TempDir()) / name;
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder / "input");
+  std::filesystem::create_directories(folder / "groundtruth");
+  std::ofstream(folder / "temporalROI.txt") << "5 6\n";
+  cv::imwrite((folder / "ROI.bmp").string(), cv::Mat(60, 80, CV_8UC1, cv::Scalar(255)));
+  for (int frame = 1; frame <= 6; ++frame) {
+    cv::Mat image(60, 80, CV_8UC3, cv::Scalar(90, 90, 90));
+    cv::Mat truth = cv::Mat::zeros(60, 80, CV_8UC1);
+    if (frame == 6) {
+      image(cv::Rect(20, 20, 20, 20)).setTo(cv::Scalar(230, 230, 230));
+      truth(cv::Rect(20, 20, 20, 20)).setTo(255);
+      truth(cv::Rect(60, 0, 20, 10)).setTo(170);  // not scored
+    }
+    char name_in[32], name_gt[32];
+    std::snprintf(name_in, sizeof name_in, "in%06d.jpg", frame);
+    std::snprintf(name_gt, sizeof name_gt, "gt%06d.png", frame);
+    cv::imwrite((folder / "input" / name_in).string(), image);
+    cv::imwrite((folder / "groundtruth" / name_gt).string(), truth);
+  }
+  return folder;
+}
+
+TEST(CdnetEval, CountsBySquareOnSyntheticFolder) {
+  CdnetEvalOptions options;
+  options.medi_picture.min_component_area = 0;
+  const CdnetScores scores = evaluate_cdnet(make_folder("cdnet_ok"), options);
+  EXPECT_EQ(scores.scored_frames, 2);
+  EXPECT_EQ(scores.true_positives, 400);
+  EXPECT_EQ(scores.false_negatives, 0);
+  EXPECT_EQ(scores.false_positives, 0);
+  EXPECT_EQ(scores.true_negatives, 2 * 60 * 80 - 400 - 200);
+  EXPECT_DOUBLE_EQ(scores.f_measure(), 1.0);
+}
+
+TEST(CdnetEval, MissingFolderIsNamed) {
+  try {
+    evaluate_cdnet("/nonexistent/cdnet", CdnetEvalOptions{});
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/cdnet"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CdnetEval, CorruptImageIsNamedWithItsFrame) {
+  const auto folder = make_folder("cdnet_corrupt");
+  std::ofstream(folder / "input" / "in000005.jpg") << "not a jpeg";
+  try {
+    evaluate_cdnet(folder, CdnetEvalOptions{});
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("in000005.jpg"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CdnetEval, ParsesMethodNames) {
+  EXPECT_EQ(parse_segmentation_method("mog2"), SegmentationMethod::kMog2);
+  EXPECT_EQ(parse_segmentation_method("knn"), SegmentationMethod::kKnn);
+  EXPECT_EQ(parse_segmentation_method("medipicture"), SegmentationMethod::kMediPicture);
+  EXPECT_THROW(parse_segmentation_method("gmm"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace syncap::edge
