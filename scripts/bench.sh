@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Builds the benchmark programs if needed (scripts/build.sh), runs every build/bin/bench_* (or
+# $SYNCAP_BUILD_DIR/bin) and prints one line per comparison: a program that registers
+# "<name>/ours" and "<name>/baseline" yields "<name>: R x (ours vs baseline)", R = baseline time /
+# our time (real time, from --benchmark_format=json). Extra arguments go to every program (e.g.
+# --benchmark_filter=blobs).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${SYNCAP_BUILD_DIR:-build}
+if [ ! -f "$build_dir/build.ninja" ]; then
+  scripts/build.sh
+else
+  targets=$(ninja -C "$build_dir" -t targets all | sed -n 's/^\(bench_[A-Za-z0-9_]*\): phony$/\1/p')
+  [ -z "$targets" ] || cmake --build "$build_dir" --target $targets
+fi
+shopt -s nullglob
+programs=("$build_dir"/bin/bench_*)
+[ ${#programs[@]} -gt 0 ] || { echo "bench: no bench_* programs in $build_dir/bin" >&2; exit 1; }
+for program in "${programs[@]}"; do
+  json=$(mktemp)
+  echo "== $(basename "$program")" >&2
+  if ! "$program" --benchmark_format=json "$@" >"$json" || ! grep -q '"benchmarks"' "$json"; then
+    echo "bench: $(basename "$program") produced no results" >&2
+    rm -f "$json"
+    continue
+  fi
+  if command -v python3 >/dev/null; then
+    python3 - "$json" <<'PY'
+import json, sys
+runs = json.load(open(sys.argv[1])).get("benchmarks", [])
+times = {}
+for b in runs:
+    if b.get("run_type", "iteration") != "iteration" or b.get("error_occurred"):
+        continue
+    name, _, side = b["name"].partition("/")
+    if side in ("ours", "baseline"):
+        times.setdefault(name, {})[side] = float(b["real_time"])
+for name, t in times.items():
+    if "ours" in t and "baseline" in t and t["ours"] > 0:
+        print(f"{name}: {t['baseline'] / t['ours']:.1f} x (ours vs baseline)")
+PY
+  else
+    # Without python3: Google Benchmark's JSON has one "key": value per line.
+    awk -F'"' '
+      /"name":/ { split($4, part, "/"); name = part[1]; side = part[2] }
+      /"real_time":/ { v = $3; gsub(/[:, ]/, "", v); if (side == "ours" || side == "baseline") t[name, side] = v; names[name] = 1 }
+      END { for (n in names) if ((n, "ours") in t && (n, "baseline") in t && t[n, "ours"] > 0)
+              printf "%s: %.1f x (ours vs baseline)\n", n, t[n, "baseline"] / t[n, "ours"] }' "$json"
+  fi
+  rm -f "$json"
+done
