@@ -64,7 +64,11 @@ void BM_RenderSixCameras(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());  // frames (of six cameras) per second
 }
-BENCHMARK(BM_RenderSixCameras)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+// scripts/bench.sh pairs "<name>/ours" with "<name>/baseline".
+BENCHMARK(BM_RenderSixCameras)
+    ->Name("sim-render-vs-no-culling/ours")
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 void BM_BaselineSilhouetteWithoutCulling(benchmark::State& state) {
   const Setup& s = setup();
@@ -75,7 +79,10 @@ void BM_BaselineSilhouetteWithoutCulling(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_BaselineSilhouetteWithoutCulling)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_BaselineSilhouetteWithoutCulling)
+    ->Name("sim-render-vs-no-culling/baseline")
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 }  // namespace
 

@@ -32,9 +32,12 @@ times = {}
 for b in runs:
     if b.get("run_type", "iteration") != "iteration" or b.get("error_occurred"):
         continue
-    name, _, side = b["name"].partition("/")
+    # "<name>/<side>" may carry suffixes Google Benchmark appends ("/min_time:2.000", args).
+    parts = b["name"].split("/")
+    name, side = parts[0], parts[1] if len(parts) > 1 else ""
+    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
     if side in ("ours", "baseline"):
-        times.setdefault(name, {})[side] = float(b["real_time"])
+        times.setdefault(name, {})[side] = float(b["real_time"]) * scale
 for name, t in times.items():
     if "ours" in t and "baseline" in t and t["ours"] > 0:
         print(f"{name}: {t['baseline'] / t['ours']:.1f} x (ours vs baseline)")

@@ -10,6 +10,7 @@ void syncap_trigger_config_init(struct syncap_trigger_config* config) {
       .late_tolerance_ns = 100000,
       .count = SYNCAP_TRIGGER_FOREVER,
       .num_lines = 1,
+      .debounce_ns = 5000000,
   };
 }
 
@@ -51,7 +52,10 @@ enum syncap_trigger_error syncap_trigger_config_validate(
   error = validate_width(config->pulse_width_ns, min_period_ns);
   if (error != SYNCAP_TRIGGER_OK) return error;
   if (config->late_tolerance_ns < 0) return SYNCAP_TRIGGER_ERR_TOLERANCE_NEGATIVE;
-  return validate_lines(config, min_period_ns);
+  error = validate_lines(config, min_period_ns);
+  if (error != SYNCAP_TRIGGER_OK) return error;
+  if (config->debounce_ns < 0) return SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE;
+  return SYNCAP_TRIGGER_OK;
 }
 
 const char* syncap_trigger_strerror(enum syncap_trigger_error error) {
@@ -78,6 +82,8 @@ const char* syncap_trigger_strerror(enum syncap_trigger_error error) {
       return "line phase offset must not be negative";
     case SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD:
       return "line phase offset must be shorter than the period";
+    case SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE:
+      return "debounce time must not be negative";
     case SYNCAP_TRIGGER_ERR_ALREADY_RUNNING:
       return "the trigger is already running";
     case SYNCAP_TRIGGER_ERR_NOT_RUNNING:

@@ -18,10 +18,17 @@ struct syncap_gpio_backend {
                  int64_t* time_ns);
   // Called with the lines already driven low.
   void (*release)(void* state, const unsigned* offsets, size_t num_lines);
+  // Input lines reporting edges; wait_edge: 1 edge, 0 timeout, -1 error (see gpio.h).
+  int (*request_inputs)(void* state, const unsigned* offsets, size_t num_lines,
+                        const char* consumer);
+  int (*wait_edge)(void* state, const unsigned* offsets, size_t num_lines, int64_t timeout_ns,
+                   struct syncap_gpio_event* event);
+  void (*release_inputs)(void* state, const unsigned* offsets, size_t num_lines);
   void (*close)(void* state);
 };
 
 extern const struct syncap_gpio_backend syncap_gpio_sim_backend;
+extern const struct syncap_gpio_backend syncap_gpio_gpiod_backend;
 
 struct syncap_gpio {
   const struct syncap_gpio_backend* backend;
@@ -30,4 +37,6 @@ struct syncap_gpio {
   size_t num_lines;        // 0 while no lines are requested
   int value;               // current level of all requested lines
   int64_t last_change_ns;  // when the backend last switched them, 0 before that
+  unsigned inputs[SYNCAP_GPIO_MAX_LINES];
+  size_t num_inputs;  // 0 while no input lines are requested
 };

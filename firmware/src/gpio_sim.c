@@ -20,6 +20,8 @@ struct sim_chip {
   size_t count;  // edges held
   uint64_t dropped;
   struct syncap_gpiosim* shared;  // NULL for the in-process chip
+  // Per input line of the shared chip: the last rising edge handed out.
+  struct syncap_gpiosim_rise seen[SYNCAP_GPIO_SIM_NUM_LINES];
 };
 
 static bool is_decimal(const char* text) {
@@ -128,12 +130,68 @@ static void sim_release(void* state, const unsigned* offsets, size_t num_lines) 
   (void)num_lines;
 }
 
+// Inputs: edges from now on. Only the shared chip has anyone to drive them.
+static int sim_request_inputs(void* state, const unsigned* offsets, size_t num_lines,
+                              const char* consumer) {
+  (void)consumer;
+  struct sim_chip* chip = state;
+  for (size_t i = 0; i < num_lines; ++i) {
+    if (offsets[i] >= SYNCAP_GPIO_SIM_NUM_LINES) {
+      errno = EINVAL;
+      return -1;
+    }
+  }
+  if (chip->shared == NULL) return 0;
+  for (size_t i = 0; i < num_lines; ++i) {
+    struct syncap_gpiosim_line line;
+    if (syncap_gpiosim_read_line(chip->shared, offsets[i], &line) < 0) return -1;
+    chip->seen[offsets[i]] = (struct syncap_gpiosim_rise){line.run, line.count, line.last_rise_ns};
+  }
+  return 0;
+}
+
+static void sleep_ns(int64_t ns) {
+  const struct timespec delay = {.tv_sec = ns / 1000000000, .tv_nsec = ns % 1000000000};
+  nanosleep(&delay, NULL);
+}
+
+// The shared chip wakes watchers per line; with several input lines this polls each one every
+// millisecond, which is plenty for start/stop buttons.
+#define SIM_INPUT_POLL_NS 1000000
+
+static int sim_wait_edge(void* state, const unsigned* offsets, size_t num_lines, int64_t timeout_ns,
+                         struct syncap_gpio_event* event) {
+  struct sim_chip* chip = state;
+  if (chip->shared == NULL) {
+    sleep_ns(timeout_ns);
+    return 0;
+  }
+  const int64_t deadline_ns = monotonic_ns() + timeout_ns;
+  for (;;) {
+    for (size_t i = 0; i < num_lines; ++i) {
+      struct syncap_gpiosim_rise rise = chip->seen[offsets[i]];
+      if (syncap_gpiosim_wait_rising(chip->shared, offsets[i], 0, &rise) == 0) {
+        chip->seen[offsets[i]] = rise;
+        *event = (struct syncap_gpio_event){offsets[i], 1, rise.time_ns};
+        return 1;
+      }
+      if (errno != ETIMEDOUT) return -1;
+    }
+    const int64_t left_ns = deadline_ns - monotonic_ns();
+    if (left_ns <= 0) return 0;
+    sleep_ns(left_ns < SIM_INPUT_POLL_NS ? left_ns : SIM_INPUT_POLL_NS);
+  }
+}
+
 const struct syncap_gpio_backend syncap_gpio_sim_backend = {
     .name = "sim",
     .open = sim_open,
     .request_outputs = sim_request_outputs,
     .set_all = sim_set_all,
     .release = sim_release,
+    .request_inputs = sim_request_inputs,
+    .wait_edge = sim_wait_edge,
+    .release_inputs = sim_release,
     .close = sim_close,
 };
 

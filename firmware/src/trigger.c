@@ -12,6 +12,8 @@ struct syncap_trigger {
   int64_t start_ns;
   uint64_t next_index;  // the 64-bit frame counter: next pulse not yet driven
   struct syncap_trigger_stats stats;
+  bool input_seen[2];        // per syncap_trigger_input: an edge was accepted before
+  int64_t input_last_ns[2];  // and when
 };
 
 struct syncap_trigger* syncap_trigger_new(const struct syncap_trigger_config* config,
@@ -113,4 +115,22 @@ enum syncap_trigger_error syncap_trigger_edge_driven(struct syncap_trigger* trig
 void syncap_trigger_get_stats(const struct syncap_trigger* trigger,
                               struct syncap_trigger_stats* stats) {
   *stats = trigger->stats;
+}
+
+enum syncap_trigger_input_action syncap_trigger_input_edge(struct syncap_trigger* trigger,
+                                                           enum syncap_trigger_input input,
+                                                           int64_t edge_ns, int64_t start_ns) {
+  const size_t i = input == SYNCAP_TRIGGER_INPUT_START ? 0 : 1;
+  if (trigger->input_seen[i] && edge_ns - trigger->input_last_ns[i] < trigger->config.debounce_ns) {
+    return SYNCAP_TRIGGER_INPUT_BOUNCE;
+  }
+  trigger->input_seen[i] = true;
+  trigger->input_last_ns[i] = edge_ns;
+  if (input == SYNCAP_TRIGGER_INPUT_START) {
+    return syncap_trigger_start(trigger, start_ns) == SYNCAP_TRIGGER_OK
+               ? SYNCAP_TRIGGER_INPUT_STARTED
+               : SYNCAP_TRIGGER_INPUT_IGNORED;
+  }
+  return syncap_trigger_stop(trigger) == SYNCAP_TRIGGER_OK ? SYNCAP_TRIGGER_INPUT_STOPPED
+                                                           : SYNCAP_TRIGGER_INPUT_IGNORED;
 }

@@ -1,5 +1,6 @@
 #include "trigger_options.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -15,6 +16,11 @@ enum option_id {
   OPT_LCM_URL,
   OPT_TRIGGER_ID,
   OPT_START_DELAY_MS,
+  OPT_START_LINE,
+  OPT_STOP_LINE,
+  OPT_DEBOUNCE_US,
+  OPT_BENCH,
+  OPT_CONFIG,
   OPT_QUIET,
   OPT_HELP,
 };
@@ -28,6 +34,11 @@ static const struct option long_options[] = {
     {"lcm-url", required_argument, NULL, OPT_LCM_URL},
     {"trigger-id", required_argument, NULL, OPT_TRIGGER_ID},
     {"start-delay-ms", required_argument, NULL, OPT_START_DELAY_MS},
+    {"start-line", required_argument, NULL, OPT_START_LINE},
+    {"stop-line", required_argument, NULL, OPT_STOP_LINE},
+    {"debounce-us", required_argument, NULL, OPT_DEBOUNCE_US},
+    {"bench", required_argument, NULL, OPT_BENCH},
+    {"config", required_argument, NULL, OPT_CONFIG},
     {"quiet", no_argument, NULL, OPT_QUIET},
     {"help", no_argument, NULL, OPT_HELP},
     {NULL, 0, NULL, 0},
@@ -42,12 +53,22 @@ void trigger_options_usage(FILE* out) {
       "  --width-us US        pulse high time, shorter than the period (default 1000)\n"
       "  --count N            pulses to send, 0 = until SIGINT/SIGTERM (default 0)\n"
       "  --lines L1,L2,...    GPIO line offsets driven together (default 0)\n"
-      "  --chip SPEC          GPIO chip: 'sim' (simulated, in-process) or 'sim:NAME'\n"
+      "  --chip SPEC          GPIO chip: 'sim' (simulated, in-process), 'sim:NAME'\n"
       "                       (simulated, shared with other processes: "
-      "/dev/shm/syncap-gpiosim-NAME)\n"
+      "/dev/shm/syncap-gpiosim-NAME),\n"
+      "                       or a real one through libgpiod: gpiochipN, /dev/gpiochipN,\n"
+      "                       gpiod:LABEL (default sim)\n"
       "  --lcm-url URL        LCM provider (default: LCM's, udpm://239.255.76.67:7667?ttl=0)\n"
       "  --trigger-id N       id of this trigger module, 0 to 32767 (default 0)\n"
       "  --start-delay-ms MS  wait before the first pulse so subscribers can start (default 0)\n"
+      "  --start-line N       input line on the same chip: a rising edge starts a run\n"
+      "                       (without it the run starts at once)\n"
+      "  --stop-line N        input line on the same chip: a rising edge stops the run\n"
+      "  --debounce-us US     ignore input edges this close to the previous one (default 5000)\n"
+      "  --config FILE        'key = value' lines, keys as these options without dashes;\n"
+      "                       the command line overrides the file\n"
+      "  --bench SECONDS      timing benchmark on the chip (no LCM): prints the rising edges'\n"
+      "                       error against the schedule, p50/p99/max in us\n"
       "  --quiet              no start line and no summary\n"
       "  --help               this text\n",
       out);
@@ -58,7 +79,7 @@ void trigger_options_reject(const char* option, const char* value, const char* w
   trigger_options_usage(stderr);
 }
 
-static void set_defaults(struct trigger_options* options) {
+void trigger_options_defaults(struct trigger_options* options) {
   *options = (struct trigger_options){
       .rate_hz = 30.0,
       .rate_text = "30",
@@ -72,8 +93,19 @@ static void set_defaults(struct trigger_options* options) {
       .lcm_url = NULL,
       .trigger_id = 0,
       .start_delay_ms = 0,
+      .start_line = -1,
+      .stop_line = -1,
+      .debounce_us = 5000,
+      .bench_seconds = 0,
       .quiet = false,
+      .config_path = NULL,
+      .config_text = NULL,
   };
+}
+
+void trigger_options_free(struct trigger_options* options) {
+  free(options->config_text);
+  options->config_text = NULL;
 }
 
 // Whole-string decimal integer in [min, max].
@@ -126,8 +158,19 @@ static const char* parse_lines(const char* text, struct trigger_options* options
   return NULL;
 }
 
-// Applies one option with its value; false (after printing why) when the value is wrong.
-static bool apply_option(int id, const char* value, struct trigger_options* options) {
+static bool parse_flag(const char* text, bool* value) {
+  static const char* const yes[] = {"true", "yes", "1", "on"};
+  static const char* const no[] = {"false", "no", "0", "off"};
+  for (size_t i = 0; i < 4; ++i) {
+    if (strcmp(text, yes[i]) == 0) *value = true;
+    if (strcmp(text, no[i]) == 0) *value = false;
+    if (strcmp(text, yes[i]) == 0 || strcmp(text, no[i]) == 0) return true;
+  }
+  return false;
+}
+
+// Applies one option with its value; NULL, or why the value is wrong.
+static const char* apply_option(int id, const char* value, struct trigger_options* options) {
   int64_t integer = 0;
   const char* why = NULL;
   switch (id) {
@@ -163,17 +206,135 @@ static bool apply_option(int id, const char* value, struct trigger_options* opti
         why = "must be a whole number of milliseconds >= 0";
       }
       break;
+    case OPT_START_LINE:
+      if (!parse_integer(value, 0, 65535, &options->start_line)) why = "must be an offset 0..65535";
+      break;
+    case OPT_STOP_LINE:
+      if (!parse_integer(value, 0, 65535, &options->stop_line)) why = "must be an offset 0..65535";
+      break;
+    case OPT_DEBOUNCE_US:
+      if (!parse_integer(value, 0, 10000000, &options->debounce_us)) {
+        why = "must be a whole number of microseconds, 0 to 10000000";
+      }
+      break;
+    case OPT_BENCH:
+      if (!parse_integer(value, 1, 3600, &options->bench_seconds)) {
+        why = "must be a whole number of seconds, 1 to 3600";
+      }
+      break;
+    case OPT_QUIET:
+      if (!parse_flag(value, &options->quiet)) why = "must be true or false";
+      break;
     default:
       break;
   }
-  if (why == NULL) return true;
+  return why;
+}
+
+static const char* option_name(int id) {
   for (const struct option* o = long_options; o->name != NULL; ++o) {
-    if (o->val != id) continue;
-    char name[32];
-    snprintf(name, sizeof(name), "--%s", o->name);
-    trigger_options_reject(name, value, why);
+    if (o->val == id) return o->name;
   }
-  return false;
+  return "?";
+}
+
+// The option id of a config key (a long option's name), or 0.
+static int option_of_key(const char* key) {
+  for (const struct option* o = long_options; o->name != NULL; ++o) {
+    if (o->val != OPT_HELP && o->val != OPT_CONFIG && strcmp(o->name, key) == 0) return o->val;
+  }
+  return 0;
+}
+
+static char* trim(char* text) {
+  while (isspace((unsigned char)*text)) ++text;
+  size_t length = strlen(text);
+  while (length > 0 && isspace((unsigned char)text[length - 1])) text[--length] = '\0';
+  return text;
+}
+
+static char* read_file(const char* path) {
+  FILE* file = fopen(path, "r");
+  if (file == NULL) return NULL;
+  size_t size = 0;
+  size_t capacity = 4096;
+  char* text = malloc(capacity);
+  while (text != NULL) {
+    size += fread(text + size, 1, capacity - size - 1, file);
+    if (ferror(file) || size < capacity - 1) break;
+    capacity *= 2;
+    char* bigger = realloc(text, capacity);
+    if (bigger == NULL) free(text);
+    text = bigger;
+  }
+  const bool failed = text == NULL || ferror(file);
+  const int error = errno;
+  fclose(file);
+  if (failed) {
+    free(text);
+    errno = error != 0 ? error : ENOMEM;
+    return NULL;
+  }
+  text[size] = '\0';
+  return text;
+}
+
+bool trigger_options_load_config(const char* path, struct trigger_options* options, char* error,
+                                 size_t size) {
+  char* text = read_file(path);
+  if (text == NULL) {
+    snprintf(error, size, "%s: cannot read: %s", path, strerror(errno));
+    return false;
+  }
+  free(options->config_text);
+  options->config_text = text;
+  unsigned number = 0;
+  char* next = NULL;
+  // strtok_r would skip empty lines and so miscount: split by hand.
+  for (char* line = text; line != NULL; line = next) {
+    ++number;
+    char* end = strchr(line, '\n');
+    next = end != NULL ? end + 1 : NULL;
+    if (end != NULL) *end = '\0';
+    char* hash = strchr(line, '#');
+    if (hash != NULL) *hash = '\0';
+    char* content = trim(line);
+    if (content[0] == '\0') continue;
+    char* equals = strchr(content, '=');
+    if (equals == NULL) {
+      snprintf(error, size, "%s:%u: expected 'key = value', got '%s'", path, number, content);
+      return false;
+    }
+    *equals = '\0';
+    const char* key = trim(content);
+    const char* value = trim(equals + 1);
+    const int id = option_of_key(key);
+    if (id == 0) {
+      snprintf(error, size, "%s:%u: unknown key '%s'", path, number, key);
+      return false;
+    }
+    if (value[0] == '\0') {
+      snprintf(error, size, "%s:%u: missing value for '%s'", path, number, key);
+      return false;
+    }
+    const char* why = apply_option(id, value, options);
+    if (why != NULL) {
+      snprintf(error, size, "%s:%u: invalid %s '%s': %s", path, number, key, value, why);
+      return false;
+    }
+  }
+  return true;
+}
+
+// The FILE of --config FILE or --config=FILE, the last one given; NULL without.
+static const char* find_config(int argc, char** argv) {
+  const char* path = NULL;
+  for (int i = 1; i < argc; ++i) {
+    if (strcmp(argv[i], "--") == 0) break;
+    if (strcmp(argv[i], "--config") == 0 && i + 1 < argc) path = argv[++i];
+    if (strncmp(argv[i], "--config=", 9) == 0) path = argv[i] + 9;
+  }
+  return path;
 }
 
 static enum trigger_options_result reject_syntax(const char* what, const char* text) {
@@ -184,7 +345,15 @@ static enum trigger_options_result reject_syntax(const char* what, const char* t
 
 enum trigger_options_result trigger_options_parse(int argc, char** argv,
                                                   struct trigger_options* options) {
-  set_defaults(options);
+  trigger_options_defaults(options);
+  options->config_path = find_config(argc, argv);
+  if (options->config_path != NULL) {
+    char error[512];
+    if (!trigger_options_load_config(options->config_path, options, error, sizeof(error))) {
+      fprintf(stderr, "syncap-trigger: %s\n", error);
+      return TRIGGER_OPTIONS_INVALID;
+    }
+  }
   opterr = 0;  // we print our own messages, naming the option
   optind = 1;
   int id = 0;
@@ -195,9 +364,16 @@ enum trigger_options_result trigger_options_parse(int argc, char** argv,
       trigger_options_usage(stdout);
       return TRIGGER_OPTIONS_HELP;
     }
+    if (id == OPT_CONFIG) continue;  // read first, above
     if (id == OPT_QUIET) {
       options->quiet = true;
-    } else if (!apply_option(id, optarg, options)) {
+      continue;
+    }
+    const char* why = apply_option(id, optarg, options);
+    if (why != NULL) {
+      char name[32];
+      snprintf(name, sizeof(name), "--%s", option_name(id));
+      trigger_options_reject(name, optarg, why);
       return TRIGGER_OPTIONS_INVALID;
     }
   }

@@ -1,4 +1,4 @@
-// Internal: the command line of syncap-trigger.
+// Internal: the command line and config file of syncap-trigger.
 #pragma once
 
 #include <stdbool.h>
@@ -21,7 +21,13 @@ struct trigger_options {
   const char* lcm_url;  // NULL: LCM's default provider
   int16_t trigger_id;
   int64_t start_delay_ms;
+  int64_t start_line;  // input line offset on the same chip, -1 for none
+  int64_t stop_line;   // likewise
+  int64_t debounce_us;
+  int64_t bench_seconds;  // > 0: timing benchmark instead of a normal run
   bool quiet;
+  const char* config_path;  // --config FILE, NULL without
+  char* config_text;        // the file's text, which the values from it point into
 };
 
 enum trigger_options_result {
@@ -30,8 +36,21 @@ enum trigger_options_result {
   TRIGGER_OPTIONS_INVALID,  // the error and the usage were printed to stderr
 };
 
+// Defaults, then the --config file when one is given, then the command line, which wins.
 enum trigger_options_result trigger_options_parse(int argc, char** argv,
                                                   struct trigger_options* options);
+
+// Applies the `key = value` lines of the file at path to options (keys: the long options without
+// their dashes; '#' starts a comment; blank lines are fine; flags take true/false/yes/no/1/0).
+// false with a message "PATH:LINE: what is wrong" in error. options keeps the file's text.
+bool trigger_options_load_config(const char* path, struct trigger_options* options, char* error,
+                                 size_t size);
+
+// The defaults, without any file or argument.
+void trigger_options_defaults(struct trigger_options* options);
+
+// Frees what parsing allocated (the config file's text). Values from the file go with it.
+void trigger_options_free(struct trigger_options* options);
 
 void trigger_options_usage(FILE* out);
 

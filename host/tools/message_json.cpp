@@ -4,6 +4,9 @@
 #include <iomanip>
 #include <sstream>
 
+// Declared here rather than in message_json.hpp: the log decodes it by fingerprint below.
+#include "syncap/trigger_status_t.hpp"
+
 namespace syncap {
 
 void to_json(nlohmann::ordered_json& json, const trigger_t& msg) {
@@ -67,6 +70,23 @@ void to_json(nlohmann::ordered_json& json, const camera_status_t& msg) {
   };
 }
 
+// The trigger module's heartbeat (proto/msg/trigger_status_t.lcm).
+void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg);
+void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg) {
+  json = {
+      {"trigger_id", msg.trigger_id},
+      {"state", msg.state},
+      {"monotonic_ns", msg.monotonic_ns},
+      {"realtime_ns", msg.realtime_ns},
+      {"pulses", msg.pulses},
+      {"late", msg.late},
+      {"missed", msg.missed},
+      {"last_frame_number", msg.last_frame_number},
+      {"rate_hz", msg.rate_hz},
+      {"message", msg.message},
+  };
+}
+
 void to_json(nlohmann::ordered_json& json, const edge_command_t& msg) {
   json = {
       {"camera_id", msg.camera_id}, {"sequence", msg.sequence},     {"command", msg.command},
@@ -112,10 +132,11 @@ KnownType known() {
   return {Message::getHash(), &decode_as<Message>};
 }
 
-const std::array<KnownType, 6>& known_types() {
-  static const std::array<KnownType, 6> types{known<trigger_t>(),       known<blob_t>(),
+const std::array<KnownType, 7>& known_types() {
+  static const std::array<KnownType, 7> types{known<trigger_t>(),       known<blob_t>(),
                                               known<blob_frame_t>(),    known<silhouette_part_t>(),
-                                              known<camera_status_t>(), known<edge_command_t>()};
+                                              known<camera_status_t>(), known<edge_command_t>(),
+                                              known<trigger_status_t>()};
   return types;
 }
 

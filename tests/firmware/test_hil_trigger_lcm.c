@@ -2,10 +2,12 @@
 // private network namespace (hil/netns-run), so the multicast never leaves it.
 #include "cmocka_main.h"
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <time.h>
 
 #include "child_process.h"
+#include "syncap_trigger_status_t.h"
 #include "syncap_trigger_t.h"
 
 #ifndef SYNCAP_TRIGGER_EXE
@@ -87,7 +89,62 @@ static void count_run_publishes_every_pulse_in_order(void** state) {
   assert_pulse_train(&received);
 }
 
+struct statuses {
+  size_t count;
+  syncap_trigger_status_t last;
+  int8_t states[16];
+};
+
+static void on_status(const lcm_recv_buf_t* buffer, const char* channel,
+                      const syncap_trigger_status_t* message, void* user) {
+  (void)buffer;
+  (void)channel;
+  struct statuses* statuses = user;
+  if (statuses->count < 16) statuses->states[statuses->count] = message->state;
+  ++statuses->count;
+  statuses->last = *message;
+  statuses->last.message = NULL;  // not kept past the callback
+}
+
+// One heartbeat a second on SYNCAP_TRIGGER_STATUS while running, and a final STOPPED one.
+static void heartbeat_every_second_and_a_final_stopped_status(void** state) {
+  (void)state;
+  lcm_t* lcm = lcm_create(LCM_URL);
+  assert_non_null(lcm);
+  static struct statuses statuses;
+  syncap_trigger_status_t_subscription_t* subscription =
+      syncap_trigger_status_t_subscribe(lcm, "SYNCAP_TRIGGER_STATUS", on_status, &statuses);
+  assert_non_null(subscription);
+
+  char* argv[] = {SYNCAP_TRIGGER_EXE, "--rate", "100",     "--width-us", "100", "--trigger-id", "4",
+                  "--lcm-url",        LCM_URL,  "--quiet", NULL};
+  const pid_t pid = child_spawn(argv, -1);
+  assert_true(pid > 0);
+  const int64_t stop_ms = monotonic_ms() + 1500;
+  while (monotonic_ms() < stop_ms) lcm_handle_timeout(lcm, 50);
+  kill(pid, SIGTERM);
+  const int status = child_wait(pid, 5000);
+  while (lcm_handle_timeout(lcm, 300) > 0) {
+  }
+  syncap_trigger_status_t_unsubscribe(lcm, subscription);
+  lcm_destroy(lcm);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), 0);
+  // At 0 s and 1 s while running, then the final one: 3 (a slow start may cost the first).
+  assert_in_range(statuses.count, 2, 4);
+  for (size_t i = 0; i + 1 < statuses.count && i < 16; ++i) {
+    assert_int_equal(statuses.states[i], SYNCAP_TRIGGER_STATUS_T_STATE_RUNNING);
+  }
+  assert_int_equal(statuses.last.state, SYNCAP_TRIGGER_STATUS_T_STATE_STOPPED);
+  assert_int_equal(statuses.last.trigger_id, 4);
+  assert_in_range(statuses.last.pulses, 100, 200);
+  assert_int_equal(statuses.last.last_frame_number,
+                   statuses.last.pulses - 1 + statuses.last.missed);
+  assert_true(statuses.last.rate_hz == 100.0);
+}
+
 static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(heartbeat_every_second_and_a_final_stopped_status),
     cmocka_unit_test(count_run_publishes_every_pulse_in_order),
 };
 

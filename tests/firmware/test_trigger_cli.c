@@ -8,8 +8,10 @@
 #include <string.h>
 #include <sys/wait.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "child_process.h"
+#include "syncap/trigger/gpiosim.h"
 
 #ifndef SYNCAP_TRIGGER_EXE
 #error "SYNCAP_TRIGGER_EXE must be the path of syncap-trigger"
@@ -81,12 +83,189 @@ static void malformed_count_exits_2_naming_it(void** state) {
   assert_output_has(&result, "--count '12x'");
 }
 
-static void chip_other_than_sim_exits_2(void** state) {
+// There is no GPIO chip on the test machines: the libgpiod lookup fails and names the chip.
+static void missing_gpio_chip_exits_2_naming_it(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--chip", "gpiochip0", NULL}, -1, 0, &result);
+  run_trigger((char*[]){"--chip", "gpiochip97", NULL}, -1, 0, &result);
   assert_exit_status(&result, 2);
-  assert_output_has(&result, "--chip 'gpiochip0'");
+  assert_output_has(&result, "--chip 'gpiochip97'");
+  assert_output_has(&result, "GPIO chip 'gpiochip97' does not exist");
+}
+
+static void unknown_chip_kind_exits_2(void** state) {
+  (void)state;
+  static struct run_result result;
+  run_trigger((char*[]){"--chip", "simulator", NULL}, -1, 0, &result);
+  assert_exit_status(&result, 2);
+  assert_output_has(&result, "unknown GPIO chip 'simulator'");
+}
+
+static void same_start_and_stop_line_exits_2(void** state) {
+  (void)state;
+  static struct run_result result;
+  run_trigger((char*[]){"--start-line", "3", "--stop-line", "3", NULL}, -1, 0, &result);
+  assert_exit_status(&result, 2);
+  assert_output_has(&result, "must be different lines");
+}
+
+static void config_file_error_exits_2_naming_file_and_line(void** state) {
+  (void)state;
+  char path[64];
+  snprintf(path, sizeof(path), "/tmp/syncap-cli-%ld.conf", (long)getpid());
+  FILE* file = fopen(path, "w");
+  assert_non_null(file);
+  fputs("rate = 30\n# x\nrat = 3\n", file);
+  fclose(file);
+  static struct run_result result;
+  run_trigger((char*[]){"--config", path, NULL}, -1, 0, &result);
+  unlink(path);
+  assert_exit_status(&result, 2);
+  char expected[128];
+  snprintf(expected, sizeof(expected), "%s:3: unknown key 'rat'", path);
+  assert_output_has(&result, expected);
+}
+
+static void bench_prints_percentiles(void** state) {
+  (void)state;
+  static struct run_result result;
+  run_trigger((char*[]){"--bench", "1", "--rate", "200", "--width-us", "100", NULL}, -1, 0,
+              &result);
+  assert_exit_status(&result, 0);
+  assert_output_has(&result, "bench 200 Hz, 200 edges on chip sim: rising-edge error p50 ");
+  assert_output_has(&result, " p99 ");
+  assert_output_has(&result, " max ");
+}
+
+static void sleep_ms(int ms) {
+  const struct timespec delay = {ms / 1000, (ms % 1000) * 1000000L};
+  nanosleep(&delay, NULL);
+}
+
+// A shared chip for one test, with input lines 5 and 6 claimed by the test (their driver).
+static struct syncap_gpiosim* open_test_chip(char* name, size_t size, const char* tag) {
+  snprintf(name, size, "fwcli-%s-%ld", tag, (long)getpid());
+  syncap_gpiosim_unlink(name);
+  struct syncap_gpiosim* chip = syncap_gpiosim_open(name, true);
+  assert_non_null(chip);
+  const unsigned inputs[] = {5, 6};
+  assert_int_equal(syncap_gpiosim_claim_lines(chip, inputs, 2), 0);
+  return chip;
+}
+
+// Waits until the daemon has claimed output line 0 (its run moved on), then a little longer for
+// it to request its inputs.
+static void wait_for_daemon(struct syncap_gpiosim* chip, uint64_t run_before) {
+  struct syncap_gpiosim_line line;
+  for (int i = 0; i < 400; ++i) {
+    assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line), 0);
+    if (line.run > run_before) break;
+    sleep_ms(5);
+  }
+  assert_true(line.run > run_before);
+  sleep_ms(100);
+}
+
+static void press(struct syncap_gpiosim* chip, unsigned line, int bounces) {
+  for (int i = 0; i < 1 + bounces; ++i) {
+    assert_int_equal(syncap_gpiosim_set_lines(chip, &line, 1, 1, NULL), 0);
+    assert_int_equal(syncap_gpiosim_set_lines(chip, &line, 1, 0, NULL), 0);
+  }
+}
+
+static uint64_t rises_on_line_0(struct syncap_gpiosim* chip) {
+  struct syncap_gpiosim_line line;
+  assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line), 0);
+  return line.count;
+}
+
+static void wait_for_rises(struct syncap_gpiosim* chip, uint64_t count) {
+  for (int i = 0; i < 400 && rises_on_line_0(chip) < count; ++i) sleep_ms(5);
+  assert_true(rises_on_line_0(chip) >= count);
+}
+
+static size_t occurrences(const char* text, const char* what) {
+  size_t n = 0;
+  for (const char* p = strstr(text, what); p != NULL; p = strstr(p + 1, what)) ++n;
+  return n;
+}
+
+// Start line 5 (pressed with bounces: one start), stop line 6, then a second run; SIGTERM ends.
+static void start_and_stop_lines_drive_the_runs(void** state) {
+  (void)state;
+  char name[64];
+  struct syncap_gpiosim* chip = open_test_chip(name, sizeof(name), "startstop");
+  struct syncap_gpiosim_line line0;
+  assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line0), 0);
+  char spec[80];
+  snprintf(spec, sizeof(spec), "sim:%s", name);
+  char* argv[] = {
+      SYNCAP_TRIGGER_EXE, "--chip", spec,     "--lines", "0",          "--start-line", "5",
+      "--stop-line",      "6",      "--rate", "200",     "--width-us", "100",          "--lcm-url",
+      "memq://",          NULL};
+  FILE* output = tmpfile();
+  assert_non_null(output);
+  const pid_t pid = child_spawn(argv, fileno(output));
+  assert_true(pid > 0);
+  wait_for_daemon(chip, line0.run);
+  sleep_ms(100);
+  assert_int_equal(rises_on_line_0(chip), 0);  // idle until the start line rises
+
+  press(chip, 5, 3);
+  wait_for_rises(chip, 10);
+  press(chip, 6, 2);
+  sleep_ms(100);
+  const uint64_t after_stop = rises_on_line_0(chip);
+  sleep_ms(150);
+  assert_int_equal(rises_on_line_0(chip), after_stop);  // stopped: no more pulses
+
+  press(chip, 5, 0);  // a second run
+  wait_for_rises(chip, after_stop + 5);
+  kill(pid, SIGTERM);
+  const int status = child_wait(pid, 5000);
+  static struct run_result result;
+  rewind(output);
+  const size_t length = fread(result.output, 1, sizeof(result.output) - 1, output);
+  result.output[length] = '\0';
+  fclose(output);
+  result.status = status;
+  syncap_gpiosim_close(chip);
+  syncap_gpiosim_unlink(name);
+  assert_exit_status(&result, 0);
+  assert_int_equal(occurrences(result.output, "started by line 5"), 2);
+  assert_int_equal(occurrences(result.output, "stopped by line 6"), 1);
+}
+
+// Without a start line the run starts at once, and the stop line ends the daemon.
+static void stop_line_alone_ends_the_daemon(void** state) {
+  (void)state;
+  char name[64];
+  struct syncap_gpiosim* chip = open_test_chip(name, sizeof(name), "stop");
+  struct syncap_gpiosim_line line0;
+  assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line0), 0);
+  char spec[80];
+  snprintf(spec, sizeof(spec), "sim:%s", name);
+  char* argv[] = {SYNCAP_TRIGGER_EXE, "--chip", spec,        "--stop-line", "6", "--rate", "200",
+                  "--width-us",       "100",    "--lcm-url", "memq://",     NULL};
+  FILE* output = tmpfile();
+  assert_non_null(output);
+  const pid_t pid = child_spawn(argv, fileno(output));
+  assert_true(pid > 0);
+  wait_for_daemon(chip, line0.run);
+  wait_for_rises(chip, 5);
+  press(chip, 6, 0);
+  const int status = child_wait(pid, 5000);
+  static struct run_result result;
+  rewind(output);
+  const size_t length = fread(result.output, 1, sizeof(result.output) - 1, output);
+  result.output[length] = '\0';
+  fclose(output);
+  result.status = status;
+  syncap_gpiosim_close(chip);
+  syncap_gpiosim_unlink(name);
+  assert_exit_status(&result, 0);
+  assert_output_has(&result, "stopped by line 6");
+  assert_output_has(&result, "pulses=");
 }
 
 static void help_exits_0(void** state) {
@@ -137,7 +316,13 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(unknown_option_exits_2_naming_it),
     cmocka_unit_test(rate_out_of_range_exits_2_naming_it),
     cmocka_unit_test(malformed_count_exits_2_naming_it),
-    cmocka_unit_test(chip_other_than_sim_exits_2),
+    cmocka_unit_test(missing_gpio_chip_exits_2_naming_it),
+    cmocka_unit_test(unknown_chip_kind_exits_2),
+    cmocka_unit_test(same_start_and_stop_line_exits_2),
+    cmocka_unit_test(config_file_error_exits_2_naming_file_and_line),
+    cmocka_unit_test(bench_prints_percentiles),
+    cmocka_unit_test(start_and_stop_lines_drive_the_runs),
+    cmocka_unit_test(stop_line_alone_ends_the_daemon),
     cmocka_unit_test(help_exits_0),
     cmocka_unit_test(count_run_ends_with_a_summary),
     cmocka_unit_test(quiet_run_prints_no_summary),

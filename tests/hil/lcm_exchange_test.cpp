@@ -22,6 +22,8 @@ namespace {
 
 constexpr const char* kGroup = "239.255.76.67";
 constexpr uint16_t kPort = 7667;
+// syncap-trigger's heartbeat channel (firmware/src/trigger_main.c, docs/ARCHITECTURE.md).
+constexpr const char* kTriggerStatusChannel = "SYNCAP_TRIGGER_STATUS";
 
 // Publishes one of each message type at maximum content, `rounds` times, from a child process.
 pid_t spawn_publisher(int rounds) {
@@ -40,6 +42,8 @@ pid_t spawn_publisher(int rounds) {
     lcm.publish(proto::status_channel(99), &status);
     const edge_command_t command = test::max_edge_command();
     lcm.publish(proto::kEdgeCommandChannel, &command);
+    const trigger_status_t trigger_status = test::max_trigger_status();
+    lcm.publish(kTriggerStatusChannel, &trigger_status);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   _exit(0);
@@ -131,7 +135,7 @@ TEST(LcmExchange, EveryMaximalMessageIsOneDatagram) {
   std::map<std::string, int> short_messages;
   int fragments = 0;
   std::vector<uint8_t> buf(65536);
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < 6; ++i) {
     const ssize_t n = recv(fd, buf.data(), buf.size(), 0);
     ASSERT_GT(n, 8) << "datagram " << i << " missing";
     if (std::memcmp(buf.data(), "LC02", 4) == 0) {
@@ -143,9 +147,10 @@ TEST(LcmExchange, EveryMaximalMessageIsOneDatagram) {
   close(fd);
   ASSERT_EQ(wait_for_exit(child), 0);
   EXPECT_EQ(fragments, 0) << "a message was fragmented (LC03)";
-  EXPECT_EQ(short_messages.size(), 5u);
+  EXPECT_EQ(short_messages.size(), 6u);
   EXPECT_EQ(short_messages[proto::silhouette_channel(99)], 1);
   EXPECT_EQ(short_messages[proto::blob_channel(99)], 1);
+  EXPECT_EQ(short_messages[kTriggerStatusChannel], 1);
 }
 
 }  // namespace

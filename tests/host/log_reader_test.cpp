@@ -18,6 +18,7 @@
 #include "log_command.hpp"
 #include "message_json.hpp"
 #include "subcommand.hpp"
+#include "syncap/trigger_status_t.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -257,6 +258,33 @@ TEST(LogJson, CameraStatusRoundTrips) {
   EXPECT_EQ(fields["frame_rate_hz"], 59.5);
   EXPECT_EQ(fields["processing_us_mean"], 812.25);
   EXPECT_EQ(fields["message"], "buffer underrun \"x\"");
+}
+
+TEST(LogJson, TriggerStatusRoundTrips) {
+  trigger_status_t msg{};
+  msg.trigger_id = 3;
+  msg.state = trigger_status_t::STATE_STOPPED;
+  msg.monotonic_ns = 11;
+  msg.realtime_ns = 22;
+  msg.pulses = 1000;
+  msg.late = 2;
+  msg.missed = 1;
+  msg.last_frame_number = 1000;
+  msg.rate_hz = 99.75;
+  msg.message = "exiting";
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields["trigger_id"], 3);
+  EXPECT_EQ(fields["state"], trigger_status_t::STATE_STOPPED);
+  EXPECT_EQ(fields["monotonic_ns"], 11);
+  EXPECT_EQ(fields["realtime_ns"], 22);
+  EXPECT_EQ(fields["pulses"], 1000);
+  EXPECT_EQ(fields["late"], 2);
+  EXPECT_EQ(fields["missed"], 1);
+  EXPECT_EQ(fields["last_frame_number"], 1000);
+  EXPECT_EQ(fields["rate_hz"], 99.75);
+  EXPECT_EQ(fields["message"], "exiting");
 }
 
 TEST(LogJson, EdgeCommandRoundTrips) {

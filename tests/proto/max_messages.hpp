@@ -10,6 +10,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
+#include "syncap/trigger_status_t.hpp"
 #include "syncap/trigger_t.hpp"
 
 namespace syncap::test {
@@ -86,6 +87,21 @@ inline camera_status_t max_camera_status() {
   s.frame_rate_hz = 29.97f;
   s.processing_us_mean = 640.5f;
   s.message = std::string(camera_status_t::MAX_MESSAGE, 'e');
+  return s;
+}
+
+inline trigger_status_t max_trigger_status() {
+  trigger_status_t s{};
+  s.trigger_id = 7;
+  s.state = trigger_status_t::STATE_ERROR;
+  s.monotonic_ns = 5'000'000'000;
+  s.realtime_ns = 1'795'000'000'000'000'000;
+  s.pulses = 123'456'789'012;
+  s.late = 1'234;
+  s.missed = 56;
+  s.last_frame_number = std::numeric_limits<int64_t>::max() - 1;
+  s.rate_hz = 1000.0;
+  s.message = std::string(trigger_status_t::MAX_MESSAGE, 't');
   return s;
 }
 

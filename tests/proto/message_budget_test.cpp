@@ -66,6 +66,15 @@ TEST(MessageBudget, CameraStatusWithLongestMessageFitsAndRoundTrips) {
   EXPECT_EQ(decode<camera_status_t>(encode(status)).message, status.message);
 }
 
+TEST(MessageBudget, TriggerStatusWithLongestMessageFitsAndRoundTrips) {
+  const trigger_status_t status = test::max_trigger_status();
+  expect_fits_and_round_trips(status, 8 + 63 + trigger_status_t::MAX_MESSAGE + 1);
+  EXPECT_EQ(8 + 63 + trigger_status_t::MAX_MESSAGE + 1, 328);  // as documented in the .lcm file
+  const trigger_status_t back = decode<trigger_status_t>(encode(status));
+  EXPECT_EQ(back.message, status.message);
+  EXPECT_EQ(back.last_frame_number, status.last_frame_number);
+}
+
 TEST(MessageBudget, EdgeCommandFitsAndRoundTrips) {
   expect_fits_and_round_trips(test::max_edge_command(), 43);
 }

@@ -27,6 +27,7 @@ enum syncap_trigger_error {
   SYNCAP_TRIGGER_ERR_TOO_MANY_LINES,
   SYNCAP_TRIGGER_ERR_PHASE_NEGATIVE,
   SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD,
+  SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE,
   SYNCAP_TRIGGER_ERR_ALREADY_RUNNING,
   SYNCAP_TRIGGER_ERR_NOT_RUNNING,
   SYNCAP_TRIGGER_ERR_NO_MEMORY,
@@ -46,12 +47,17 @@ struct syncap_trigger_config {
   // scheduled time: 0 <= phase < period.
   size_t num_lines;
   int64_t phase_ns[SYNCAP_TRIGGER_MAX_LINES];
+  // Start/stop input edges closer than this to the previous edge of the same input are bounces
+  // and ignored; >= 0.
+  int64_t debounce_ns;
 };
 
-// Fills in the defaults: 30 Hz, 1 ms pulses, 100 us tolerance, forever, one line at phase 0.
+// Fills in the defaults: 30 Hz, 1 ms pulses, 100 us tolerance, forever, one line at phase 0,
+// 5 ms debounce.
 void syncap_trigger_config_init(struct syncap_trigger_config* config);
 
-// SYNCAP_TRIGGER_OK, or the first violation found (rate, then width, tolerance, lines, phases).
+// SYNCAP_TRIGGER_OK, or the first violation found (rate, then width, tolerance, lines, phases,
+// debounce).
 enum syncap_trigger_error syncap_trigger_config_validate(
     const struct syncap_trigger_config* config);
 

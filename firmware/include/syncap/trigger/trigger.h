@@ -83,6 +83,27 @@ enum syncap_trigger_error syncap_trigger_edge_driven(struct syncap_trigger* trig
 void syncap_trigger_get_stats(const struct syncap_trigger* trigger,
                               struct syncap_trigger_stats* stats);
 
+// Start/stop input lines (rising edges of buttons or a controller's outputs).
+enum syncap_trigger_input {
+  SYNCAP_TRIGGER_INPUT_START,
+  SYNCAP_TRIGGER_INPUT_STOP,
+};
+
+enum syncap_trigger_input_action {
+  SYNCAP_TRIGGER_INPUT_BOUNCE,   // within debounce_ns of the previous edge of this input: ignored
+  SYNCAP_TRIGGER_INPUT_IGNORED,  // start while running, stop while not running
+  SYNCAP_TRIGGER_INPUT_STARTED,  // a run began, pulse 0 at start_ns
+  SYNCAP_TRIGGER_INPUT_STOPPED,  // the run ended
+};
+
+// A rising edge of `input` at edge_ns: debounced per input (an edge counts as the previous one
+// unless it was a bounce itself, so a bounce train never outlives debounce_ns after its first
+// edge), then syncap_trigger_start(start_ns) or syncap_trigger_stop when the state allows it.
+// Edges must come in time order per input.
+enum syncap_trigger_input_action syncap_trigger_input_edge(struct syncap_trigger* trigger,
+                                                           enum syncap_trigger_input input,
+                                                           int64_t edge_ns, int64_t start_ns);
+
 #ifdef __cplusplus
 }
 #endif
