@@ -40,6 +40,9 @@ static enum syncap_trigger_error validate_lines(const struct syncap_trigger_conf
   for (size_t i = 0; i < config->num_lines; ++i) {
     if (config->phase_ns[i] < 0) return SYNCAP_TRIGGER_ERR_PHASE_NEGATIVE;
     if (config->phase_ns[i] >= min_period_ns) return SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD;
+    if (config->phase_ns[i] > min_period_ns - config->pulse_width_ns) {
+      return SYNCAP_TRIGGER_ERR_PHASE_PLUS_WIDTH_BEYOND_PERIOD;
+    }
   }
   return SYNCAP_TRIGGER_OK;
 }
@@ -82,6 +85,8 @@ const char* syncap_trigger_strerror(enum syncap_trigger_error error) {
       return "line phase offset must not be negative";
     case SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD:
       return "line phase offset must be shorter than the period";
+    case SYNCAP_TRIGGER_ERR_PHASE_PLUS_WIDTH_BEYOND_PERIOD:
+      return "line phase offset plus pulse width must not exceed the period";
     case SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE:
       return "debounce time must not be negative";
     case SYNCAP_TRIGGER_ERR_ALREADY_RUNNING:

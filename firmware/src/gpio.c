@@ -101,7 +101,35 @@ int syncap_gpio_request_outputs(struct syncap_gpio* gpio, const unsigned* offset
   if (gpio->backend->request_outputs(gpio->state, offsets, num_lines, consumer) < 0) return -1;
   memcpy(gpio->offsets, offsets, num_lines * sizeof(offsets[0]));
   gpio->num_lines = num_lines;
-  gpio->value = 0;
+  gpio->high = 0;
+  return 0;
+}
+
+static uint32_t all_lines(const struct syncap_gpio* gpio) {
+  return gpio->num_lines == 32 ? UINT32_MAX : (UINT32_C(1) << gpio->num_lines) - 1;
+}
+
+int syncap_gpio_set_lines(struct syncap_gpio* gpio, uint32_t mask, int value) {
+  if (gpio->num_lines == 0) {
+    errno = EPERM;
+    return -1;
+  }
+  if ((mask & ~all_lines(gpio)) != 0) {
+    errno = EINVAL;
+    return -1;
+  }
+  value = value != 0;
+  const uint32_t change = value ? mask & ~gpio->high : mask & gpio->high;
+  if (change == 0) return 0;
+  unsigned offsets[SYNCAP_GPIO_MAX_LINES];
+  size_t count = 0;
+  for (size_t i = 0; i < gpio->num_lines; ++i) {
+    if (change & (UINT32_C(1) << i)) offsets[count++] = gpio->offsets[i];
+  }
+  int64_t time_ns = 0;
+  if (gpio->backend->set_all(gpio->state, offsets, count, value, &time_ns) < 0) return -1;
+  gpio->high = value ? gpio->high | change : gpio->high & ~change;
+  gpio->last_change_ns = time_ns;
   return 0;
 }
 
@@ -110,15 +138,7 @@ int syncap_gpio_set_all(struct syncap_gpio* gpio, int value) {
     errno = EPERM;
     return -1;
   }
-  value = value != 0;
-  if (value == gpio->value) return 0;
-  int64_t time_ns = 0;
-  if (gpio->backend->set_all(gpio->state, gpio->offsets, gpio->num_lines, value, &time_ns) < 0) {
-    return -1;
-  }
-  gpio->value = value;
-  gpio->last_change_ns = time_ns;
-  return 0;
+  return syncap_gpio_set_lines(gpio, all_lines(gpio), value);
 }
 
 void syncap_gpio_release(struct syncap_gpio* gpio) {

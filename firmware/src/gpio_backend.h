@@ -13,7 +13,8 @@ struct syncap_gpio_backend {
   void* (*open)(const char* argument);
   int (*request_outputs)(void* state, const unsigned* offsets, size_t num_lines,
                          const char* consumer);
-  // Called only when the level changes; stores the CLOCK_MONOTONIC time the lines switched at.
+  // Drives the lines at offsets (a subset of the requested ones, none already at value) to value
+  // at one instant; stores the CLOCK_MONOTONIC time the lines switched at.
   int (*set_all)(void* state, const unsigned* offsets, size_t num_lines, int value,
                  int64_t* time_ns);
   // Called with the lines already driven low.
@@ -35,7 +36,7 @@ struct syncap_gpio {
   void* state;
   unsigned offsets[SYNCAP_GPIO_MAX_LINES];
   size_t num_lines;        // 0 while no lines are requested
-  int value;               // current level of all requested lines
+  uint32_t high;           // bit i: requested line i is high
   int64_t last_change_ns;  // when the backend last switched them, 0 before that
   unsigned inputs[SYNCAP_GPIO_MAX_LINES];
   size_t num_inputs;  // 0 while no input lines are requested

@@ -43,6 +43,9 @@ struct gpiod_state {
   const struct syncap_gpiod_ops* ops;
   struct gpiod_chip* chip;
   struct gpiod_line_bulk outputs;
+  unsigned output_offsets[SYNCAP_GPIO_MAX_LINES];  // of the lines in outputs, in order
+  int output_values[SYNCAP_GPIO_MAX_LINES];        // their current levels
+  size_t num_outputs;
   struct gpiod_line_bulk inputs;
   bool has_outputs;
   bool has_inputs;
@@ -97,19 +100,28 @@ static int gpiod_request_outputs(void* state, const unsigned* offsets, size_t nu
     if (errno == 0) errno = EBUSY;
     return -1;
   }
+  memcpy(s->output_offsets, offsets, num_lines * sizeof(offsets[0]));
+  memset(s->output_values, 0, sizeof(s->output_values));
+  s->num_outputs = num_lines;
   s->has_outputs = true;
   return 0;
 }
 
-// The edge happens during the ioctl: its time is the middle of the call.
+// One gpiod_line_set_value_bulk for the whole output bulk: the lines at offsets get value, the
+// others keep theirs. The edge happens during the ioctl: its time is the middle of the call.
 static int gpiod_set_all(void* state, const unsigned* offsets, size_t num_lines, int value,
                          int64_t* time_ns) {
-  (void)offsets;
   struct gpiod_state* s = state;
   int values[SYNCAP_GPIO_MAX_LINES];
-  for (size_t i = 0; i < num_lines; ++i) values[i] = value;
+  memcpy(values, s->output_values, sizeof(values));
+  for (size_t i = 0; i < num_lines; ++i) {
+    for (size_t j = 0; j < s->num_outputs; ++j) {
+      if (s->output_offsets[j] == offsets[i]) values[j] = value;
+    }
+  }
   const int64_t before_ns = now_ns(s, CLOCK_MONOTONIC);
   if (s->ops->line_set_value_bulk(&s->outputs, values) < 0) return -1;
+  memcpy(s->output_values, values, sizeof(values));
   const int64_t after_ns = now_ns(s, CLOCK_MONOTONIC);
   *time_ns = before_ns + (after_ns - before_ns) / 2;
   return 0;

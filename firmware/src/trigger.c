@@ -12,9 +12,16 @@ struct syncap_trigger {
   int64_t start_ns;
   uint64_t next_index;  // the 64-bit frame counter: next pulse not yet driven
   struct syncap_trigger_stats stats;
+  // The events of a pulse relative to t_k, sorted (see syncap_trigger_pulse_events).
+  struct syncap_trigger_event events[SYNCAP_TRIGGER_MAX_EVENTS];
+  size_t num_events;
+  int64_t min_phase_ns;
+  int64_t max_phase_ns;
   bool input_seen[2];        // per syncap_trigger_input: an edge was accepted before
   int64_t input_last_ns[2];  // and when
 };
+
+static void build_events(struct syncap_trigger* trigger);
 
 struct syncap_trigger* syncap_trigger_new(const struct syncap_trigger_config* config,
                                           enum syncap_trigger_error* error) {
@@ -28,7 +35,58 @@ struct syncap_trigger* syncap_trigger_new(const struct syncap_trigger_config* co
   trigger->config = *config;
   trigger->rate_uhz = syncap_schedule_rate_uhz(config->rate_hz);
   trigger->state = SYNCAP_TRIGGER_IDLE;
+  build_events(trigger);
   return trigger;
+}
+
+// Falling before rising at equal times: a line that falls never blocks another one's rise.
+static bool event_before(const struct syncap_trigger_event* a,
+                         const struct syncap_trigger_event* b) {
+  if (a->time_ns != b->time_ns) return a->time_ns < b->time_ns;
+  return a->level < b->level;
+}
+
+// One event per distinct (time, level), in time order; insertion sort (at most 64 events).
+static void build_events(struct syncap_trigger* trigger) {
+  const struct syncap_trigger_config* config = &trigger->config;
+  trigger->min_phase_ns = config->phase_ns[0];
+  trigger->max_phase_ns = config->phase_ns[0];
+  for (size_t i = 0; i < config->num_lines; ++i) {
+    if (config->phase_ns[i] < trigger->min_phase_ns) trigger->min_phase_ns = config->phase_ns[i];
+    if (config->phase_ns[i] > trigger->max_phase_ns) trigger->max_phase_ns = config->phase_ns[i];
+    for (int level = 1; level >= 0; --level) {
+      const int64_t time_ns = config->phase_ns[i] + (level ? 0 : config->pulse_width_ns);
+      size_t j = 0;
+      while (j < trigger->num_events &&
+             (trigger->events[j].time_ns != time_ns || trigger->events[j].level != level)) {
+        ++j;
+      }
+      if (j == trigger->num_events) {
+        trigger->events[trigger->num_events++] =
+            (struct syncap_trigger_event){.time_ns = time_ns, .lines = 0, .level = level};
+      }
+      trigger->events[j].lines |= UINT32_C(1) << i;
+    }
+  }
+  for (size_t i = 1; i < trigger->num_events; ++i) {
+    const struct syncap_trigger_event event = trigger->events[i];
+    size_t j = i;
+    while (j > 0 && event_before(&event, &trigger->events[j - 1])) {
+      trigger->events[j] = trigger->events[j - 1];
+      --j;
+    }
+    trigger->events[j] = event;
+  }
+}
+
+size_t syncap_trigger_pulse_events(const struct syncap_trigger* trigger, uint64_t index,
+                                   struct syncap_trigger_event events[SYNCAP_TRIGGER_MAX_EVENTS]) {
+  const int64_t t_ns = syncap_trigger_rise_ns(trigger, index);
+  for (size_t i = 0; i < trigger->num_events; ++i) {
+    events[i] = trigger->events[i];
+    events[i].time_ns += t_ns;
+  }
+  return trigger->num_events;
 }
 
 void syncap_trigger_free(struct syncap_trigger* trigger) { free(trigger); }
@@ -61,7 +119,7 @@ int64_t syncap_trigger_fall_ns(const struct syncap_trigger* trigger, uint64_t in
 }
 
 int64_t syncap_trigger_next_rise_ns(const struct syncap_trigger* trigger) {
-  return syncap_trigger_rise_ns(trigger, trigger->next_index);
+  return syncap_trigger_rise_ns(trigger, trigger->next_index) + trigger->min_phase_ns;
 }
 
 static bool is_count_run(const struct syncap_trigger* trigger) {
@@ -72,8 +130,9 @@ static bool is_count_run(const struct syncap_trigger* trigger) {
 // case the whole periods that passed are skipped (frame numbers stay pulse indices).
 static uint64_t due_index(const struct syncap_trigger* trigger, int64_t now_ns) {
   uint64_t index = trigger->next_index;
-  if (syncap_trigger_rise_ns(trigger, index + 1) <= now_ns) {
-    index = syncap_schedule_index_at(trigger->rate_uhz, now_ns - trigger->start_ns);
+  const int64_t first_ns = now_ns - trigger->min_phase_ns;  // compared with t_k
+  if (syncap_trigger_rise_ns(trigger, index + 1) <= first_ns) {
+    index = syncap_schedule_index_at(trigger->rate_uhz, first_ns - trigger->start_ns);
   }
   if (is_count_run(trigger) && index >= trigger->config.count) index = trigger->config.count - 1;
   return index;
@@ -86,8 +145,8 @@ enum syncap_trigger_error syncap_trigger_due_pulse(const struct syncap_trigger* 
   const uint64_t index = due_index(trigger, now_ns);
   *pulse = (struct syncap_trigger_pulse){
       .index = index,
-      .rise_ns = syncap_trigger_rise_ns(trigger, index),
-      .fall_ns = syncap_trigger_fall_ns(trigger, index),
+      .rise_ns = syncap_trigger_rise_ns(trigger, index) + trigger->min_phase_ns,
+      .fall_ns = syncap_trigger_fall_ns(trigger, index) + trigger->max_phase_ns,
       .missed = index - trigger->next_index,
   };
   if (pulse->missed > 0) pulse->flags |= SYNCAP_TRIGGER_FLAG_MISSED;

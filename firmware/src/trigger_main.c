@@ -97,9 +97,25 @@ static void sleep_to(int64_t wake_ns) {
   clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, NULL);  // EINTR: the caller re-checks
 }
 
-// Sleeps through signals until deadline_ns (the falling edge of a pulse).
-static void sleep_until(int64_t deadline_ns) {
-  while (clock_ns(CLOCK_MONOTONIC) < deadline_ns) sleep_to(deadline_ns);
+// Hybrid wait for an edge: clock_nanosleep until spin_ns before edge_ns (the wake-up latency
+// falls into that margin), then busy-wait on clock_gettime until edge_ns. Costs up to spin_ns of
+// CPU per edge. Returns early only when a signal interrupts the sleep.
+static void sleep_to_edge(int64_t edge_ns, int64_t spin_ns) {
+  if (spin_ns <= 0) {
+    sleep_to(edge_ns);
+    return;
+  }
+  if (clock_ns(CLOCK_MONOTONIC) < edge_ns - spin_ns) {
+    sleep_to(edge_ns - spin_ns);
+    if (clock_ns(CLOCK_MONOTONIC) < edge_ns - spin_ns) return;  // a signal: the caller re-checks
+  }
+  while (clock_ns(CLOCK_MONOTONIC) < edge_ns) {
+  }
+}
+
+// Sleeps through signals until deadline_ns (a later edge of a pulse).
+static void sleep_until(int64_t deadline_ns, int64_t spin_ns) {
+  while (clock_ns(CLOCK_MONOTONIC) < deadline_ns) sleep_to_edge(deadline_ns, spin_ns);
 }
 
 // SCHED_FIFO and locked memory keep wake-up latency low; without them the trigger still runs,
@@ -198,11 +214,15 @@ static bool handle_inputs(struct daemon* d) {
         events[i].time_ns, start_ns);
     if (action == SYNCAP_TRIGGER_INPUT_STARTED) d->last_frame_number = -1;
     if (action == SYNCAP_TRIGGER_INPUT_STARTED || action == SYNCAP_TRIGGER_INPUT_STOPPED) {
-      if (!d->options->quiet) {
-        printf("syncap-trigger: %s line %u\n", is_start ? "started by" : "stopped by",
-               events[i].line);
-        fflush(stdout);
+      // A stop ends the run after the last pulse already driven (published without LAST, since
+      // nobody knew then): the STOPPED heartbeat sent now carries it as last_frame_number.
+      if (!d->options->quiet && is_start) {
+        printf("syncap-trigger: started by line %u\n", events[i].line);
+      } else if (!d->options->quiet) {
+        printf("syncap-trigger: stopped by line %u after frame %" PRId64 "\n", events[i].line,
+               d->last_frame_number);
       }
+      fflush(stdout);
       d->next_status_ns = 0;  // announce the change at once
     }
   }
@@ -228,7 +248,11 @@ static enum wait_result wait_until(struct daemon* d, int64_t deadline_ns) {
     int64_t wake_ns = deadline_ns;
     if (deadline_ns - now_ns > slice_ns) wake_ns = now_ns + slice_ns;
     if (d->next_status_ns > now_ns && d->next_status_ns < wake_ns) wake_ns = d->next_status_ns;
-    sleep_to(wake_ns);
+    if (wake_ns == deadline_ns) {
+      sleep_to_edge(deadline_ns, d->options->spin_us * 1000);
+    } else {
+      sleep_to(wake_ns);
+    }
   }
 }
 
@@ -256,29 +280,38 @@ static void publish_pulse(struct daemon* d, const struct syncap_trigger_pulse* p
   }
 }
 
-static bool set_lines(struct daemon* d, int value) {
-  if (syncap_gpio_set_all(d->gpio, value) == 0) return true;
+static bool set_lines(struct daemon* d, uint32_t lines, int value) {
+  if (syncap_gpio_set_lines(d->gpio, lines, value) == 0) return true;
   fprintf(stderr, "syncap-trigger: driving the lines %s failed: %s\n", value ? "high" : "low",
           strerror(errno));
   return false;
 }
 
-// One pulse: raise, publish, hold for the width, lower. A pulse once published keeps its full
-// width even when a stop arrives meanwhile, so cameras never see a cut-short exposure pulse.
+// One pulse: its edge events in time order (syncap_trigger_pulse_events), each line rising at its
+// phase and falling a width later. The first event is the rising edge of the lines with the
+// smallest phase: the message is published right after it, with that edge's time. A pulse once
+// published is driven to its end even when a stop arrives meanwhile, so cameras never see a
+// cut-short exposure pulse.
 static bool drive_pulse(struct daemon* d) {
   struct syncap_trigger_pulse pulse;
   const int64_t now_ns = clock_ns(CLOCK_MONOTONIC);
   if (syncap_trigger_due_pulse(d->trigger, now_ns, &pulse) != SYNCAP_TRIGGER_OK) return true;
-  if (!set_lines(d, 1)) return false;
-  // The backend's own edge time: on a shared chip it is exactly the time its watchers see.
-  const int64_t edge_ns = syncap_gpio_last_change_ns(d->gpio);
-  const int64_t realtime_ns = clock_ns(CLOCK_REALTIME);
-  syncap_trigger_edge_driven(d->trigger, &pulse, edge_ns);
-  d->last_frame_number = (int64_t)pulse.index;
-  if (d->bench_errors_ns != NULL) bench_record(d, edge_ns - pulse.rise_ns);
-  publish_pulse(d, &pulse, edge_ns, realtime_ns);
-  sleep_until(pulse.fall_ns);
-  return set_lines(d, 0);
+  struct syncap_trigger_event events[SYNCAP_TRIGGER_MAX_EVENTS];
+  const size_t count = syncap_trigger_pulse_events(d->trigger, pulse.index, events);
+  const int64_t spin_ns = d->options->spin_us * 1000;
+  for (size_t i = 0; i < count; ++i) {
+    if (i > 0) sleep_until(events[i].time_ns, spin_ns);
+    if (!set_lines(d, events[i].lines, events[i].level)) return false;
+    if (i > 0) continue;
+    // The backend's own edge time: on a shared chip it is exactly the time its watchers see.
+    const int64_t edge_ns = syncap_gpio_last_change_ns(d->gpio);
+    const int64_t realtime_ns = clock_ns(CLOCK_REALTIME);
+    syncap_trigger_edge_driven(d->trigger, &pulse, edge_ns);
+    d->last_frame_number = (int64_t)pulse.index;
+    if (d->bench_errors_ns != NULL) bench_record(d, edge_ns - pulse.rise_ns);
+    publish_pulse(d, &pulse, edge_ns, realtime_ns);
+  }
+  return true;
 }
 
 // Runs until a signal, a failure, or (without a start line) the end of the first run. With a
@@ -317,6 +350,11 @@ static const char* option_of(enum syncap_trigger_error error, const struct trigg
     case SYNCAP_TRIGGER_ERR_WIDTH_NOT_BELOW_PERIOD:
       *value = o->width_text;
       return "--width-us";
+    case SYNCAP_TRIGGER_ERR_PHASE_NEGATIVE:
+    case SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD:
+    case SYNCAP_TRIGGER_ERR_PHASE_PLUS_WIDTH_BEYOND_PERIOD:
+      *value = o->phases_text;
+      return "--phases-us";
     case SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE:
       *value = "(negative)";
       return "--debounce-us";
@@ -333,7 +371,17 @@ static struct syncap_trigger* create_trigger(const struct trigger_options* optio
   config.rate_hz = options->rate_hz;
   config.pulse_width_ns = options->width_us * 1000;
   config.count = options->count;
-  config.num_lines = options->num_lines;  // phases stay 0: all lines switch together
+  config.num_lines = options->num_lines;
+  if (options->num_phases != 0 && options->num_phases != options->num_lines) {
+    *status = STATUS_USAGE;
+    char why[96];
+    snprintf(why, sizeof(why), "needs one phase per line (%zu lines, %zu phases)",
+             options->num_lines, options->num_phases);
+    trigger_options_reject("--phases-us", options->phases_text, why);
+    return NULL;
+  }
+  for (size_t i = 0; i < options->num_phases; ++i)
+    config.phase_ns[i] = options->phases_us[i] * 1000;
   config.debounce_ns = options->debounce_us * 1000;
   enum syncap_trigger_error error = SYNCAP_TRIGGER_OK;
   struct syncap_trigger* trigger = syncap_trigger_new(&config, &error);

@@ -12,6 +12,8 @@ enum option_id {
   OPT_WIDTH_US,
   OPT_COUNT,
   OPT_LINES,
+  OPT_PHASES_US,
+  OPT_SPIN_US,
   OPT_CHIP,
   OPT_LCM_URL,
   OPT_TRIGGER_ID,
@@ -30,6 +32,8 @@ static const struct option long_options[] = {
     {"width-us", required_argument, NULL, OPT_WIDTH_US},
     {"count", required_argument, NULL, OPT_COUNT},
     {"lines", required_argument, NULL, OPT_LINES},
+    {"phases-us", required_argument, NULL, OPT_PHASES_US},
+    {"spin-us", required_argument, NULL, OPT_SPIN_US},
     {"chip", required_argument, NULL, OPT_CHIP},
     {"lcm-url", required_argument, NULL, OPT_LCM_URL},
     {"trigger-id", required_argument, NULL, OPT_TRIGGER_ID},
@@ -52,7 +56,11 @@ void trigger_options_usage(FILE* out) {
       "  --rate HZ            pulse rate, 0.01 to 1000 (default 30)\n"
       "  --width-us US        pulse high time, shorter than the period (default 1000)\n"
       "  --count N            pulses to send, 0 = until SIGINT/SIGTERM (default 0)\n"
-      "  --lines L1,L2,...    GPIO line offsets driven together (default 0)\n"
+      "  --lines L1,L2,...    GPIO line offsets (default 0)\n"
+      "  --phases-us P1,P2,.. delay of each line's pulse after the scheduled time, one per\n"
+      "                       line; phase + width <= period (default: all 0, together)\n"
+      "  --spin-us US         sleep until US before each edge, then busy-wait to it; costs\n"
+      "                       about US * edges per second of CPU, 0 = sleep only (default 200)\n"
       "  --chip SPEC          GPIO chip: 'sim' (simulated, in-process), 'sim:NAME'\n"
       "                       (simulated, shared with other processes: "
       "/dev/shm/syncap-gpiosim-NAME),\n"
@@ -89,6 +97,9 @@ void trigger_options_defaults(struct trigger_options* options) {
       .lines = {0},
       .num_lines = 1,
       .lines_text = "0",
+      .num_phases = 0,
+      .phases_text = "",
+      .spin_us = 200,
       .chip = "sim",
       .lcm_url = NULL,
       .trigger_id = 0,
@@ -158,6 +169,26 @@ static const char* parse_lines(const char* text, struct trigger_options* options
   return NULL;
 }
 
+// "P1,P2,..." -> phases in us, each 0..1e8 (the longest period); NULL or why it is wrong.
+static const char* parse_phases(const char* text, struct trigger_options* options) {
+  char buffer[512];
+  if (strlen(text) >= sizeof(buffer)) return "list too long";
+  strcpy(buffer, text);
+  options->num_phases = 0;
+  char* saveptr = NULL;
+  for (char* item = strtok_r(buffer, ",", &saveptr); item != NULL;
+       item = strtok_r(NULL, ",", &saveptr)) {
+    int64_t phase = 0;
+    if (!parse_integer(item, 0, 100000000, &phase)) {
+      return "each phase must be a whole number of microseconds >= 0";
+    }
+    if (options->num_phases == SYNCAP_GPIO_MAX_LINES) return "at most 32 phases";
+    options->phases_us[options->num_phases++] = phase;
+  }
+  if (options->num_phases == 0) return "at least one phase is needed";
+  return NULL;
+}
+
 static bool parse_flag(const char* text, bool* value) {
   static const char* const yes[] = {"true", "yes", "1", "on"};
   static const char* const no[] = {"false", "no", "0", "off"};
@@ -190,6 +221,15 @@ static const char* apply_option(int id, const char* value, struct trigger_option
     case OPT_LINES:
       options->lines_text = value;
       why = parse_lines(value, options);
+      break;
+    case OPT_PHASES_US:
+      options->phases_text = value;
+      why = parse_phases(value, options);
+      break;
+    case OPT_SPIN_US:
+      if (!parse_integer(value, 0, 10000, &options->spin_us)) {
+        why = "must be a whole number of microseconds, 0 to 10000";
+      }
       break;
     case OPT_CHIP:
       options->chip = value;

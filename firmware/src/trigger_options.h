@@ -17,6 +17,10 @@ struct trigger_options {
   unsigned lines[SYNCAP_GPIO_MAX_LINES];
   size_t num_lines;
   const char* lines_text;
+  int64_t phases_us[SYNCAP_GPIO_MAX_LINES];  // per line, in the order of lines
+  size_t num_phases;                         // 0: all lines at phase 0
+  const char* phases_text;
+  int64_t spin_us;  // busy-wait this long before each edge (0: sleep only)
   const char* chip;
   const char* lcm_url;  // NULL: LCM's default provider
   int16_t trigger_id;

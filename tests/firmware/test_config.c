@@ -101,10 +101,23 @@ static void phase_must_be_shorter_than_period(void** state) {
   (void)state;
   struct syncap_trigger_config config = config_at(100.0);
   config.num_lines = 2;
+  config.pulse_width_ns = 1;
   config.phase_ns[1] = 9999999;
   assert_int_equal(validate(config), SYNCAP_TRIGGER_OK);
   config.phase_ns[1] = 10000000;
   assert_int_equal(validate(config), SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD);
+}
+
+// Every line falls before the next pulse's first rise: phase + width <= period.
+static void phase_plus_width_must_fit_in_the_period(void** state) {
+  (void)state;
+  struct syncap_trigger_config config = config_at(100.0);
+  config.num_lines = 2;
+  config.pulse_width_ns = 1000000;
+  config.phase_ns[1] = 9000000;
+  assert_int_equal(validate(config), SYNCAP_TRIGGER_OK);
+  config.phase_ns[1] = 9000001;
+  assert_int_equal(validate(config), SYNCAP_TRIGGER_ERR_PHASE_PLUS_WIDTH_BEYOND_PERIOD);
 }
 
 static void every_error_has_its_own_message(void** state) {
@@ -138,6 +151,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(lines_reject_none_and_too_many),
     cmocka_unit_test(phase_rejects_negative),
     cmocka_unit_test(phase_must_be_shorter_than_period),
+    cmocka_unit_test(phase_plus_width_must_fit_in_the_period),
     cmocka_unit_test(every_error_has_its_own_message),
     cmocka_unit_test(new_refuses_an_invalid_config),
 };

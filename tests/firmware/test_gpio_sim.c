@@ -96,6 +96,30 @@ static void set_all_records_an_edge_per_line(void** state) {
   syncap_gpio_close(gpio);
 }
 
+// A mask switches only its lines, in one instant; lines already at the level are left alone.
+static void set_lines_switches_only_the_masked_lines(void** state) {
+  (void)state;
+  const unsigned lines[] = {7, 2, 40};
+  struct syncap_gpio* gpio = open_sim_with_lines("sim", lines, 3);
+  assert_int_equal(syncap_gpio_set_lines(gpio, 0x5, 1), 0);  // 7 and 40
+  assert_int_equal(syncap_gpio_set_lines(gpio, 0x3, 1), 0);  // 2 only: 7 is high already
+  assert_int_equal(syncap_gpio_set_all(gpio, 0), 0);
+  assert_int_equal(syncap_gpio_set_lines(gpio, 0x8, 1), -1);  // no 4th line
+  assert_int_equal(errno, EINVAL);
+  struct syncap_gpio_edge edges[8];
+  assert_int_equal(syncap_gpio_sim_edges(gpio, edges, 8), 6);
+  assert_int_equal(edges[0].line, 7);
+  assert_int_equal(edges[1].line, 40);
+  assert_int_equal(edges[1].time_ns, edges[0].time_ns);
+  assert_int_equal(edges[2].line, 2);
+  assert_int_equal(edges[2].value, 1);
+  for (size_t i = 3; i < 6; ++i) {
+    assert_int_equal(edges[i].line, lines[i - 3]);
+    assert_int_equal(edges[i].value, 0);
+  }
+  syncap_gpio_close(gpio);
+}
+
 static void same_level_again_records_nothing(void** state) {
   (void)state;
   const unsigned lines[] = {0};
@@ -153,6 +177,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(second_request_is_ebusy),
     cmocka_unit_test(set_without_lines_is_eperm),
     cmocka_unit_test(set_all_records_an_edge_per_line),
+    cmocka_unit_test(set_lines_switches_only_the_masked_lines),
     cmocka_unit_test(same_level_again_records_nothing),
     cmocka_unit_test(release_leaves_lines_low),
     cmocka_unit_test(full_ring_drops_the_oldest),

@@ -71,6 +71,29 @@ static void keys_comments_and_blank_lines(void** state) {
   trigger_options_free(&options);
 }
 
+static void phases_and_spin_keys(void** state) {
+  (void)state;
+  struct trigger_options options;
+  char error[512] = "";
+  assert_true(
+      load("lines = 0,1,2\nphases-us = 0, 250,250\nspin-us = 0\n", &options, error, sizeof(error)));
+  assert_int_equal(options.num_phases, 3);
+  assert_int_equal(options.phases_us[1], 250);
+  assert_int_equal(options.phases_us[2], 250);
+  assert_int_equal(options.spin_us, 0);
+  trigger_options_free(&options);
+  trigger_options_defaults(&options);
+  assert_int_equal(options.spin_us, 200);
+  assert_int_equal(options.num_phases, 0);
+  assert_false(load("phases-us = 0,-5\n", &options, error, sizeof(error)));
+  assert_string_equal(error,
+                      "trigger.conf:1: invalid phases-us '0,-5': each phase must be a whole number "
+                      "of microseconds >= 0");
+  trigger_options_free(&options);
+  assert_false(load("spin-us = 20000\n", &options, error, sizeof(error)));
+  trigger_options_free(&options);
+}
+
 static void unknown_key_names_file_and_line(void** state) {
   (void)state;
   struct trigger_options options;
@@ -156,6 +179,7 @@ static void defaults_without_a_file(void** state) {
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(keys_comments_and_blank_lines),
+    cmocka_unit_test(phases_and_spin_keys),
     cmocka_unit_test(unknown_key_names_file_and_line),
     cmocka_unit_test(bad_value_names_file_line_key_and_value),
     cmocka_unit_test(line_without_equals_or_value_is_an_error),

@@ -27,6 +27,7 @@ enum syncap_trigger_error {
   SYNCAP_TRIGGER_ERR_TOO_MANY_LINES,
   SYNCAP_TRIGGER_ERR_PHASE_NEGATIVE,
   SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD,
+  SYNCAP_TRIGGER_ERR_PHASE_PLUS_WIDTH_BEYOND_PERIOD,
   SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE,
   SYNCAP_TRIGGER_ERR_ALREADY_RUNNING,
   SYNCAP_TRIGGER_ERR_NOT_RUNNING,
@@ -44,7 +45,8 @@ struct syncap_trigger_config {
   // Pulses per run, or SYNCAP_TRIGGER_FOREVER.
   uint64_t count;
   // Output lines, 1..SYNCAP_TRIGGER_MAX_LINES, each with a delay of its edges after the pulse's
-  // scheduled time: 0 <= phase < period.
+  // scheduled time: 0 <= phase < period, and phase + width <= period, so that every line has
+  // fallen before the next pulse's first rising edge.
   size_t num_lines;
   int64_t phase_ns[SYNCAP_TRIGGER_MAX_LINES];
   // Start/stop input edges closer than this to the previous edge of the same input are bounces

@@ -42,6 +42,11 @@ int syncap_gpio_request_outputs(struct syncap_gpio* gpio, const unsigned* offset
 // are requested.
 int syncap_gpio_set_all(struct syncap_gpio* gpio, int value);
 
+// Drives the requested lines selected by mask (bit i: the i-th offset of the request) to value
+// at once, in one backend call (one bulk set); lines already at that level are left alone. EPERM
+// when no lines are requested, EINVAL for a bit beyond the requested lines.
+int syncap_gpio_set_lines(struct syncap_gpio* gpio, uint32_t mask, int value);
+
 // Drives the requested lines low and gives them back; the chip stays open. No-op without lines.
 void syncap_gpio_release(struct syncap_gpio* gpio);
 
@@ -60,9 +65,9 @@ int syncap_gpio_wait_edge(struct syncap_gpio* gpio, int64_t timeout_ns,
 // Releases the lines (outputs left low, inputs too) and closes the chip. NULL is allowed.
 void syncap_gpio_close(struct syncap_gpio* gpio);
 
-// CLOCK_MONOTONIC time at which the last syncap_gpio_set_all that changed the level switched the
-// lines, as the backend saw it (so that it equals the time a shared chip's watchers see); 0 before
-// the first change.
+// CLOCK_MONOTONIC time at which the last syncap_gpio_set_all/_set_lines that changed a level
+// switched the lines, as the backend saw it (so that it equals the time a shared chip's watchers
+// see); 0 before the first change.
 int64_t syncap_gpio_last_change_ns(const struct syncap_gpio* gpio);
 
 // The backend's name: "sim" or "gpiod".

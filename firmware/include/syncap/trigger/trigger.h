@@ -4,7 +4,9 @@
 // A run: syncap_trigger_start, then per pulse
 //   sleep until syncap_trigger_next_rise_ns();
 //   syncap_trigger_due_pulse(now)        -> which pulse to drive (skips whole missed periods);
-//   drive the edge, then syncap_trigger_edge_driven(edge time) -> LATE or not, advance;
+//   syncap_trigger_pulse_events(index)   -> its edges per line, in time order;
+//   drive the first (rising) one, then syncap_trigger_edge_driven(edge time) -> LATE or not,
+//   advance; then sleep to and drive each further event of the pulse;
 // until the state leaves RUNNING (count reached) or syncap_trigger_stop.
 #pragma once
 
@@ -30,10 +32,21 @@ enum syncap_trigger_state {
 
 struct syncap_trigger;
 
+// Each line rises phase_ns after the pulse's scheduled time t_k and falls pulse_width_ns later.
+#define SYNCAP_TRIGGER_MAX_EVENTS (2 * SYNCAP_TRIGGER_MAX_LINES)
+
+// One edge of a pulse: the lines (bit i: config line i) that switch to level at time_ns together
+// (lines with equal phases share one event, i.e. one bulk set).
+struct syncap_trigger_event {
+  int64_t time_ns;  // scheduled, CLOCK_MONOTONIC
+  uint32_t lines;
+  int level;  // 1 rising, 0 falling
+};
+
 struct syncap_trigger_pulse {
   uint64_t index;   // position in the schedule, 0 for the first pulse: the frame number
-  int64_t rise_ns;  // scheduled rising edge
-  int64_t fall_ns;  // scheduled falling edge
+  int64_t rise_ns;  // scheduled first rising edge: t_k + the smallest phase
+  int64_t fall_ns;  // scheduled last falling edge: t_k + the largest phase + width
   uint64_t missed;  // pulses skipped right before this one
   unsigned flags;   // SYNCAP_TRIGGER_FLAG_*
 };
@@ -57,13 +70,21 @@ enum syncap_trigger_error syncap_trigger_start(struct syncap_trigger* trigger, i
 enum syncap_trigger_error syncap_trigger_stop(struct syncap_trigger* trigger);
 enum syncap_trigger_state syncap_trigger_state(const struct syncap_trigger* trigger);
 
-// Scheduled edges of pulse `index` of the current run (start time 0 before the first run):
+// Scheduled time t_k of pulse `index` of the current run (start time 0 before the first run):
 // start + floor(index * 1e9 / rate) exactly, without accumulated rounding, for any index whose
-// time fits in int64_t (about 292 years).
+// time fits in int64_t (about 292 years). A line with phase p rises at t_k + p.
 int64_t syncap_trigger_rise_ns(const struct syncap_trigger* trigger, uint64_t index);
+// t_k + width: the falling edge of the lines at phase 0.
 int64_t syncap_trigger_fall_ns(const struct syncap_trigger* trigger, uint64_t index);
-// Rising edge of the next pulse not yet driven.
+// First rising edge (t + smallest phase) of the next pulse not yet driven.
 int64_t syncap_trigger_next_rise_ns(const struct syncap_trigger* trigger);
+
+// The edge events of pulse `index` in time order (at equal times falling before rising), lines
+// with equal phases merged into one event; returns how many (2 to SYNCAP_TRIGGER_MAX_EVENTS). The
+// first is always the rising edge of the lines with the smallest phase; all of them lie within
+// [t_k, t_k+1], since phase + width <= period.
+size_t syncap_trigger_pulse_events(const struct syncap_trigger* trigger, uint64_t index,
+                                   struct syncap_trigger_event events[SYNCAP_TRIGGER_MAX_EVENTS]);
 
 // The pulse to drive when the daemon is awake at now_ns: the next pulse, or, when the next
 // pulse's successor is already due, the latest due pulse, with the skipped ones counted in
