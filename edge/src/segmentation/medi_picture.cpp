@@ -5,7 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <opencv2/core/hal/intrin.hpp>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "segmentation/packed_mask.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -95,6 +99,14 @@ cv::Mat outside_interval(const cv::Mat& frame, const cv::Mat& lower, const cv::M
   return below | above;
 }
 
+// Eqs 5.10/5.11 and the energy bound for one pixel, in squared form (REL is positive for grey
+// values): NCC >= L_NCC and r E_B <= E_T < E_B. Shared by both paths so they round alike.
+inline bool is_shadow(float rel, float energy_b, float energy_t, float l_ncc_sq, float ratio_sq) {
+  const bool correlates = rel > 0 && rel * rel >= l_ncc_sq * energy_b * energy_t;
+  const bool darker = energy_t < energy_b && energy_t >= ratio_sq * energy_b;
+  return correlates && darker;
+}
+
 // Eqs 5.6-5.11 at the pixels of `candidates`, with the window sums of B^2 given.
 cv::Mat shadow_pixels_given_energy(const cv::Mat& background, const cv::Mat& energy_b,
                                    const cv::Mat& frame, const cv::Mat& candidates,
@@ -115,14 +127,105 @@ cv::Mat shadow_pixels_given_energy(const cv::Mat& background, const cv::Mat& ene
     const float* et = energy_t.ptr<float>(y);
     uchar* out = shadow.ptr<uchar>(y);
     for (int x = 0; x < frame.cols; ++x) {
-      if (candidate[x] == 0) continue;
-      // Squared forms of NCC >= L_NCC (REL is positive for grey values) and E_T < E_B.
-      const bool correlates = r[x] > 0 && r[x] * r[x] >= l_ncc_sq * eb[x] * et[x];
-      const bool darker = et[x] < eb[x] && et[x] >= ratio_sq * eb[x];
-      if (correlates && darker) out[x] = 255;
+      if (candidate[x] != 0 && is_shadow(r[x], eb[x], et[x], l_ncc_sq, ratio_sq)) out[x] = 255;
     }
   }
   return shadow;
+}
+
+void clean_mask_with(cv::Mat& mask, int closing_diameter, int min_component_area, cv::Mat& labels,
+                     cv::Mat& stats, cv::Mat& centroids) {
+  if (closing_diameter > 1) {
+    const cv::Mat element =
+        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(closing_diameter, closing_diameter));
+    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, element);
+  }
+  if (min_component_area <= 1) return;
+  const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<uchar> keep(static_cast<std::size_t>(count), 0);
+  bool any_small = false;
+  for (int label = 1; label < count; ++label) {
+    keep[static_cast<std::size_t>(label)] =
+        stats.at<int>(label, cv::CC_STAT_AREA) >= min_component_area ? 255 : 0;
+    any_small = any_small || keep[static_cast<std::size_t>(label)] == 0;
+  }
+  if (!any_small) return;
+  for (int y = 0; y < mask.rows; ++y) {
+    const int* label = labels.ptr<int>(y);
+    uchar* out = mask.ptr<uchar>(y);
+    for (int x = 0; x < mask.cols; ++x) out[x] = keep[static_cast<std::size_t>(label[x])];
+  }
+}
+
+// Value of the classification pass for a pixel below the interval, before the shadow test.
+constexpr uchar kBelow = 1;
+
+// One row of the classification pass: `out` = kBelow (`below_value`) below the interval, 255
+// above it, 0 inside, and 0 outside `clip` (null when none). ORs the pixels below into
+// `column_below` and the output into `column_any`; returns bit 0 = any below, bit 1 = any.
+int classify_row(const uchar* frame, const uchar* lower, const uchar* upper, const uchar* clip,
+                 uchar below_value, int cols, uchar* out, uchar* column_below, uchar* column_any) {
+  int x = 0;
+  uchar any_below = 0, any = 0;
+#if CV_SIMD
+  const int lanes = cv::v_uint8::nlanes;
+  const cv::v_uint8 below_lanes = cv::vx_setall_u8(below_value);
+  cv::v_uint8 below_acc = cv::vx_setzero_u8(), any_acc = cv::vx_setzero_u8();
+  for (; x <= cols - lanes; x += lanes) {
+    const cv::v_uint8 value = cv::vx_load(frame + x);
+    cv::v_uint8 below = value < cv::vx_load(lower + x);
+    cv::v_uint8 result = (below & below_lanes) | (value > cv::vx_load(upper + x));
+    if (clip != nullptr) {
+      const cv::v_uint8 inside = cv::vx_load(clip + x);
+      below &= inside;
+      result &= inside;
+    }
+    cv::v_store(out + x, result);
+    cv::v_store(column_below + x, cv::vx_load(column_below + x) | below);
+    cv::v_store(column_any + x, cv::vx_load(column_any + x) | result);
+    below_acc |= below;
+    any_acc |= result;
+  }
+  const cv::v_uint8 zero = cv::vx_setzero_u8();
+  any_below = cv::v_check_any(below_acc != zero) ? 1 : 0;
+  any = cv::v_check_any(any_acc != zero) ? 1 : 0;
+#endif
+  for (; x < cols; ++x) {
+    const uchar inside = clip != nullptr ? clip[x] : 255;
+    const uchar below = frame[x] < lower[x] ? inside : 0;
+    const uchar result =
+        static_cast<uchar>(((below & below_value) | (frame[x] > upper[x] ? 255 : 0)) & inside);
+    out[x] = result;
+    column_below[x] |= below;
+    column_any[x] |= result;
+    any_below |= below;
+    any |= result;
+  }
+  return (any_below != 0 ? 1 : 0) | (any != 0 ? 2 : 0);
+}
+
+// The bounding box of the rows flagged in `rows` and the columns flagged in any stripe of
+// `columns` (stripes of `cols` bytes); empty when no row is flagged.
+cv::Rect flagged_box(const std::vector<uchar>& rows, const std::vector<uchar>& columns, int cols) {
+  const auto first_row = std::find(rows.begin(), rows.end(), uchar{1});
+  if (first_row == rows.end()) return {};
+  const auto last_row = std::find(rows.rbegin(), rows.rend(), uchar{1});
+  const int stripes = static_cast<int>(columns.size()) / cols;
+  const auto column_flagged = [&](int x) {
+    for (int s = 0; s < stripes; ++s) {
+      if (columns[static_cast<std::size_t>(s) * static_cast<std::size_t>(cols) +
+                  static_cast<std::size_t>(x)] != 0) {
+        return true;
+      }
+    }
+    return false;
+  };
+  int x0 = 0, x1 = cols - 1;
+  while (x0 < cols && !column_flagged(x0)) ++x0;
+  while (x1 > x0 && !column_flagged(x1)) --x1;
+  const int y0 = static_cast<int>(first_row - rows.begin());
+  const int y1 = static_cast<int>(rows.rend() - last_row) - 1;
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
 }  // namespace
@@ -171,27 +274,8 @@ cv::Mat shadow_pixels(const cv::Mat& background, const cv::Mat& frame, const cv:
 }
 
 void clean_mask(cv::Mat& mask, int closing_diameter, int min_component_area) {
-  if (closing_diameter > 1) {
-    const cv::Mat element =
-        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(closing_diameter, closing_diameter));
-    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, element);
-  }
-  if (min_component_area <= 1) return;
   cv::Mat labels, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
-  std::vector<uchar> keep(static_cast<std::size_t>(count), 0);
-  bool any_small = false;
-  for (int label = 1; label < count; ++label) {
-    keep[static_cast<std::size_t>(label)] =
-        stats.at<int>(label, cv::CC_STAT_AREA) >= min_component_area ? 255 : 0;
-    any_small = any_small || keep[static_cast<std::size_t>(label)] == 0;
-  }
-  if (!any_small) return;
-  for (int y = 0; y < mask.rows; ++y) {
-    const int* label = labels.ptr<int>(y);
-    uchar* out = mask.ptr<uchar>(y);
-    for (int x = 0; x < mask.cols; ++x) out[x] = keep[static_cast<std::size_t>(label[x])];
-  }
+  clean_mask_with(mask, closing_diameter, min_component_area, labels, stats, centroids);
 }
 
 void clip_to_polygon(cv::Mat& mask, std::span<const cv::Point> polygon) {
@@ -224,12 +308,163 @@ void MediPicture::derive_thresholds() {
   if (options_.remove_shadows) {
     background_energy_ = background_energy(background_, options_.ncc_half_window);
   }
+  // The window sums of the fast path are int32 (exact up to a 181 x 181 window) and reflect at
+  // most once at the border.
+  const int side = 2 * options_.ncc_half_window + 1;
+  const bool window_ok = !options_.remove_shadows ||
+                         (options_.ncc_half_window >= 0 && options_.ncc_half_window <= 90 &&
+                          side <= background_.rows && side <= background_.cols);
+  fast_path_ = window_ok && cv::countNonZero(lower_ > background_) == 0 &&
+               cv::countNonZero(background_ > upper_) == 0;
 }
 
 cv::Mat MediPicture::apply(const cv::Mat& frame) {
   if (frame.type() != CV_8UC1 || frame.size() != model_.median.size()) {
     throw std::invalid_argument("MediPicture::apply needs a CV_8UC1 frame of the model's size");
   }
+  if (!fast_path_) return apply_whole_frame(frame);
+  const int rows = frame.rows, cols = frame.cols;
+  // A new image only when the caller still holds the previous one.
+  if (mask_.empty() || mask_.u == nullptr || mask_.u->refcount != 1) {
+    mask_ = cv::Mat(frame.size(), CV_8UC1);
+  }
+  cv::Mat& mask = mask_;
+
+  // One pass: below / above the interval, clipped, with the rows and columns that hold either.
+  // Since lower <= B <= upper, the pixels below are exactly the shadow test's candidates.
+  const int stripes = std::clamp(4 * cv::getNumThreads(), 1, rows);
+  const auto cols_size = static_cast<std::size_t>(cols);
+  row_below_.assign(static_cast<std::size_t>(rows), 0);
+  row_any_.assign(static_cast<std::size_t>(rows), 0);
+  column_below_.assign(static_cast<std::size_t>(stripes) * cols_size, 0);
+  column_any_.assign(static_cast<std::size_t>(stripes) * cols_size, 0);
+  const uchar below_value = options_.remove_shadows ? kBelow : 255;
+  const bool clipped = !clip_.empty();
+  cv::parallel_for_(cv::Range(0, stripes), [&](const cv::Range& range) {
+    for (int s = range.start; s < range.end; ++s) {
+      uchar* column_below = column_below_.data() + static_cast<std::size_t>(s) * cols_size;
+      uchar* column_any = column_any_.data() + static_cast<std::size_t>(s) * cols_size;
+      for (int y = rows * s / stripes; y < rows * (s + 1) / stripes; ++y) {
+        const int found =
+            classify_row(frame.ptr<uchar>(y), lower_.ptr<uchar>(y), upper_.ptr<uchar>(y),
+                         clipped ? clip_.ptr<uchar>(y) : nullptr, below_value, cols,
+                         mask.ptr<uchar>(y), column_below, column_any);
+        row_below_[static_cast<std::size_t>(y)] = (found & 1) != 0 ? 1 : 0;
+        row_any_[static_cast<std::size_t>(y)] = (found & 2) != 0 ? 1 : 0;
+      }
+    }
+  });
+
+  if (options_.remove_shadows) {
+    const cv::Rect below_box = flagged_box(row_below_, column_below_, cols);
+    if (!below_box.empty()) resolve_shadows(frame, mask, below_box);
+  }
+  const cv::Rect any_box = flagged_box(row_any_, column_any_, cols);
+  if (!any_box.empty()) clean_inside(mask, any_box);
+  if (options_.update_rate > 0) update_model(frame, mask);
+  return mask;
+}
+
+void MediPicture::resolve_shadows(const cv::Mat& frame, cv::Mat& mask, cv::Rect box) {
+  const int half = options_.ncc_half_window, side = 2 * half + 1;
+  const int width = box.width + 2 * half;
+  const auto width_size = static_cast<std::size_t>(width);
+  window_columns_.resize(width_size);
+  for (int i = 0; i < width; ++i) {
+    window_columns_[static_cast<std::size_t>(i)] =
+        cv::borderInterpolate(box.x - half + i, frame.cols, cv::BORDER_REFLECT);
+  }
+  // Column sums over the window's rows of I.B and I^2, kept as the window slides down; exact
+  // integers, as the reference's float box filter (double sums) also gives.
+  sum_cross_.assign(width_size, 0);
+  sum_frame_.assign(width_size, 0);
+  const bool interior = box.x - half >= 0 && box.x + box.width + half <= frame.cols;
+  const auto add_row = [&](int y, int sign) {
+    const int source = cv::borderInterpolate(y, frame.rows, cv::BORDER_REFLECT);
+    const uchar* f = frame.ptr<uchar>(source);
+    const uchar* b = background_.ptr<uchar>(source);
+    int* cross = sum_cross_.data();
+    int* energy = sum_frame_.data();
+    if (interior) {
+      f += box.x - half;
+      b += box.x - half;
+      for (std::size_t i = 0; i < width_size; ++i) {
+        const int value = f[i];
+        cross[i] += sign * value * b[i];
+        energy[i] += sign * value * value;
+      }
+    } else {
+      for (std::size_t i = 0; i < width_size; ++i) {
+        const int column = window_columns_[i];
+        const int value = f[column];
+        cross[i] += sign * value * b[column];
+        energy[i] += sign * value * value;
+      }
+    }
+  };
+  for (int y = box.y - half; y < box.y + half; ++y) add_row(y, 1);
+  const float l_ncc_sq = options_.ncc_threshold * options_.ncc_threshold;
+  const float ratio_sq = options_.min_shadow_energy_ratio * options_.min_shadow_energy_ratio;
+  const auto box_size = static_cast<std::size_t>(box.width);
+  window_cross_.resize(box_size);
+  window_frame_.resize(box_size);
+  int* window_cross = window_cross_.data();
+  int* window_frame = window_frame_.data();
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    add_row(y + half, 1);
+    // Window sums along the row: the column sums of each window's columns.
+    std::copy_n(sum_cross_.begin(), box_size, window_cross_.begin());
+    std::copy_n(sum_frame_.begin(), box_size, window_frame_.begin());
+    for (int i = 1; i < side; ++i) {
+      const int* cross = sum_cross_.data() + i;
+      const int* energy = sum_frame_.data() + i;
+      for (std::size_t x = 0; x < box_size; ++x) {
+        window_cross[x] += cross[x];
+        window_frame[x] += energy[x];
+      }
+    }
+    uchar* out = mask.ptr<uchar>(y) + box.x;
+    const float* energy_b = background_energy_.ptr<float>(y) + box.x;
+    for (std::size_t x = 0; x < box_size; ++x) {
+      const bool shadow = is_shadow(static_cast<float>(window_cross[x]), energy_b[x],
+                                    static_cast<float>(window_frame[x]), l_ncc_sq, ratio_sq);
+      out[x] = out[x] == kBelow ? (shadow ? 0 : 255) : out[x];
+    }
+    add_row(y - half, -1);
+  }
+}
+
+// The closing reaches at most closing_diameter / 2 from a foreground pixel, and its erosion reads
+// at most as far again: outside `box` grown by twice that the mask stays 0 and the closing
+// inside is the whole frame's (the morphology border neither dilates nor erodes). Components
+// lie wholly inside, so their areas are the whole frame's.
+void MediPicture::clean_inside(cv::Mat& mask, cv::Rect box) {
+  if (options_.closing_diameter <= 1 && options_.min_component_area <= 1) return;
+  const int reach = options_.closing_diameter > 1 ? options_.closing_diameter / 2 + 1 : 0;
+  const cv::Rect region =
+      (box + cv::Point(-2 * reach, -2 * reach) + cv::Size(4 * reach, 4 * reach)) &
+      cv::Rect(0, 0, mask.cols, mask.rows);
+  cv::Mat target = mask(region);
+  const cv::Mat element =
+      options_.closing_diameter > 1
+          ? cv::getStructuringElement(
+                cv::MORPH_ELLIPSE, cv::Size(options_.closing_diameter, options_.closing_diameter))
+          : cv::Mat();
+  if (element.empty() || detail::PackedMask::closable_by(element)) {
+    packed_.pack(target);
+    if (!element.empty()) packed_.close(element);
+    packed_.remove_small_components(options_.min_component_area);
+    packed_.unpack(target);
+  } else {
+    target.copyTo(work_);
+    clean_mask_with(work_, options_.closing_diameter, options_.min_component_area, labels_, stats_,
+                    centroids_);
+    work_.copyTo(target);
+  }
+  if (!clip_.empty()) cv::bitwise_and(target, clip_(region), target);
+}
+
+cv::Mat MediPicture::apply_whole_frame(const cv::Mat& frame) {
   cv::Mat mask = outside_interval(frame, lower_, upper_);
   if (!clip_.empty()) mask &= clip_;
   if (options_.remove_shadows) {

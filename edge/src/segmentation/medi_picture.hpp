@@ -9,6 +9,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "segmentation/packed_mask.hpp"
+
 namespace syncap::edge {
 
 // The empty scene as eq 5.5 describes it, each image the size of the training frames.
@@ -50,6 +52,10 @@ class MediPicture {
 
   // The foreground mask of `frame` (CV_8UC1, the model's size): 255 foreground, 0 background.
   // With update_rate > 0 the model then follows the scene where the mask is background.
+  // One pass classifies every pixel; the shadow test, closing and component filter then run
+  // only inside the bounding boxes of what that pass found. The result is the same as that of
+  // the free functions below applied in turn (tested). The returned image is reused by the next
+  // call when the caller no longer holds it.
   cv::Mat apply(const cv::Mat& frame);
 
   const MediPictureModel& model() const { return model_; }
@@ -58,6 +64,13 @@ class MediPicture {
  private:
   void derive_thresholds();
   void update_model(const cv::Mat& frame, const cv::Mat& mask);
+  // The steps one after the other over the whole frame (the free functions); used when the
+  // options rule out the fast path.
+  cv::Mat apply_whole_frame(const cv::Mat& frame);
+  // Eqs 5.6-5.11 on the pixels marked kBelow in `mask` within `box`: 0 if shadow, else 255.
+  void resolve_shadows(const cv::Mat& frame, cv::Mat& mask, cv::Rect box);
+  // clean_mask and the clip inside `box`, which holds every foreground pixel of `mask`.
+  void clean_inside(cv::Mat& mask, cv::Rect box);
 
   MediPictureModel model_;
   MediPictureOptions options_;
@@ -65,6 +78,18 @@ class MediPicture {
   cv::Mat background_;         // CV_8UC1 median, the B of the NCC test
   cv::Mat background_energy_;  // CV_32FC1 window sums of B^2
   cv::Mat clip_;               // CV_8UC1 255 inside the clip polygon, empty when none
+  // lower <= background <= upper everywhere: then the candidates of the shadow test are exactly
+  // the pixels below the interval. False (odd options) selects apply_whole_frame.
+  bool fast_path_ = false;
+  // Buffers kept between frames.
+  cv::Mat mask_;                                  // the last mask returned
+  std::vector<uchar> row_below_, row_any_;        // per row: any pixel below / outside
+  std::vector<uchar> column_below_, column_any_;  // per stripe and column: the same
+  std::vector<int> window_columns_;               // reflected column of each window column
+  std::vector<int> sum_cross_, sum_frame_;        // per column: window sums of I.B and I^2
+  std::vector<int> window_cross_, window_frame_;  // per pixel of a row: the same, whole window
+  cv::Mat work_, labels_, stats_, centroids_;     // clean_inside
+  detail::PackedMask packed_;                     // clean_inside
 };
 
 // The steps of MediPicture::apply, each usable on its own.

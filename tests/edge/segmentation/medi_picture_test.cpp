@@ -158,5 +158,138 @@ TEST(MediPicture, SlowUpdateFollowsABrighteningScene) {
   EXPECT_EQ(cv::countNonZero(frozen.apply(cv::Mat(size, CV_8UC1, cv::Scalar(160)))), size.area());
 }
 
+// MediPicture::apply the straightforward way: the free functions over the whole frame in turn.
+cv::Mat reference_apply(const MediPictureModel& model, const MediPictureOptions& options,
+                        const cv::Mat& frame) {
+  cv::Mat mask = classify_against_model(model, frame, options);
+  clip_to_polygon(mask, options.clip_polygon);
+  if (options.remove_shadows) {
+    cv::Mat background;
+    model.median.convertTo(background, CV_8U);
+    const cv::Mat candidates = mask & (frame < background);
+    mask.setTo(0, shadow_pixels(background, frame, candidates, options));
+  }
+  clean_mask(mask, options.closing_diameter, options.min_component_area);
+  clip_to_polygon(mask, options.clip_polygon);
+  return mask;
+}
+
+// Frames that exercise the fast path's bounding boxes: objects and shadows touching the image
+// border (reflected windows, morphology border), specks, textured shadows, dark objects.
+std::vector<cv::Mat> test_frames(const cv::Mat& background, cv::RNG& rng) {
+  std::vector<cv::Mat> frames;
+  const cv::Size size = background.size();
+  const auto noisy = [&] {
+    cv::Mat noise(size, CV_16SC1);
+    rng.fill(noise, cv::RNG::NORMAL, 0, 3);
+    cv::Mat frame;
+    cv::add(background, noise, frame, cv::noArray(), CV_8U);
+    return frame;
+  };
+  frames.push_back(noisy());  // nothing
+  cv::Mat frame = noisy();
+  cv::ellipse(frame, {size.width / 2, size.height / 2}, {25, 60}, 0, 0, 360, cv::Scalar(230),
+              cv::FILLED);
+  cv::Mat shadow = frame(cv::Rect(size.width / 2 + 20, size.height - 30, 60, 30));
+  shadow.convertTo(shadow, CV_8U, 0.6);
+  frames.push_back(frame.clone());
+  // Shadows and objects at every border and corner, specks, a dark object.
+  frame = noisy();
+  for (const cv::Rect& r : {cv::Rect(0, 0, 30, 20), cv::Rect(size.width - 25, 10, 25, 40),
+                            cv::Rect(40, size.height - 15, 50, 15), cv::Rect(0, 50, 12, 30)}) {
+    cv::Mat part = frame(r);
+    part.convertTo(part, CV_8U, 0.55);
+  }
+  cv::rectangle(frame, cv::Rect(size.width - 40, size.height - 40, 40, 40), cv::Scalar(250),
+                cv::FILLED);
+  cv::circle(frame, {70, 30}, 12, cv::Scalar(5), cv::FILLED);
+  for (int i = 0; i < 30; ++i) {
+    frame.at<uchar>(rng.uniform(0, size.height), rng.uniform(0, size.width)) =
+        static_cast<uchar>(rng.uniform(0, 2) * 255);
+  }
+  frames.push_back(frame.clone());
+  // Many scattered blobs, bright and dark, with cracks for the closing.
+  frame = noisy();
+  for (int i = 0; i < 25; ++i) {
+    const cv::Point centre(rng.uniform(0, size.width), rng.uniform(0, size.height));
+    const int radius = rng.uniform(1, 14);
+    const double value = rng.uniform(0, 2) == 0 ? 0.5 : 1.8;
+    cv::Mat blob = cv::Mat::zeros(size, CV_8UC1);
+    cv::circle(blob, centre, radius, cv::Scalar(255), cv::FILLED);
+    cv::Mat scaled;
+    frame.convertTo(scaled, CV_8U, value);
+    scaled.copyTo(frame, blob);
+  }
+  frame.col(size.width / 3).setTo(cv::Scalar(120));
+  frames.push_back(frame);
+  return frames;
+}
+
+TEST(MediPicture, FastApplyMatchesTheStepByStepReference) {
+  const cv::Size size(173, 131);  // not a multiple of any SIMD width
+  const cv::Mat background = texture(size);
+  cv::RNG rng(21);
+  std::vector<cv::Mat> training;
+  for (int i = 0; i < 12; ++i) {
+    cv::Mat noise(size, CV_16SC1), frame;
+    rng.fill(noise, cv::RNG::NORMAL, 0, 3);
+    cv::add(background, noise, frame, cv::noArray(), CV_8U);
+    training.push_back(frame);
+  }
+  const MediPictureModel model = train_medi_picture(training);
+  const std::vector<cv::Mat> frames = test_frames(background, rng);
+
+  std::vector<MediPictureOptions> variants(9);
+  variants[1].remove_shadows = false;
+  variants[2].ncc_half_window = 1;
+  variants[2].closing_diameter = 4;  // even: the anchor is off centre
+  variants[3].ncc_half_window = 4;
+  variants[3].ncc_threshold = 0.9f;
+  variants[4].closing_diameter = 0;
+  variants[5].min_component_area = 0;
+  variants[6].clip_polygon = {{5, 3}, {160, 20}, {120, 128}, {0, 100}};
+  variants[7] = bare_options();
+  variants[8].closing_diameter = 15;
+  variants[8].min_component_area = 200;
+  int foreground = 0;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    MediPicture medi(model, variants[v]);
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      const cv::Mat expected = reference_apply(model, variants[v], frames[f]);
+      const cv::Mat mask = medi.apply(frames[f]);
+      foreground += cv::countNonZero(expected);
+      EXPECT_EQ(cv::countNonZero(mask != expected), 0) << "options " << v << ", frame " << f;
+    }
+  }
+  EXPECT_GT(foreground, 10000);  // the frames do hold foreground and shadow
+
+  // With the slow update, frame after frame against the model as it then is.
+  MediPictureOptions updating;
+  updating.update_rate = 0.05f;
+  MediPicture medi(model, updating);
+  for (int round = 0; round < 3; ++round) {
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      const MediPictureModel current{medi.model().median.clone(), medi.model().sigma.clone(),
+                                     medi.model().minimum.clone(), medi.model().maximum.clone(),
+                                     medi.model().max_difference.clone()};
+      const cv::Mat expected = reference_apply(current, updating, frames[f]);
+      EXPECT_EQ(cv::countNonZero(medi.apply(frames[f]) != expected), 0)
+          << "round " << round << ", frame " << f;
+    }
+  }
+}
+
+TEST(MediPicture, ReturnedMaskIsNotOverwrittenWhileHeld) {
+  const cv::Size size(64, 48);
+  const MediPictureModel model = train_medi_picture(noisy_frames(10, size, 100, 2));
+  MediPicture medi(model, bare_options());
+  cv::Mat frame(size, CV_8UC1, cv::Scalar(100));
+  frame(cv::Rect(10, 10, 20, 20)).setTo(250);
+  const cv::Mat first = medi.apply(frame);
+  const cv::Mat second = medi.apply(cv::Mat(size, CV_8UC1, cv::Scalar(100)));
+  EXPECT_EQ(cv::countNonZero(first), 400);
+  EXPECT_EQ(cv::countNonZero(second), 0);
+}
+
 }  // namespace
 }  // namespace syncap::edge

@@ -128,7 +128,9 @@ class ChipWriter {
 // is busy with frames.
 class TriggerLog {
  public:
-  TriggerLog() : lcm_(proto::kDefaultLcmUrl) {
+  // A receive buffer of its own: on a loaded machine the default one overflowed before this
+  // process read the burst of 100 trigger messages (58 arrived once in a full ctest -j2 run).
+  TriggerLog() : lcm_(std::string(proto::kDefaultLcmUrl) + "&recv_buf_size=4194304") {
     lcm_.subscribe(proto::kTriggerChannel, &TriggerLog::on_trigger, this);
     thread_ = std::jthread([this](std::stop_token stop) {
       while (!stop.stop_requested()) lcm_.handleTimeout(20);

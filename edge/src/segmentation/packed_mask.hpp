@@ -1,0 +1,53 @@
+// A binary mask packed one bit a pixel, for the clean-up step of MediPicture::apply: the
+// closing and the removal of small 8-connected components work on 64 pixels a word, with the
+// same result as cv::morphologyEx (MORPH_CLOSE, default border) and
+// cv::connectedComponentsWithStats on the byte image. Internal to syncap_edge_segmentation.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace syncap::edge::detail {
+
+class PackedMask {
+ public:
+  // Packs `bytes` (CV_8UC1): non-zero is foreground.
+  void pack(const cv::Mat& bytes);
+  // Writes 255 / 0 into `bytes` (CV_8UC1 of the packed size).
+  void unpack(cv::Mat& bytes) const;
+
+  // Whether close() takes `element`: at most 127 wide, each row one run of ones (or none).
+  static bool closable_by(const cv::Mat& element);
+  // Dilation then erosion by `element` anchored at its centre (cols / 2, rows / 2), as
+  // cv::morphologyEx: outside the image neither dilates nor erodes.
+  void close(const cv::Mat& element);
+  // Clears the 8-connected components of fewer than `min_area` pixels.
+  void remove_small_components(int min_area);
+
+ private:
+  struct Run {
+    int y, x0, x1;  // pixels x0..x1 of row y
+  };
+  std::uint64_t* row(int y) { return words_.data() + static_cast<std::size_t>(y) * stride_ + 1; }
+  const std::uint64_t* row(int y) const {
+    return words_.data() + static_cast<std::size_t>(y) * stride_ + 1;
+  }
+  // Sets the padding words and the bits past the last column of every row to `fill`.
+  void set_padding(std::uint64_t fill);
+  // this = morphology of `source` by `element` (dilate: OR, else AND).
+  template <bool kDilate>
+  void morph_from(const PackedMask& source, const cv::Mat& element);
+
+  int rows_ = 0, cols_ = 0, words_per_row_ = 0;
+  std::size_t stride_ = 0;            // words a row: one padding word each side
+  std::vector<std::uint64_t> words_;  // row y, word k at y * stride_ + 1 + k
+  // morph_from: one source row combined over runs of 2^i pixels, and every source row combined
+  // over each distinct run of the element's rows.
+  std::vector<std::uint64_t> levels_, combined_;
+  std::vector<Run> runs_;
+  std::vector<int> parent_, area_;
+};
+
+}  // namespace syncap::edge::detail

@@ -1,0 +1,62 @@
+#include "segmentation/packed_mask.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "segmentation/medi_picture.hpp"
+
+namespace syncap::edge::detail {
+namespace {
+
+// Random blobs and specks: closing and component removal both have work to do.
+cv::Mat random_mask(cv::RNG& rng, cv::Size size) {
+  cv::Mat mask = cv::Mat::zeros(size, CV_8UC1);
+  for (int i = 0; i < 12; ++i) {
+    const cv::Point centre(rng.uniform(-5, size.width + 5), rng.uniform(-5, size.height + 5));
+    cv::circle(mask, centre, rng.uniform(0, 15), cv::Scalar(255), cv::FILLED);
+  }
+  for (int i = 0; i < size.area() / 30; ++i) {
+    mask.at<uchar>(rng.uniform(0, size.height), rng.uniform(0, size.width)) ^= 255;
+  }
+  return mask;
+}
+
+TEST(PackedMask, ClosingAndComponentsMatchOpenCv) {
+  cv::RNG rng(4);
+  const std::vector<cv::Mat> elements{cv::getStructuringElement(cv::MORPH_ELLIPSE, {9, 9}),
+                                      cv::getStructuringElement(cv::MORPH_ELLIPSE, {4, 4}),
+                                      cv::getStructuringElement(cv::MORPH_ELLIPSE, {15, 7}),
+                                      cv::getStructuringElement(cv::MORPH_RECT, {3, 5}),
+                                      cv::getStructuringElement(cv::MORPH_CROSS, {5, 5})};
+  for (const cv::Size size : {cv::Size(1, 9), cv::Size(64, 20), cv::Size(65, 33), cv::Size(127, 40),
+                              cv::Size(130, 129), cv::Size(200, 7)}) {
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+      ASSERT_TRUE(PackedMask::closable_by(elements[e]));
+      const cv::Mat mask = random_mask(rng, size);
+      cv::Mat expected;
+      cv::morphologyEx(mask, expected, cv::MORPH_CLOSE, elements[e]);
+      PackedMask packed;
+      packed.pack(mask);
+      packed.close(elements[e]);
+      cv::Mat closed(size, CV_8UC1, cv::Scalar(7));
+      packed.unpack(closed);
+      EXPECT_EQ(cv::countNonZero(closed != expected), 0) << size << " element " << e;
+
+      for (const int area : {2, 5, 30}) {
+        cv::Mat filtered = mask.clone();
+        clean_mask(filtered, 0, area);
+        packed.pack(mask);
+        packed.remove_small_components(area);
+        cv::Mat ours(size, CV_8UC1);
+        packed.unpack(ours);
+        EXPECT_EQ(cv::countNonZero(ours != filtered), 0) << size << " area " << area;
+      }
+    }
+  }
+  EXPECT_FALSE(
+      PackedMask::closable_by(cv::Mat(3, 3, CV_8UC1, cv::Scalar(1)) - cv::Mat::eye(3, 3, CV_8UC1)));
+}
+
+}  // namespace
+}  // namespace syncap::edge::detail
