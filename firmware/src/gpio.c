@@ -80,9 +80,11 @@ static bool has_duplicates(const unsigned* offsets, size_t num_lines) {
   return false;
 }
 
-int syncap_gpio_request_outputs(struct syncap_gpio* gpio, const unsigned* offsets, size_t num_lines,
-                                const char* consumer) {
-  if (gpio->num_lines > 0) {
+// Checks a request for lines of one direction: EBUSY when that direction already has lines
+// (`already`), EINVAL for no lines, too many, a duplicate, or a line the other direction holds.
+static int check_new_lines(size_t already, const unsigned* offsets, size_t num_lines,
+                           const unsigned* other, size_t num_other) {
+  if (already > 0) {
     errno = EBUSY;
     return -1;
   }
@@ -91,12 +93,20 @@ int syncap_gpio_request_outputs(struct syncap_gpio* gpio, const unsigned* offset
     return -1;
   }
   for (size_t i = 0; i < num_lines; ++i) {
-    for (size_t j = 0; j < gpio->num_inputs; ++j) {
-      if (offsets[i] == gpio->inputs[j]) {
+    for (size_t j = 0; j < num_other; ++j) {
+      if (offsets[i] == other[j]) {
         errno = EINVAL;
         return -1;
       }
     }
+  }
+  return 0;
+}
+
+int syncap_gpio_request_outputs(struct syncap_gpio* gpio, const unsigned* offsets, size_t num_lines,
+                                const char* consumer) {
+  if (check_new_lines(gpio->num_lines, offsets, num_lines, gpio->inputs, gpio->num_inputs) < 0) {
+    return -1;
   }
   if (gpio->backend->request_outputs(gpio->state, offsets, num_lines, consumer) < 0) return -1;
   memcpy(gpio->offsets, offsets, num_lines * sizeof(offsets[0]));
@@ -151,21 +161,8 @@ void syncap_gpio_release(struct syncap_gpio* gpio) {
 
 int syncap_gpio_request_inputs(struct syncap_gpio* gpio, const unsigned* offsets, size_t num_lines,
                                const char* consumer) {
-  if (gpio->num_inputs > 0) {
-    errno = EBUSY;
+  if (check_new_lines(gpio->num_inputs, offsets, num_lines, gpio->offsets, gpio->num_lines) < 0) {
     return -1;
-  }
-  if (num_lines == 0 || num_lines > SYNCAP_GPIO_MAX_LINES || has_duplicates(offsets, num_lines)) {
-    errno = EINVAL;
-    return -1;
-  }
-  for (size_t i = 0; i < num_lines; ++i) {
-    for (size_t j = 0; j < gpio->num_lines; ++j) {
-      if (offsets[i] == gpio->offsets[j]) {
-        errno = EINVAL;
-        return -1;
-      }
-    }
   }
   if (gpio->backend->request_inputs(gpio->state, offsets, num_lines, consumer) < 0) return -1;
   memcpy(gpio->inputs, offsets, num_lines * sizeof(offsets[0]));
