@@ -74,7 +74,7 @@ class AravisSource : public FrameSource {
   int camera_id_;
   std::unique_ptr<Camera> camera_;
   BlockIdUnwrapper block_ids_;
-  std::optional<Frame> pending_;  // a frame that arrived before its trigger was asked for
+  ReadAheadFrame read_ahead_;  // a frame that arrived before its trigger was asked for
   int64_t stale_ = 0;
   int64_t incomplete_ = 0;
 };

@@ -26,6 +26,32 @@ class FrameSourceError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Camera sources read ahead: the exposure of a later trigger may arrive before the one asked
+// for (which was then lost); it is held for the next grab.
+class ReadAheadFrame {
+ public:
+  // The held frame when it is `frame_number` (taken out). Otherwise nothing, with `lost` set when
+  // the held frame is later (so frame_number was lost; the frame stays held). A held frame older
+  // than frame_number is dropped and counted in `stale`.
+  std::optional<Frame> take(int64_t frame_number, bool& lost, int64_t& stale) {
+    lost = false;
+    if (!held_) return std::nullopt;
+    if (held_->frame_number > frame_number) {
+      lost = true;
+      return std::nullopt;
+    }
+    std::optional<Frame> frame = std::move(held_);
+    held_.reset();
+    if (frame->frame_number == frame_number) return frame;
+    ++stale;
+    return std::nullopt;
+  }
+  void hold(Frame frame) { held_ = std::move(frame); }
+
+ private:
+  std::optional<Frame> held_;
+};
+
 class FrameSource {
  public:
   virtual ~FrameSource() = default;

@@ -256,13 +256,9 @@ void V4l2Source::shutdown() noexcept {
 }
 
 std::optional<Frame> V4l2Source::grab(int64_t frame_number) {
-  if (pending_) {
-    if (pending_->frame_number > frame_number) return std::nullopt;  // this one was lost
-    Frame frame = std::move(*pending_);
-    pending_.reset();
-    if (frame.frame_number == frame_number) return frame;
-    ++stale_;
-  }
+  bool lost = false;
+  if (auto held = read_ahead_.take(frame_number, lost, stale_)) return held;
+  if (lost) return std::nullopt;
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.frame_timeout_ms);
   for (auto now = std::chrono::steady_clock::now(); now < deadline;
@@ -323,7 +319,7 @@ std::optional<Frame> V4l2Source::grab(int64_t frame_number) {
       continue;
     }
     if (number == frame_number) return frame;
-    pending_ = std::move(frame);  // a later exposure came first: ours was lost
+    read_ahead_.hold(std::move(*frame));  // a later exposure came first: ours was lost
     return std::nullopt;
   }
   return std::nullopt;

@@ -110,7 +110,7 @@ class V4l2Source : public FrameSource {
   bool streaming_ = false;
   std::vector<Buffer> buffers_;
   SequenceMapper sequence_;
-  std::optional<Frame> pending_;  // a frame that arrived before its trigger was asked for
+  ReadAheadFrame read_ahead_;  // a frame that arrived before its trigger was asked for
   int64_t stale_ = 0;
   int64_t incomplete_ = 0;
 };
