@@ -5,6 +5,7 @@
 #include <map>
 
 #include "app/edge_options.hpp"
+#include "syncap/proto/contour_codec.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -41,7 +42,8 @@ class EdgeNodeTest : public ::testing::Test {
     node_ = std::make_unique<EdgeNode>(
         options_, source_,
         EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
-                      [this](const camera_status_t& s) { statuses_.push_back(s); }});
+                      [this](const camera_status_t& s) { statuses_.push_back(s); },
+                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); }});
   }
   trigger_t trigger(int64_t k, bool last = false) {
     trigger_t t{};
@@ -53,6 +55,7 @@ class EdgeNodeTest : public ::testing::Test {
   FakeSource source_;
   std::vector<blob_frame_t> frames_;
   std::vector<camera_status_t> statuses_;
+  std::vector<silhouette_part_t> silhouettes_;
   std::unique_ptr<EdgeNode> node_;
 };
 
@@ -100,6 +103,84 @@ TEST_F(EdgeNodeTest, RemembersTheLastPulse) {
   EXPECT_TRUE(node_->saw_last_pulse());
 }
 
+// A textured empty scene with a little noise, and the same scene with a person-sized block.
+cv::Mat scene(int seed, bool with_person) {
+  cv::Mat image(240, 320, CV_8UC1);
+  cv::RNG rng(static_cast<uint64_t>(seed));
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) {
+      image.at<uint8_t>(y, x) =
+          cv::saturate_cast<uint8_t>(60 + (x / 16 + y / 16) % 2 * 40 + rng.gaussian(1.5));
+    }
+  }
+  if (with_person) image(cv::Rect(100, 40, 60, 150)).setTo(cv::Scalar(230));
+  return image;
+}
+
+class EdgeNodeMaskTest : public EdgeNodeTest {
+ protected:
+  void SetUp() override {
+    options_.mask = true;
+    options_.blobs = false;
+    node_ = std::make_unique<EdgeNode>(
+        options_, source_,
+        EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
+                      [this](const camera_status_t& s) { statuses_.push_back(s); },
+                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); }});
+  }
+};
+
+TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
+  for (int k = 0; k < 10; ++k) source_.images[k] = scene(k, false);
+  source_.images[10] = scene(10, true);
+  node_->on_trigger(trigger(0));
+  EXPECT_TRUE(silhouettes_.empty());  // no model yet: nothing to mask against
+  edge_command_t train{};
+  train.camera_id = 4;
+  train.command = edge_command_t::TRAIN_BACKGROUND;
+  train.int_value = 8;
+  EXPECT_FALSE(node_->on_command(train));
+  for (int k = 1; k <= 8; ++k) node_->on_trigger(trigger(k));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "masking");
+  EXPECT_TRUE(silhouettes_.empty());
+  node_->on_trigger(trigger(10));
+  ASSERT_FALSE(silhouettes_.empty());
+  EXPECT_TRUE(frames_.empty());  // mask mode: no blob frames
+  const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
+  EXPECT_EQ(s.frame_number, 10);
+  EXPECT_EQ(s.camera_id, 4);
+  ASSERT_EQ(s.contours.size(), 1u);
+  int x0 = 1000, x1 = -1, y0 = 1000, y1 = -1;
+  for (const auto& p : s.contours[0].points) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  EXPECT_NEAR(x0, 100, 2);
+  EXPECT_NEAR(x1, 159, 2);
+  EXPECT_NEAR(y0, 40, 2);
+  EXPECT_NEAR(y1, 189, 2);
+}
+
+TEST_F(EdgeNodeMaskTest, ReportsTrainingProgressAndIgnoresOtherCameras) {
+  for (int k = 0; k < 3; ++k) source_.images[k] = scene(k, false);
+  edge_command_t train{};
+  train.camera_id = 7;  // another camera's
+  train.command = edge_command_t::TRAIN_BACKGROUND;
+  train.int_value = 5;
+  node_->on_command(train);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "no background model");
+  train.camera_id = edge_command_t::ALL_CAMERAS;
+  node_->on_command(train);
+  for (int k = 0; k < 3; ++k) node_->on_trigger(trigger(k));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "training background 3/5");
+  edge_command_t stop{};
+  stop.camera_id = 4;
+  stop.command = edge_command_t::SHUTDOWN;
+  EXPECT_TRUE(node_->on_command(stop));
+}
+
 TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   const auto o =
       parse_edge_options({"--camera-id", "3", "--source", "replay:/tmp/x", "--threshold", "90"});
@@ -119,6 +200,12 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
       {"--camera-id", "2", "--source", "aravis:127.0.0.4", "--trigger-source", "Line1"});
   EXPECT_EQ(camera.source, "aravis:127.0.0.4");
   EXPECT_EQ(camera.trigger_source, "Line1");
+  const auto both = parse_edge_options(
+      {"--camera-id", "2", "--source", "replay:/x", "--mode", "both", "--train-frames", "60"});
+  EXPECT_TRUE(both.blobs && both.mask);
+  EXPECT_EQ(both.train_frames, 60);
+  EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode", "all"}),
+               UsageError);
   EXPECT_THROW(parse_edge_options({"--source", "replay:/x"}), UsageError);
   EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--bogus"}),
                UsageError);

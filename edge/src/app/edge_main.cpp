@@ -51,10 +51,12 @@ int run(const syncap::edge::EdgeOptions& options) {
   }
   const std::string blob_channel = syncap::proto::blob_channel(options.camera_id);
   const std::string status_channel = syncap::proto::status_channel(options.camera_id);
+  const std::string silhouette_channel = syncap::proto::silhouette_channel(options.camera_id);
   syncap::edge::EdgeNode node(
       options, *source,
       {[&](const syncap::blob_frame_t& m) { lcm.publish(blob_channel, &m); },
-       [&](const syncap::camera_status_t& m) { lcm.publish(status_channel, &m); }});
+       [&](const syncap::camera_status_t& m) { lcm.publish(status_channel, &m); },
+       [&](const syncap::silhouette_part_t& m) { lcm.publish(silhouette_channel, &m); }});
 
   bool shutdown = false;
   syncap::proto::Subscriber subscriber(
@@ -64,9 +66,7 @@ int run(const syncap::edge::EdgeOptions& options) {
       [&](const syncap::trigger_t& t, const std::string&) { node.on_trigger(t); });
   subscriber.subscribe<syncap::edge_command_t>(
       syncap::proto::kEdgeCommandChannel, [&](const syncap::edge_command_t& c, const std::string&) {
-        const bool for_me =
-            c.camera_id == syncap::edge_command_t::ALL_CAMERAS || c.camera_id == options.camera_id;
-        if (for_me && c.command == syncap::edge_command_t::SHUTDOWN) shutdown = true;
+        if (node.on_command(c)) shutdown = true;
       });
 
   if (!options.quiet) {

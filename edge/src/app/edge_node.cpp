@@ -21,7 +21,31 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
     : options_(options),
       source_(source),
       publish_(std::move(publisher)),
-      interval_start_ns_(now_ns(CLOCK_MONOTONIC)) {}
+      interval_start_ns_(now_ns(CLOCK_MONOTONIC)) {
+  if (options_.mask) {
+    silhouettes_.emplace(options_.contour_tolerance_px, MediPictureOptions{});
+    if (options_.train_frames > 0) silhouettes_->start_training(options_.train_frames);
+  }
+}
+
+bool EdgeNode::on_command(const edge_command_t& c) {
+  if (c.camera_id != edge_command_t::ALL_CAMERAS && c.camera_id != options_.camera_id) return false;
+  switch (c.command) {
+    case edge_command_t::SHUTDOWN:
+      return true;
+    case edge_command_t::TRAIN_BACKGROUND:
+      if (silhouettes_ && c.int_value > 0)
+        silhouettes_->start_training(static_cast<int>(c.int_value));
+      break;
+    case edge_command_t::SET_THRESHOLD:
+      if (c.int_value >= 0 && c.int_value <= 255)
+        options_.detector.threshold = static_cast<int>(c.int_value);
+      break;
+    default:
+      break;
+  }
+  return false;
+}
 
 void EdgeNode::on_trigger(const trigger_t& trigger) {
   if (trigger.flags & trigger_t::FLAG_LAST) saw_last_pulse_ = true;
@@ -47,10 +71,19 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   out.exposure_us = frame->exposure_us;
   out.image_width = static_cast<int16_t>(frame->image.cols);
   out.image_height = static_cast<int16_t>(frame->image.rows);
-  out.blobs = detect_blobs(frame->image, options_.detector);
+  if (options_.blobs) out.blobs = detect_blobs(frame->image, options_.detector);
+  std::vector<silhouette_part_t> silhouette;
+  if (silhouettes_) {
+    silhouette = silhouettes_->process(frame->image, options_.camera_id, trigger.frame_number);
+  }
   const int64_t done_ns = now_ns(CLOCK_MONOTONIC);
   out.processing_us = static_cast<int32_t>((done_ns - start_ns) / 1000);
-  for (const blob_frame_t& part : proto::split_blob_frame(out)) publish_.blobs(part);
+  if (options_.blobs) {
+    for (const blob_frame_t& part : proto::split_blob_frame(out)) publish_.blobs(part);
+  }
+  if (publish_.silhouette) {
+    for (const silhouette_part_t& part : silhouette) publish_.silhouette(part);
+  }
 
   ++frames_received_;
   ++interval_frames_;
@@ -75,7 +108,9 @@ void EdgeNode::publish_status(bool final) {
   s.frame_rate_hz = interval_s > 0 ? static_cast<float>(interval_frames_ / interval_s) : 0.0f;
   s.processing_us_mean =
       interval_frames_ > 0 ? static_cast<float>(interval_processing_us_ / interval_frames_) : 0.0f;
-  s.message = last_error_.substr(0, camera_status_t::MAX_MESSAGE);
+  std::string note = last_error_;
+  if (silhouettes_ && note.empty()) note = silhouettes_->state();
+  s.message = note.substr(0, camera_status_t::MAX_MESSAGE);
   publish_.status(s);
   interval_frames_ = 0;
   interval_processing_us_ = 0;

@@ -7,9 +7,12 @@
 #include <string>
 
 #include "app/edge_options.hpp"
+#include "app/silhouette_stage.hpp"
 #include "sensor/frame_source.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
+#include "syncap/edge_command_t.hpp"
+#include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
 
 namespace syncap::edge {
@@ -17,6 +20,7 @@ namespace syncap::edge {
 struct EdgePublisher {
   std::function<void(const blob_frame_t&)> blobs;
   std::function<void(const camera_status_t&)> status;
+  std::function<void(const silhouette_part_t&)> silhouette;
 };
 
 class EdgeNode {
@@ -25,6 +29,9 @@ class EdgeNode {
 
   // Grabs and processes the exposure of this trigger; publishes its blob frame (in parts).
   void on_trigger(const trigger_t& trigger);
+  // Obeys a command meant for this camera: TRAIN_BACKGROUND (int_value frames), SET_THRESHOLD.
+  // Returns true for SHUTDOWN.
+  bool on_command(const edge_command_t& command);
   // Publishes a heartbeat; `final` marks the last one before the process exits.
   void publish_status(bool final = false);
 
@@ -45,6 +52,7 @@ class EdgeNode {
   double interval_processing_us_ = 0;
   int64_t interval_start_ns_ = 0;
   bool saw_last_pulse_ = false;
+  std::optional<SilhouetteStage> silhouettes_;
   std::string last_error_;
 };
 

@@ -30,6 +30,10 @@ std::string edge_usage() {
          "  --exposure-us US    aravis: exposure time\n"
          "  --udp-socket        aravis: receive with a UDP socket, not a packet socket (no\n"
          "                      CAP_NET_RAW needed; its buffer grows only after the first frame)\n"
+         "  --mode M            blobs (default), mask (silhouettes) or both\n"
+         "  --train-frames N    mask: train the background on the first N frames (else on the\n"
+         "                      host's TRAIN_BACKGROUND command)\n"
+         "  --contour-tolerance PX  mask: polygon simplification (default 1)\n"
          "  --threshold DN      blob threshold 1..255 (default 128)\n"
          "  --min-area PX       smallest blob area (default 2)\n"
          "  --max-area PX       largest blob area (default 20000)\n"
@@ -61,6 +65,17 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
       o.trigger_source = value();
     } else if (a == "--exposure-us") {
       o.exposure_us = parse_number<int>(a, value(), 1, 10'000'000);
+    } else if (a == "--mode") {
+      const std::string mode = value();
+      if (mode != "blobs" && mode != "mask" && mode != "both") {
+        throw UsageError("syncap-edge: --mode '" + mode + "': expected blobs, mask or both");
+      }
+      o.blobs = mode != "mask";
+      o.mask = mode != "blobs";
+    } else if (a == "--train-frames") {
+      o.train_frames = parse_number<int>(a, value(), 1, 10000);
+    } else if (a == "--contour-tolerance") {
+      o.contour_tolerance_px = parse_number<int>(a, value(), 0, 100);
     } else if (a == "--udp-socket") {
       o.udp_socket = true;
     } else if (a == "--threshold") {

@@ -15,6 +15,10 @@ struct EdgeOptions {
   std::string trigger_source;  // aravis: camera TriggerSource; empty: as configured
   double exposure_us = 0;      // aravis: 0 = as configured
   bool udp_socket = false;     // aravis: plain UDP socket instead of a packet socket
+  bool blobs = true;           // --mode blobs|mask|both
+  bool mask = false;
+  int train_frames = 0;  // mask: train on the first N frames (0: wait for the command)
+  double contour_tolerance_px = 1.0;
   std::string lcm_url;
   BlobDetectorConfig detector;
   double heartbeat_s = 1.0;
