@@ -78,17 +78,23 @@ static void* sim_open(const char* argument) {
   return chip;
 }
 
-// A shared chip's lines start a new run, so that watchers number this writer's edges from 1.
-static int sim_request_outputs(void* state, const unsigned* offsets, size_t num_lines,
-                               const char* consumer) {
-  (void)consumer;
-  struct sim_chip* chip = state;
+// EINVAL for an offset beyond the simulated chip's lines.
+static int check_offsets(const unsigned* offsets, size_t num_lines) {
   for (size_t i = 0; i < num_lines; ++i) {
     if (offsets[i] >= SYNCAP_GPIO_SIM_NUM_LINES) {
       errno = EINVAL;
       return -1;
     }
   }
+  return 0;
+}
+
+// A shared chip's lines start a new run, so that watchers number this writer's edges from 1.
+static int sim_request_outputs(void* state, const unsigned* offsets, size_t num_lines,
+                               const char* consumer) {
+  (void)consumer;
+  struct sim_chip* chip = state;
+  if (check_offsets(offsets, num_lines) < 0) return -1;
   if (chip->shared == NULL) return 0;
   return syncap_gpiosim_claim_lines(chip->shared, offsets, num_lines);
 }
@@ -135,12 +141,7 @@ static int sim_request_inputs(void* state, const unsigned* offsets, size_t num_l
                               const char* consumer) {
   (void)consumer;
   struct sim_chip* chip = state;
-  for (size_t i = 0; i < num_lines; ++i) {
-    if (offsets[i] >= SYNCAP_GPIO_SIM_NUM_LINES) {
-      errno = EINVAL;
-      return -1;
-    }
-  }
+  if (check_offsets(offsets, num_lines) < 0) return -1;
   if (chip->shared == NULL) return 0;
   for (size_t i = 0; i < num_lines; ++i) {
     struct syncap_gpiosim_line line;
