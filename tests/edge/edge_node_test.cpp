@@ -146,7 +146,12 @@ TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
   EXPECT_TRUE(silhouettes_.empty());
   node_->on_trigger(trigger(10));
   ASSERT_FALSE(silhouettes_.empty());
-  EXPECT_TRUE(frames_.empty());  // mask mode: no blob frames
+  // mask mode: every frame's record is a blob frame without blobs; it announces the silhouette
+  ASSERT_EQ(frames_.size(), 10u);
+  EXPECT_TRUE(frames_.back().blobs.empty());
+  EXPECT_EQ(frames_.back().frame_number, 10);
+  EXPECT_EQ(frames_.back().silhouette_parts, static_cast<int16_t>(silhouettes_.size()));
+  EXPECT_EQ(frames_.front().silhouette_parts, 0);  // before the model: nothing announced
   const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
   EXPECT_EQ(s.frame_number, 10);
   EXPECT_EQ(s.camera_id, 4);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "syncap/proto/blob_parts.hpp"
+#include "syncap/proto/contour_codec.hpp"
 
 namespace syncap::host {
 namespace {
@@ -114,6 +115,87 @@ TEST(FrameGrouper, FlushHandsOutEverythingHeld) {
   ASSERT_EQ(all.size(), 2u);
   EXPECT_FALSE(all[0].complete());
   EXPECT_FALSE(all[1].trigger.has_value());
+}
+
+// A square outline of `points` points per side, long enough to need several parts when large.
+std::vector<silhouette_part_t> silhouette(int camera, int64_t k, int side) {
+  proto::Contour square;
+  for (int i = 0; i < side; ++i) square.points.push_back({i, 0});
+  for (int i = 0; i < side; ++i) square.points.push_back({side, i});
+  for (int i = side; i > 0; --i) square.points.push_back({i, side});
+  for (int i = side; i > 0; --i) square.points.push_back({0, i});
+  std::vector<proto::Contour> contours{square};
+  return proto::encode_silhouette(camera, k, 640, 480, contours);
+}
+
+blob_frame_t blobs_announcing(int camera, int64_t k, std::size_t silhouette_parts) {
+  blob_frame_t f = blobs(camera, k, 0);
+  f.silhouette_parts = static_cast<int16_t>(silhouette_parts);
+  return f;
+}
+
+TEST(FrameGrouper, GroupWaitsForTheAnnouncedSilhouetteAndCarriesItsContours) {
+  FrameGrouper grouper({0}, 5);
+  const auto parts = silhouette(0, 7, 600);
+  ASSERT_GT(parts.size(), 1u);
+  grouper.add_trigger(trigger(7));
+  grouper.add_blob_part(blobs_announcing(0, 7, parts.size()));
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    EXPECT_TRUE(grouper.add_silhouette_part(parts[i]));
+    EXPECT_TRUE(grouper.pop_ready().empty()) << "handed out before part " << i + 1 << " came";
+  }
+  EXPECT_TRUE(grouper.add_silhouette_part(parts.back()));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_TRUE(ready[0].complete());
+  const proto::Silhouette& s = ready[0].silhouettes.at(0);
+  ASSERT_EQ(s.contours.size(), 1u);
+  EXPECT_EQ(s.contours[0].points.size(), 4u * 600u);
+  EXPECT_TRUE(s.contours[0].complete);
+}
+
+TEST(FrameGrouper, LostSilhouettePartIsNamedAndTheRestKept) {
+  FrameGrouper grouper({0}, 2);
+  const auto parts = silhouette(0, 3, 600);
+  ASSERT_GT(parts.size(), 2u);
+  grouper.add_trigger(trigger(3));
+  grouper.add_blob_part(blobs_announcing(0, 3, parts.size()));
+  for (std::size_t i = 1; i < parts.size(); ++i) grouper.add_silhouette_part(parts[i]);
+  grouper.add_trigger(trigger(6));  // 6 - 2 = 4 > 3: frame 3 waited long enough
+  const auto ready = grouper.pop_ready();
+  ASSERT_GE(ready.size(), 1u);
+  EXPECT_FALSE(ready[0].complete());
+  EXPECT_EQ(ready[0].incomplete_silhouettes, std::vector<int>{0});
+  EXPECT_TRUE(ready[0].missing_cameras.empty());
+  const proto::Silhouette& s = ready[0].silhouettes.at(0);
+  EXPECT_EQ(s.parts_received, static_cast<int>(parts.size()) - 1);
+  ASSERT_FALSE(s.contours.empty());
+  EXPECT_FALSE(s.contours[0].complete);
+}
+
+TEST(FrameGrouper, UndecodableSilhouetteIsRejectedWithoutLosingTheBlobs) {
+  FrameGrouper grouper({0}, 5);
+  auto parts = silhouette(0, 9, 10);
+  ASSERT_EQ(parts.size(), 1u);
+  parts[0].data_size = 3;
+  parts[0].data.assign({0xff, 0xff, 0xff});  // a varint that never ends
+  grouper.add_trigger(trigger(9));
+  grouper.add_blob_part(blobs(0, 9, 2));
+  EXPECT_FALSE(grouper.add_silhouette_part(parts[0]));
+  EXPECT_NE(grouper.error().find("camera 0 frame 9"), std::string::npos) << grouper.error();
+  const auto ready = grouper.flush();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_EQ(ready[0].blobs.at(0).blobs.size(), 2u);
+}
+
+TEST(FrameGrouper, BlobFrameWithoutSilhouettePartsDoesNotWaitForOne) {
+  FrameGrouper grouper({0}, 5);
+  grouper.add_trigger(trigger(1));
+  grouper.add_blob_part(blobs(0, 1));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_TRUE(ready[0].complete());
+  EXPECT_TRUE(ready[0].silhouettes.empty());
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ TEST(MessageBudget, TriggerFitsAndRoundTrips) {
 
 TEST(MessageBudget, BlobFrameAtMaxBlobsFitsAndRoundTrips) {
   const blob_frame_t frame = test::max_blob_frame();
-  expect_fits_and_round_trips(frame, 8 + 38 + 23 * blob_frame_t::MAX_BLOBS);
+  expect_fits_and_round_trips(frame, 8 + 40 + 23 * blob_frame_t::MAX_BLOBS);
   const blob_frame_t back = decode<blob_frame_t>(encode(frame));
   ASSERT_EQ(back.blobs.size(), frame.blobs.size());
   EXPECT_FLOAT_EQ(back.blobs.back().x, frame.blobs.back().x);

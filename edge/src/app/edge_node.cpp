@@ -78,12 +78,12 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   }
   const int64_t done_ns = now_ns(CLOCK_MONOTONIC);
   out.processing_us = static_cast<int32_t>((done_ns - start_ns) / 1000);
-  if (options_.blobs) {
-    for (const blob_frame_t& part : proto::split_blob_frame(out)) publish_.blobs(part);
-  }
-  if (publish_.silhouette) {
-    for (const silhouette_part_t& part : silhouette) publish_.silhouette(part);
-  }
+  // The blob frame is the frame's record, sent in every mode (no blobs in mask-only mode): it
+  // tells the host how many silhouette parts to wait for.
+  if (!publish_.silhouette) silhouette.clear();
+  out.silhouette_parts = static_cast<int16_t>(silhouette.size());
+  for (const blob_frame_t& part : proto::split_blob_frame(out)) publish_.blobs(part);
+  for (const silhouette_part_t& part : silhouette) publish_.silhouette(part);
 
   ++frames_received_;
   ++interval_frames_;

@@ -18,6 +18,7 @@ namespace {
 const char* kUsage =
     "usage: syncap-hil-compare --truth DIR --groups FILE [--json FILE] [--max-rms-px 0.1]\n"
     "                          [--min-detection 0.98] [--match-radius-px 3] [--min-frames 0.99]\n"
+    "                          [--min-iou 0.95] [--require-silhouettes]\n"
     "  --truth DIR            the simulator's output: DIR/cameras.json, DIR/truth/*.csv\n"
     "  --groups FILE          the host's frame groups (syncap-host --out), JSON lines\n"
     "  --json FILE            also write the figures as JSON\n"
@@ -25,6 +26,8 @@ const char* kUsage =
     "  --min-detection SHARE  per camera: matched / visible targets in reported frames\n"
     "  --match-radius-px PX   a blob matches the nearest free target within PX\n"
     "  --min-frames SHARE     complete groups / truth frames\n"
+    "  --min-iou SHARE        per camera: mean IoU of its silhouettes against the true masks\n"
+    "  --require-silhouettes  per camera: a silhouette in min-frames of the frames with a mask\n"
     "exit 0 PASS, 1 FAIL, 2 unusable inputs\n";
 
 struct Options {
@@ -53,12 +56,17 @@ Options parse(int argc, char** argv) {
   std::map<std::string, double*> numbers{{"--max-rms-px", &o.thresholds.max_rms_px},
                                          {"--min-detection", &o.thresholds.min_detection},
                                          {"--match-radius-px", &o.thresholds.match_radius_px},
-                                         {"--min-frames", &o.thresholds.min_frames}};
+                                         {"--min-frames", &o.thresholds.min_frames},
+                                         {"--min-iou", &o.thresholds.min_iou}};
   for (int i = 1; i < argc; ++i) {
     const std::string option = argv[i];
     if (option == "--help" || option == "-h") {
       std::cout << kUsage;
       std::exit(0);
+    }
+    if (option == "--require-silhouettes") {
+      o.thresholds.require_silhouettes = true;
+      continue;
     }
     if (i + 1 >= argc) usage_error("option '" + option + "' needs a value");
     const std::string value = argv[++i];
@@ -71,8 +79,8 @@ Options parse(int argc, char** argv) {
     }
   }
   if (o.truth.empty() || o.groups.empty()) usage_error("--truth and --groups are required");
-  if (o.thresholds.min_detection > 1 || o.thresholds.min_frames > 1) {
-    usage_error("--min-detection and --min-frames are shares from 0 to 1");
+  if (o.thresholds.min_detection > 1 || o.thresholds.min_frames > 1 || o.thresholds.min_iou > 1) {
+    usage_error("--min-detection, --min-frames and --min-iou are shares from 0 to 1");
   }
   return o;
 }

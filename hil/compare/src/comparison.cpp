@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "matcher.hpp"
+#include "silhouettes.hpp"
 
 namespace syncap::compare {
 namespace {
@@ -39,6 +40,22 @@ void tally_matching(const std::vector<TargetClass>& kinds, const Matching& m, Ta
   tally.false_blobs += static_cast<long>(m.unmatched_blobs.size());
 }
 
+// The camera's silhouette against the true mask of the frame, when the truth has one.
+SilhouetteTally compare_silhouette(const Truth& truth, long frame, int camera,
+                                   const CameraBlobs& received) {
+  SilhouetteTally tally;
+  const auto image = truth.images.find(camera);
+  if (image == truth.images.end()) return tally;
+  const auto true_mask = read_truth_mask(truth.dir, frame, camera, image->second);
+  if (!true_mask) return tally;
+  ++tally.expected;
+  if (!received.silhouette) return tally;
+  ++tally.received;
+  const cv::Mat mask = silhouette_mask(*received.silhouette, image->second);
+  if (const auto iou = intersection_over_union(mask, *true_mask)) tally.iou.add(*iou);
+  return tally;
+}
+
 void compare_group(const Truth& truth, const Group& g, const std::string& phase_type,
                    Report& report) {
   static const std::vector<Projection> kNoTargets;
@@ -59,6 +76,10 @@ void compare_group(const Truth& truth, const Group& g, const std::string& phase_
     c.processing_us.add(camera.processing_us);
     report.phases[phase_type].tally += tally;
     report.overall.tally += tally;
+    const SilhouetteTally silhouettes = compare_silhouette(truth, g.frame, id, camera);
+    c.silhouettes += silhouettes;
+    report.phases[phase_type].silhouettes += silhouettes;
+    report.overall.silhouettes += silhouettes;
   }
 }
 
@@ -72,6 +93,20 @@ void judge_frames(Report& r) {
   }
 }
 
+void judge_silhouettes(const std::string& name, const SilhouetteTally& s, Report& r) {
+  if (const auto iou = s.iou.mean(); iou && *iou < r.thresholds.min_iou) {
+    r.failures.push_back(name + "silhouette IoU " + percent(*iou) + " < " +
+                         percent(r.thresholds.min_iou));
+  }
+  if (!r.thresholds.require_silhouettes || s.expected == 0) return;
+  const double share = static_cast<double>(s.received) / static_cast<double>(s.expected);
+  if (share < r.thresholds.min_frames) {
+    r.failures.push_back(name + "silhouettes in " + std::to_string(s.received) + "/" +
+                         std::to_string(s.expected) + " frames with a true mask (" +
+                         percent(share) + " < " + percent(r.thresholds.min_frames) + ")");
+  }
+}
+
 void judge_camera(int id, const CameraReport& c, Report& r) {
   const std::string name = "camera " + std::to_string(id) + ": ";
   if (const auto rate = c.tally.counted.rate(); rate && *rate < r.thresholds.min_detection) {
@@ -81,6 +116,7 @@ void judge_camera(int id, const CameraReport& c, Report& r) {
   if (const auto rms = c.tally.counted.errors.rms(); rms && *rms > r.thresholds.max_rms_px) {
     r.failures.push_back(name + "RMS " + pixels(*rms) + " > " + pixels(r.thresholds.max_rms_px));
   }
+  judge_silhouettes(name, c.silhouettes, r);
 }
 
 }  // namespace

@@ -16,6 +16,10 @@ struct Thresholds {
   double min_detection = 0.98;  // per camera: matched / counted targets in frames it reported
   double match_radius_px = 3;   // a blob farther than this from every target is a false blob
   double min_frames = 0.99;     // complete groups / truth frames
+  double min_iou = 0.95;        // per camera: mean IoU of its silhouettes against the true masks
+  // per camera: silhouettes received / frames with a true mask must reach min_frames (off: a
+  // camera that sent no silhouettes is not judged on them)
+  bool require_silhouettes = false;
 };
 
 struct FrameCounts {
@@ -34,11 +38,13 @@ struct CameraReport {
   long groups_with = 0;     // truth frames whose group holds this camera's blobs
   long groups_without = 0;  // truth frames whose group lacks them
   Samples processing_us;
+  SilhouetteTally silhouettes;
 };
 
 struct PhaseReport {
   FrameCounts frames;
   Tally tally;  // all cameras
+  SilhouetteTally silhouettes;
 };
 
 struct Report {

@@ -37,6 +37,38 @@ int camera_id(const std::string& key, const std::string& where) {
   return id;
 }
 
+Outline parse_outline(const json& value, const std::string& where, const std::string& path) {
+  if (!value.is_object()) fail(where, path + " is not an object");
+  Outline outline;
+  if (value.contains("hole")) {
+    if (!value["hole"].is_boolean()) fail(where, path + ".hole is not true or false");
+    outline.hole = value["hole"].get<bool>();
+  }
+  const json& points = member(value, "points", where);
+  if (!points.is_array()) fail(where, path + ".points is not an array");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const json& p = points[i];
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer()) {
+      fail(where, path + ".points[" + std::to_string(i) + "] is not [x, y] in whole pixels");
+    }
+    outline.points.emplace_back(p[0].get<int>(), p[1].get<int>());
+  }
+  return outline;
+}
+
+std::vector<Outline> parse_silhouette(const json& value, const std::string& where,
+                                      const std::string& path) {
+  if (!value.is_object()) fail(where, path + " is not an object");
+  const json& contours = member(value, "contours", where);
+  if (!contours.is_array()) fail(where, path + ".contours is not an array");
+  std::vector<Outline> outlines;
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    outlines.push_back(
+        parse_outline(contours[i], where, path + ".contours[" + std::to_string(i) + "]"));
+  }
+  return outlines;
+}
+
 CameraBlobs parse_camera(const json& value, const std::string& where, const std::string& path) {
   if (!value.is_object()) fail(where, path + " is not an object");
   CameraBlobs camera;
@@ -52,6 +84,9 @@ CameraBlobs parse_camera(const json& value, const std::string& where, const std:
            number(blobs[i], "y", where, blob_path + "."), 0.0};
     if (blobs[i].contains("area")) b.area = number(blobs[i], "area", where, blob_path + ".");
     camera.blobs.push_back(b);
+  }
+  if (value.contains("silhouette")) {
+    camera.silhouette = parse_silhouette(value["silhouette"], where, path + ".silhouette");
   }
   return camera;
 }

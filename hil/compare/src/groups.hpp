@@ -1,14 +1,19 @@
 // The host's frame groups as syncap-host --out writes them (host/src/app/host_main.cpp,
 // group_json), one JSON object a line:
 //   {"frame":k,"complete":true,"missing_cameras":[..],"trigger_monotonic_ns":..,
-//    "cameras":{"0":{"processing_us":..,"blobs":[{"x":..,"y":..,"area":..},...]},...}}
+//    "cameras":{"0":{"processing_us":..,"blobs":[{"x":..,"y":..,"area":..},...],
+//                    "silhouette":{"width":..,"height":..,"contours":[{"hole":false,
+//                                  "points":[[x,y],...]},...]}},...}}
 #pragma once
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <opencv2/core/types.hpp>
 
 namespace syncap::compare {
 
@@ -17,9 +22,16 @@ struct Blob {
   double area = 0;      // pixels
 };
 
+// One contour of a silhouette: the centres of the foreground's boundary pixels, in order.
+struct Outline {
+  bool hole = false;
+  std::vector<cv::Point> points;
+};
+
 struct CameraBlobs {
   double processing_us = 0;
   std::vector<Blob> blobs;
+  std::optional<std::vector<Outline>> silhouette;  // when the camera sent one for the frame
 };
 
 struct Group {

@@ -58,6 +58,7 @@ Tally& Tally::operator+=(const Tally& other) {
 
 void Samples::add(double value) {
   max_ = count_ == 0 ? value : std::max(max_, value);
+  min_ = count_ == 0 ? value : std::min(min_, value);
   ++count_;
   sum_ += value;
 }
@@ -70,6 +71,27 @@ std::optional<double> Samples::mean() const {
 std::optional<double> Samples::max() const {
   if (count_ == 0) return std::nullopt;
   return max_;
+}
+
+std::optional<double> Samples::min() const {
+  if (count_ == 0) return std::nullopt;
+  return min_;
+}
+
+Samples& Samples::operator+=(const Samples& other) {
+  if (other.count_ == 0) return *this;
+  max_ = count_ == 0 ? other.max_ : std::max(max_, other.max_);
+  min_ = count_ == 0 ? other.min_ : std::min(min_, other.min_);
+  count_ += other.count_;
+  sum_ += other.sum_;
+  return *this;
+}
+
+SilhouetteTally& SilhouetteTally::operator+=(const SilhouetteTally& other) {
+  expected += other.expected;
+  received += other.received;
+  iou += other.iou;
+  return *this;
 }
 
 }  // namespace syncap::compare

@@ -48,17 +48,28 @@ struct Tally {
   Tally& operator+=(const Tally& other);
 };
 
-// Mean and maximum of a sampled quantity (the edges' processing time).
+// Mean, minimum and maximum of a sampled quantity (the edges' processing time, silhouette IoU).
 class Samples {
  public:
   void add(double value);
+  Samples& operator+=(const Samples& other);
   long count() const { return count_; }
   std::optional<double> mean() const;
+  std::optional<double> min() const;
   std::optional<double> max() const;
 
  private:
   long count_ = 0;
-  double sum_ = 0, max_ = 0;
+  double sum_ = 0, min_ = 0, max_ = 0;
+};
+
+// Silhouettes against the true masks, over the frames that have a true mask (person phases).
+struct SilhouetteTally {
+  long expected = 0;  // (frame, camera) with a true mask whose group holds the camera
+  long received = 0;  // of those, with a silhouette from the camera
+  Samples iou;        // IoU of each received silhouette whose mask or truth is not empty
+
+  SilhouetteTally& operator+=(const SilhouetteTally& other);
 };
 
 }  // namespace syncap::compare

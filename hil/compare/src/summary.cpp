@@ -75,6 +75,20 @@ std::string phase_table(const Report& r) {
   return out + phase_row("all", r.overall);
 }
 
+// Only when the truth has masks (person phases).
+std::string silhouette_table(const Report& r) {
+  if (r.overall.silhouettes.expected == 0) return "";
+  std::string out = "silhouettes (frames with a true mask; IoU against it):\n";
+  out += printed("  %-6s %8s %8s %8s %8s %8s\n", "camera", "masks", "received", "iou_mean",
+                 "iou_min", "iou_max");
+  auto row = [](const std::string& name, const SilhouetteTally& s) {
+    return printed("  %-6s %8ld %8ld", name.c_str(), s.expected, s.received) +
+           cell(s.iou.mean(), 8, 4) + cell(s.iou.min(), 8, 4) + cell(s.iou.max(), 8, 4) + "\n";
+  };
+  for (const auto& [id, c] : r.cameras) out += row(std::to_string(id), c.silhouettes);
+  return out + row("all", r.overall.silhouettes);
+}
+
 std::string frames_line(const Report& r) {
   const FrameCounts& f = r.overall.frames;
   return printed("frames: %ld/%ld truth frames at the host, %ld complete (%.1f%%)", f.at_host,
@@ -88,8 +102,9 @@ std::string frames_line(const Report& r) {
 std::string thresholds_line(const Thresholds& t) {
   return printed(
       "limits: RMS <= %.3f px and detection >= %.1f%% per camera, complete frames >= %.1f%%, "
-      "match radius %.2f px\n",
-      t.max_rms_px, 100.0 * t.min_detection, 100.0 * t.min_frames, t.match_radius_px);
+      "match radius %.2f px, silhouette IoU >= %.3f%s\n",
+      t.max_rms_px, 100.0 * t.min_detection, 100.0 * t.min_frames, t.match_radius_px, t.min_iou,
+      t.require_silhouettes ? " (silhouettes required)" : "");
 }
 
 ordered_json optional_json(std::optional<double> value) {
@@ -119,6 +134,14 @@ ordered_json frames_json(const FrameCounts& f) {
   return {{"truth", f.truth}, {"at_host", f.at_host}, {"complete", f.complete}};
 }
 
+ordered_json silhouettes_json(const SilhouetteTally& s) {
+  return {{"expected", s.expected},
+          {"received", s.received},
+          {"iou_mean", optional_json(s.iou.mean())},
+          {"iou_min", optional_json(s.iou.min())},
+          {"iou_max", optional_json(s.iou.max())}};
+}
+
 ordered_json camera_json(int id, const CameraReport& c) {
   ordered_json j{{"id", id},
                  {"groups_with", c.groups_with},
@@ -126,12 +149,14 @@ ordered_json camera_json(int id, const CameraReport& c) {
                  {"processing_us_mean", optional_json(c.processing_us.mean())},
                  {"processing_us_max", optional_json(c.processing_us.max())}};
   j.update(tally_json(c.tally));
+  j["silhouettes"] = silhouettes_json(c.silhouettes);
   return j;
 }
 
 ordered_json phase_json(const std::string& type, const PhaseReport& p) {
   ordered_json j{{"type", type}, {"frames", frames_json(p.frames)}};
   j.update(tally_json(p.tally));
+  j["silhouettes"] = silhouettes_json(p.silhouettes);
   return j;
 }
 
@@ -148,7 +173,8 @@ std::string verdict_line(const Report& report) {
 
 std::string format_summary(const Report& report, const std::string& heading) {
   return heading + "\n" + thresholds_line(report.thresholds) + frames_line(report) +
-         camera_table(report) + phase_table(report) + verdict_line(report) + "\n";
+         camera_table(report) + phase_table(report) + silhouette_table(report) +
+         verdict_line(report) + "\n";
 }
 
 ordered_json report_json(const Report& r) {
@@ -159,7 +185,9 @@ ordered_json report_json(const Report& r) {
                   {{"max_rms_px", t.max_rms_px},
                    {"min_detection", t.min_detection},
                    {"match_radius_px", t.match_radius_px},
-                   {"min_frames", t.min_frames}}},
+                   {"min_frames", t.min_frames},
+                   {"min_iou", t.min_iou},
+                   {"require_silhouettes", t.require_silhouettes}}},
                  {"frames", frames_json(r.overall.frames)},
                  {"groups_outside_truth", r.groups_outside_truth}};
   j["cameras"] = ordered_json::array();
@@ -169,6 +197,7 @@ ordered_json report_json(const Report& r) {
     j["phases"].push_back(phase_json(type, r.phases.at(type)));
   }
   j["overall"] = tally_json(r.overall.tally);
+  j["overall"]["silhouettes"] = silhouettes_json(r.overall.silhouettes);
   return j;
 }
 

@@ -79,6 +79,7 @@ std::vector<Projection> read_projections(const std::filesystem::path& file,
 
 Truth read_truth(const std::filesystem::path& dir) {
   Truth truth;
+  truth.dir = dir;
   truth.frames = read_frames(dir / "truth" / "frames.csv");
   truth.images = read_image_sizes(dir / "cameras.json");
   for (const Projection& p :

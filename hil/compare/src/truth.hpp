@@ -39,6 +39,7 @@ using ImageSizes = std::map<int, ImageSize>;     // by camera id
 using FrameCamera = std::pair<long, int>;        // (frame, camera)
 
 struct Truth {
+  std::filesystem::path dir;  // the simulator's output folder (masks are read from it on demand)
   TruthFrames frames;
   ImageSizes images;
   std::map<FrameCamera, std::vector<Projection>> projections;  // in target order

@@ -46,10 +46,48 @@ bool FrameGrouper::add_blob_part(const blob_frame_t& part) {
   return true;
 }
 
+bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part) {
+  if (reject_late(part.frame_number, "silhouette of camera " + std::to_string(part.camera_id))) {
+    return false;
+  }
+  const proto::AddResult result = silhouette_parts_.add(part);
+  if (result == proto::AddResult::kRejected) {
+    error_ = silhouette_parts_.error();
+    return false;
+  }
+  note_frame(part.frame_number);
+  if (result != proto::AddResult::kComplete) return true;
+  return keep_silhouette(silhouette_parts_.take({part.camera_id, part.frame_number}));
+}
+
+// Decodes a silhouette's parts (all, or what came) into the frame's pending group. Data that does
+// not decode is reported and dropped; the rest of the frame is unaffected.
+bool FrameGrouper::keep_silhouette(const proto::PartSet<silhouette_part_t>& set) {
+  try {
+    pending_[set.key.frame_number].silhouettes[set.key.camera_id] =
+        proto::decode_silhouette(set.parts);
+    return true;
+  } catch (const proto::ContourDecodeError& e) {
+    error_ = std::string("silhouette dropped: ") + e.what();
+    return false;
+  }
+}
+
+// A camera is done for a frame when its blob frame is whole and the silhouette parts it
+// announced have all arrived.
+bool FrameGrouper::camera_complete(const Pending& p, int camera) const {
+  auto blobs = p.blobs.find(camera);
+  if (blobs == p.blobs.end()) return false;
+  if (blobs->second.silhouette_parts <= 0) return true;
+  auto silhouette = p.silhouettes.find(camera);
+  return silhouette != p.silhouettes.end() &&
+         silhouette->second.parts_received >= blobs->second.silhouette_parts;
+}
+
 bool FrameGrouper::is_complete(const Pending& p) const {
   if (!p.trigger) return false;
   return std::all_of(expected_.begin(), expected_.end(),
-                     [&](int camera) { return p.blobs.contains(camera); });
+                     [&](int camera) { return camera_complete(p, camera); });
 }
 
 FrameGroup FrameGrouper::finish(int64_t frame_number, Pending pending) {
@@ -57,11 +95,19 @@ FrameGroup FrameGrouper::finish(int64_t frame_number, Pending pending) {
   group.frame_number = frame_number;
   group.trigger = std::move(pending.trigger);
   group.blobs = std::move(pending.blobs);
+  group.silhouettes = std::move(pending.silhouettes);
   for (int camera : expected_) {
     auto it = group.blobs.find(camera);
     // A frame joined from fewer parts than were sent lacks blobs: count the camera as missing.
     if (it == group.blobs.end() || it->second.num_blobs < it->second.total_blobs) {
       group.missing_cameras.push_back(camera);
+    }
+  }
+  for (const auto& [camera, frame] : group.blobs) {
+    if (frame.silhouette_parts <= 0) continue;
+    auto s = group.silhouettes.find(camera);
+    if (s == group.silhouettes.end() || s->second.parts_received < frame.silhouette_parts) {
+      group.incomplete_silhouettes.push_back(camera);
     }
   }
   return group;
@@ -72,6 +118,7 @@ void FrameGrouper::absorb_expired_parts(int64_t before_frame) {
   for (auto& set : parts_.expire_before(before_frame)) {
     pending_[set.key.frame_number].blobs[set.key.camera_id] = proto::join_blob_parts(set.parts);
   }
+  for (auto& set : silhouette_parts_.expire_before(before_frame)) keep_silhouette(set);
 }
 
 std::vector<FrameGroup> FrameGrouper::pop_ready() {

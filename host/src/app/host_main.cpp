@@ -99,6 +99,21 @@ HostOptions parse_options(int argc, char** argv) {
   return o;
 }
 
+// Contours as [[x, y], ...] in pixels (outline of the foreground pixels, holes flagged).
+nlohmann::json silhouette_json(const syncap::proto::Silhouette& s) {
+  nlohmann::json contours = nlohmann::json::array();
+  for (const auto& c : s.contours) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : c.points) points.push_back({p.x, p.y});
+    contours.push_back({{"hole", c.hole}, {"complete", c.complete}, {"points", points}});
+  }
+  return {{"width", s.image_width},
+          {"height", s.image_height},
+          {"parts", s.parts_received},
+          {"part_count", s.part_count},
+          {"contours", contours}};
+}
+
 nlohmann::json group_json(const syncap::host::FrameGroup& g) {
   nlohmann::json j{{"frame", g.frame_number},
                    {"complete", g.complete()},
@@ -110,7 +125,11 @@ nlohmann::json group_json(const syncap::host::FrameGroup& g) {
     for (const auto& b : f.blobs) blobs.push_back({{"x", b.x}, {"y", b.y}, {"area", b.area}});
     cameras[std::to_string(id)] = {{"processing_us", f.processing_us}, {"blobs", blobs}};
   }
+  for (const auto& [id, s] : g.silhouettes) {
+    cameras[std::to_string(id)]["silhouette"] = silhouette_json(s);
+  }
   j["cameras"] = cameras;
+  if (!g.incomplete_silhouettes.empty()) j["incomplete_silhouettes"] = g.incomplete_silhouettes;
   return j;
 }
 
@@ -124,12 +143,15 @@ std::string group_line(const syncap::host::FrameGroup& g, std::size_t expected) 
       std::snprintf(first, sizeof first, " first (%.2f, %.2f)", f.blobs[0].x, f.blobs[0].y);
     }
     line << " | c" << id << ": " << f.blobs.size() << " blobs" << first;
+    if (auto s = g.silhouettes.find(id); s != g.silhouettes.end()) {
+      line << ", silhouette " << s->second.contours.size() << " contours";
+    }
   }
   return line.str();
 }
 
 struct Tally {
-  long groups = 0, complete = 0, triggers = 0, blob_parts = 0, rejected = 0;
+  long groups = 0, complete = 0, triggers = 0, blob_parts = 0, silhouette_parts = 0, rejected = 0;
   std::map<int, syncap::camera_status_t> status;
 };
 
@@ -152,8 +174,9 @@ void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
                    const syncap::host::FrameGrouper& grouper) {
   std::cout << "host summary: " << t.groups << " frame groups (" << t.complete << " complete, "
             << t.groups - t.complete << " incomplete), " << t.triggers << " triggers, "
-            << t.blob_parts << " blob messages, " << sub.malformed() << " malformed, " << t.rejected
-            << " rejected (" << grouper.late_messages() << " late)\n";
+            << t.blob_parts << " blob messages, " << t.silhouette_parts << " silhouette parts, "
+            << sub.malformed() << " malformed, " << t.rejected << " rejected ("
+            << grouper.late_messages() << " late)\n";
   for (const auto& [id, s] : t.status) {
     std::cout << "  camera " << id << " status: " << state_name(s.state) << ", "
               << s.frames_received << " frames received, " << s.frames_lost << " lost"
@@ -205,6 +228,12 @@ int main(int argc, char** argv) {
                                         ++tally.blob_parts;
                                         reject(grouper.add_blob_part(f));
                                       });
+  sub.subscribe<syncap::silhouette_part_t>(
+      std::string(syncap::proto::kSilhouetteChannelPrefix) + ".*",
+      [&](const syncap::silhouette_part_t& p, const std::string&) {
+        ++tally.silhouette_parts;
+        reject(grouper.add_silhouette_part(p));
+      });
   sub.subscribe<syncap::camera_status_t>(
       std::string(syncap::proto::kStatusChannelPrefix) + ".*",
       [&](const syncap::camera_status_t& s, const std::string&) { tally.status[s.camera_id] = s; });

@@ -22,7 +22,7 @@ Group group(long frame, std::map<int, std::vector<Blob>> blobs_by_camera) {
   Group g;
   g.frame = frame;
   g.complete = blobs_by_camera.size() == 2;
-  for (auto& [id, blobs] : blobs_by_camera) g.cameras[id] = {100, blobs};
+  for (auto& [id, blobs] : blobs_by_camera) g.cameras[id] = {100, blobs, std::nullopt};
   return g;
 }
 
