@@ -1,0 +1,92 @@
+#include "calibration/exports.hpp"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include <opencv2/calib3d.hpp>
+
+#include "sensor/opencv_camera.hpp"
+
+namespace syncap::calibration {
+namespace {
+
+sensor::CameraModel basler(int id, double k1) {
+  sensor::CameraModel c;
+  c.id = id;
+  c.sensor = {1280, 1024, 0.0067, 0.0067};
+  c.interior.c = 8.5;
+  c.interior.xp = 0.021;
+  c.interior.yp = -0.013;
+  c.interior.k1 = k1;
+  c.exterior = {1200.0 * id, -3000.0, 1500.0, 1.35, 0.05 * id, -0.02};
+  return c;
+}
+
+TEST(OpenCvYaml, ReadsBackIntoCamerasThatProjectLikeOurs) {
+  const std::vector<sensor::CameraModel> cameras{basler(0, 0.0), basler(3, 0.0)};
+  cv::FileStorage fs(format_opencv_yaml(cameras), cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(fs.isOpened());
+  EXPECT_EQ(static_cast<int>(fs["camera_count"]), 2);
+  const cv::FileNode node = fs["camera_3"];
+  ASSERT_FALSE(node.empty());
+  cv::Mat k, dist, rvec, tvec;
+  cv::Size size;
+  node["camera_matrix"] >> k;
+  node["distortion"] >> dist;
+  node["rvec"] >> rvec;
+  node["tvec"] >> tvec;
+  node["image_size"] >> size;
+  EXPECT_EQ(size, cv::Size(1280, 1024));
+  const Eigen::Vector3d point(3200.0, 400.0, 900.0);
+  const auto ours = cameras[1].project(point);
+  ASSERT_EQ(ours.status, sensor::ProjectionStatus::kOk);
+  std::vector<cv::Point2d> theirs;
+  cv::projectPoints(std::vector<cv::Point3d>{{point.x(), point.y(), point.z()}}, rvec, tvec, k,
+                    dist, theirs);
+  EXPECT_NEAR(theirs[0].x, ours.pixel.x(), 1e-6);
+  EXPECT_NEAR(theirs[0].y, ours.pixel.y(), 1e-6);
+  EXPECT_NEAR(static_cast<double>(node["fit_rms_px"]), 0.0, 1e-9);
+}
+
+std::vector<double> toml_values(const std::string& toml, const std::string& table,
+                                const std::string& key) {
+  const auto start = toml.find("[" + table + "]");
+  EXPECT_NE(start, std::string::npos) << table;
+  const std::regex line("\n" + key + " = (.*)\n");
+  std::smatch m;
+  const std::string rest = toml.substr(start);
+  EXPECT_TRUE(std::regex_search(rest, m, line)) << key;
+  std::vector<double> values;
+  const std::regex number(R"([-+0-9.eE]+)");
+  const std::string text = m[1];
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number);
+       it != std::sregex_iterator(); ++it) {
+    values.push_back(std::stod(it->str()));
+  }
+  return values;
+}
+
+TEST(CalibrationToml, HoldsTheOpenCvCameraWithTheTranslationInMetres) {
+  const std::vector<sensor::CameraModel> cameras{basler(1, 0.0), basler(2, 1e-3)};
+  const std::string toml = format_calibration_toml(cameras, 0.123);
+  for (const sensor::CameraModel& camera : cameras) {
+    const std::string table = "cam_0" + std::to_string(camera.id);
+    const sensor::OpenCvCamera expected = sensor::opencv_from_camera(camera);
+    const auto matrix = toml_values(toml, table, "matrix");
+    ASSERT_EQ(matrix.size(), 9u);
+    for (int i = 0; i < 9; ++i) EXPECT_DOUBLE_EQ(matrix[i], expected.camera_matrix.val[i]);
+    const auto translation = toml_values(toml, table, "translation");
+    ASSERT_EQ(translation.size(), 3u);
+    for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(translation[i], expected.tvec[i] * 1e-3);
+    const auto distortions = toml_values(toml, table, "distortions");
+    ASSERT_EQ(distortions.size(), 5u);
+    EXPECT_DOUBLE_EQ(distortions[0], expected.distortion[0]);
+    EXPECT_EQ(toml_values(toml, table, "size"), (std::vector<double>{1280, 1024}));
+  }
+  EXPECT_NE(toml.find("[metadata]\nadjusted = true\nerror = 0.123"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("fisheye = false"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace syncap::calibration
