@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lcm_log_reader.hpp"
+#include "log_stats.hpp"
 #include "message_json.hpp"
 #include "subcommand.hpp"
 
@@ -19,6 +20,7 @@ constexpr const char* kErrorPrefix = "syncap log: ";
 struct LogArgs {
   std::string file;
   std::optional<std::regex> channel_filter;
+  bool stats = false;
 };
 
 nlohmann::ordered_json event_json(const LogEvent& event, const DecodedMessage& decoded) {
@@ -74,6 +76,8 @@ std::optional<std::string> parse_log_args(std::span<const std::string> args, Log
       } catch (const std::regex_error& error) {
         return "bad channel REGEX '" + args[i] + "': " + error.what();
       }
+    } else if (arg == "--stats") {
+      parsed.stats = true;
     } else if (arg.starts_with("-")) {
       return "unknown option " + arg;
     } else if (parsed.file.empty()) {
@@ -127,6 +131,10 @@ int log_command(std::span<const std::string> args, std::ostream& out, std::ostre
   if (!log) {
     err << kErrorPrefix << "cannot open " << parsed.file << ": " << std::strerror(errno) << '\n';
     return kExitUsage;
+  }
+  if (parsed.stats) {
+    print_traffic(collect_traffic(log), out);
+    return kExitOk;
   }
   return print_log(log, parsed.channel_filter, out, err);
 }

@@ -12,6 +12,7 @@ namespace syncap::tools {
 
 inline constexpr const char* kLogUsage =
     "usage: syncap log FILE [--channel REGEX]\n"
+    "       syncap log --stats FILE\n"
     "Prints every event of the LCM log FILE as one JSON object per line:\n"
     "  {\"event\":N,\"timestamp_us\":T,\"channel\":\"...\",\"type\":\"syncap.trigger_t\","
     "\"fields\":{...}}\n"
@@ -19,6 +20,8 @@ inline constexpr const char* kLogUsage =
     "\"type\":null and no fields; one that does not decode without fields. Damage is reported on\n"
     "stderr with its byte offset and skipped where possible.\n"
     "  --channel REGEX  only events whose whole channel name matches REGEX (ECMAScript)\n"
+    "  --stats          instead: messages and bytes per channel, and per camera the bytes per\n"
+    "                   frame of blobs and silhouettes against the raw frame\n"
     "Exit status: 0 all decoded, 1 damage reported, 2 usage error or unreadable FILE.\n";
 
 // Decodes the log in `log` and prints its events to `out`, damage to `err` (each line prefixed

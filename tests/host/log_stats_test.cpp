@@ -1,0 +1,99 @@
+#include "log_stats.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "lcm_log_reader.hpp"
+#include "syncap/proto/blob_parts.hpp"
+#include "syncap/proto/channels.hpp"
+#include "syncap/proto/contour_codec.hpp"
+
+namespace syncap::tools {
+namespace {
+
+template <class Msg>
+std::vector<std::uint8_t> encoded(const Msg& msg) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+class Log {
+ public:
+  template <class Msg>
+  void add(const std::string& channel, const Msg& msg) {
+    const auto record = encode_log_record(next_++, 0, channel, encoded(msg));
+    bytes_.append(record.begin(), record.end());
+  }
+  std::istringstream stream() const { return std::istringstream(bytes_); }
+
+ private:
+  std::string bytes_;
+  std::int64_t next_ = 0;
+};
+
+blob_frame_t frame(int camera, int64_t k, int blobs, int silhouette_parts) {
+  blob_frame_t f{};
+  f.camera_id = static_cast<int16_t>(camera);
+  f.frame_number = k;
+  f.image_width = 1280;
+  f.image_height = 1024;
+  f.part_count = 1;
+  f.blobs.resize(static_cast<std::size_t>(blobs));
+  f.num_blobs = f.total_blobs = static_cast<int16_t>(blobs);
+  f.silhouette_parts = static_cast<int16_t>(silhouette_parts);
+  return f;
+}
+
+TEST(LogStats, CountsDatagramBytesPerChannelAndPerFrame) {
+  Log log;
+  proto::Contour square{false, true, {{0, 0}, {100, 0}, {100, 100}, {0, 100}}};
+  const auto sil = proto::encode_silhouette(2, 1, 1280, 1024, std::vector{square});
+  ASSERT_EQ(sil.size(), 1u);
+  log.add(proto::blob_channel(2), frame(2, 0, 16, 0));
+  log.add(proto::blob_channel(2), frame(2, 1, 0, 1));
+  log.add(proto::silhouette_channel(2), sil[0]);
+  // 100 blobs: two parts, one frame.
+  for (const auto& part : proto::split_blob_frame(frame(3, 0, 100, 0))) {
+    log.add(proto::blob_channel(3), part);
+  }
+  std::istringstream in = log.stream();
+  const TrafficStats stats = collect_traffic(in);
+
+  EXPECT_EQ(stats.events, 5);
+  const std::int64_t blob16 = datagram_bytes(proto::blob_channel(2), 48 + 16 * 23);
+  const std::int64_t blob0 = datagram_bytes(proto::blob_channel(2), 48);
+  EXPECT_EQ(stats.channels.at(proto::blob_channel(2)).datagram_bytes, blob16 + blob0);
+  EXPECT_EQ(stats.channels.at(proto::blob_channel(2)).max_datagram_bytes, blob16);
+  EXPECT_EQ(blob16, 8 + 16 + 48 + 16 * 23);  // "SYNCAP_BLOBS_02" is 15 characters
+
+  const CameraTraffic& c2 = stats.cameras.at(2);
+  EXPECT_EQ(c2.frames, 2);
+  EXPECT_EQ(c2.silhouette_frames, 1);
+  EXPECT_EQ(c2.silhouette_bytes,
+            datagram_bytes(proto::silhouette_channel(2), encoded(sil[0]).size()));
+  EXPECT_EQ(stats.cameras.at(3).frames, 1);
+  EXPECT_EQ(stats.cameras.at(3).image_width, 1280);
+
+  std::ostringstream text;
+  print_traffic(stats, text);
+  EXPECT_NE(text.str().find("SYNCAP_BLOBS_03"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("1310720"), std::string::npos) << text.str();  // raw 1280 x 1024
+}
+
+TEST(LogStats, UndecodableCameraMessagesAreCountedApart) {
+  Log log;
+  blob_frame_t broken = frame(1, 0, 1, 0);
+  std::vector<std::uint8_t> bytes = encoded(broken);
+  bytes.resize(bytes.size() - 5);
+  const auto record = encode_log_record(0, 0, proto::blob_channel(1), bytes);
+  std::istringstream in(std::string(record.begin(), record.end()));
+  const TrafficStats stats = collect_traffic(in);
+  EXPECT_EQ(stats.undecodable, 1);
+  EXPECT_TRUE(stats.cameras.empty());
+  EXPECT_EQ(stats.channels.at(proto::blob_channel(1)).messages, 1);
+}
+
+}  // namespace
+}  // namespace syncap::tools
