@@ -7,9 +7,11 @@
 #include <map>
 #include <string>
 
+#include "calibration_check.hpp"
 #include "comparison.hpp"
 #include "groups.hpp"
 #include "input_error.hpp"
+#include "sensor/camera_file.hpp"
 #include "summary.hpp"
 #include "truth.hpp"
 
@@ -28,11 +30,16 @@ const char* kUsage =
     "  --min-frames SHARE     complete groups / truth frames\n"
     "  --min-iou SHARE        per camera: mean IoU of its silhouettes against the true masks\n"
     "  --require-silhouettes  per camera: a silhouette in min-frames of the frames with a mask\n"
+    "       syncap-hil-compare --truth DIR --cameras FILE [--max-reprojection-px 0.5]\n"
+    "  --cameras FILE         a calibration (cameras.json) against DIR/cameras.json, aligned by\n"
+    "                         a similarity; the true targets reprojected through both\n"
+    "  --max-reprojection-px PX  RMS of that reprojection at most PX\n"
     "exit 0 PASS, 1 FAIL, 2 unusable inputs\n";
 
 struct Options {
-  std::string truth, groups, json;
+  std::string truth, groups, json, cameras;
   syncap::compare::Thresholds thresholds;
+  double max_reprojection_px = 0.5;
 };
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -51,13 +58,16 @@ double positive_number(const std::string& option, const std::string& text) {
 
 Options parse(int argc, char** argv) {
   Options o;
-  std::map<std::string, std::string*> paths{
-      {"--truth", &o.truth}, {"--groups", &o.groups}, {"--json", &o.json}};
+  std::map<std::string, std::string*> paths{{"--truth", &o.truth},
+                                            {"--groups", &o.groups},
+                                            {"--json", &o.json},
+                                            {"--cameras", &o.cameras}};
   std::map<std::string, double*> numbers{{"--max-rms-px", &o.thresholds.max_rms_px},
                                          {"--min-detection", &o.thresholds.min_detection},
                                          {"--match-radius-px", &o.thresholds.match_radius_px},
                                          {"--min-frames", &o.thresholds.min_frames},
-                                         {"--min-iou", &o.thresholds.min_iou}};
+                                         {"--min-iou", &o.thresholds.min_iou},
+                                         {"--max-reprojection-px", &o.max_reprojection_px}};
   for (int i = 1; i < argc; ++i) {
     const std::string option = argv[i];
     if (option == "--help" || option == "-h") {
@@ -78,7 +88,9 @@ Options parse(int argc, char** argv) {
       usage_error("unknown option '" + option + "'");
     }
   }
-  if (o.truth.empty() || o.groups.empty()) usage_error("--truth and --groups are required");
+  if (o.truth.empty() || (o.groups.empty() && o.cameras.empty())) {
+    usage_error("--truth and --groups (or --cameras) are required");
+  }
   if (o.thresholds.min_detection > 1 || o.thresholds.min_frames > 1 || o.thresholds.min_iou > 1) {
     usage_error("--min-detection, --min-frames and --min-iou are shares from 0 to 1");
   }
@@ -93,8 +105,38 @@ void write_json(const std::string& file, const syncap::compare::Report& report) 
 
 }  // namespace
 
+// The calibration check: 0 when the true targets reproject within the limit.
+int check_cameras(const Options& o) {
+  namespace fs = std::filesystem;
+  const auto truth = syncap::sensor::read_cameras(fs::path(o.truth) / "cameras.json");
+  const auto estimated = syncap::sensor::read_cameras(o.cameras);
+  std::vector<Eigen::Vector3d> targets;
+  for (const auto& t :
+       syncap::compare::read_target_positions(fs::path(o.truth) / "truth" / "targets.csv")) {
+    targets.emplace_back(t[0], t[1], t[2]);
+  }
+  const auto check = syncap::compare::check_calibration(truth, estimated, targets);
+  std::cout << syncap::compare::format_calibration_check(check);
+  if (!check.missing.empty() || check.reprojection_rms_px > o.max_reprojection_px) {
+    std::cout << "FAIL: reprojection RMS " << check.reprojection_rms_px << " px (limit "
+              << o.max_reprojection_px << "), " << check.missing.size()
+              << " cameras not calibrated\n";
+    return 1;
+  }
+  std::cout << "PASS\n";
+  return 0;
+}
+
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
+  if (!o.cameras.empty()) {
+    try {
+      return check_cameras(o);
+    } catch (const std::exception& e) {
+      std::cerr << "syncap-hil-compare: " << e.what() << "\n";
+      return 2;
+    }
+  }
   try {
     const auto truth = syncap::compare::read_truth(o.truth);
     const auto groups = syncap::compare::read_groups(o.groups);

@@ -77,6 +77,14 @@ std::vector<Projection> read_projections(const std::filesystem::path& file,
   return projections;
 }
 
+std::vector<std::array<double, 3>> read_target_positions(const std::filesystem::path& file) {
+  std::vector<std::array<double, 3>> targets;
+  read_csv(file, {"frame", "target", "X_mm", "Y_mm", "Z_mm", "radius_mm"}, [&](const CsvRow& row) {
+    targets.push_back({row.number(2), row.number(3), row.number(4)});
+  });
+  return targets;
+}
+
 Truth read_truth(const std::filesystem::path& dir) {
   Truth truth;
   truth.dir = dir;

@@ -3,6 +3,7 @@
 // every camera) and cameras.json (image sizes). targets.csv (object space) is not needed here.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -55,5 +56,9 @@ std::vector<Projection> read_projections(const std::filesystem::path& file,
 
 // DIR/truth/frames.csv, DIR/truth/projections.csv, DIR/cameras.json.
 Truth read_truth(const std::filesystem::path& dir);
+
+// Every target position of truth/targets.csv [mm] (frame,target,X_mm,Y_mm,Z_mm,radius_mm), in
+// file order: the points a calibration is checked by.
+std::vector<std::array<double, 3>> read_target_positions(const std::filesystem::path& file);
 
 }  // namespace syncap::compare
