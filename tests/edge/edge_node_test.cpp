@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <vector>
 
 #include "app/edge_options.hpp"
 #include "syncap/proto/contour_codec.hpp"
@@ -15,6 +16,9 @@ class FakeSource : public FrameSource {
  public:
   std::map<int64_t, cv::Mat> images;
   bool corrupt = false;
+  cv::Rect roi;                // crops like a sensor window
+  std::string trouble;         // problem()
+  std::vector<int64_t> noted;  // note_trigger
   std::optional<Frame> grab(int64_t frame_number) override {
     if (corrupt) throw FrameSourceError("fake image " + std::to_string(frame_number) + " corrupt");
     auto it = images.find(frame_number);
@@ -22,9 +26,20 @@ class FakeSource : public FrameSource {
     Frame f;
     f.frame_number = frame_number;
     f.image = it->second;
+    if (!roi.empty()) {
+      f.sensor_size = f.image.size();
+      f.origin = roi.tl();
+      f.image = f.image(roi).clone();
+    }
     return f;
   }
   std::string describe() const override { return "fake"; }
+  cv::Rect set_roi(const cv::Rect& r) override {
+    if (r.x < 0) throw FrameSourceError("fake: region refused");
+    return roi = r;
+  }
+  std::string problem() const override { return trouble; }
+  void note_trigger(int64_t frame_number, int64_t) override { noted.push_back(frame_number); }
 };
 
 cv::Mat image_with_spots(int spots) {
@@ -43,7 +58,8 @@ class EdgeNodeTest : public ::testing::Test {
         options_, source_,
         EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
                       [this](const camera_status_t& s) { statuses_.push_back(s); },
-                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); }});
+                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                      {}});
   }
   trigger_t trigger(int64_t k, bool last = false) {
     trigger_t t{};
@@ -96,6 +112,82 @@ TEST_F(EdgeNodeTest, LostAndCorruptFramesAreCountedAndReported) {
   EXPECT_EQ(statuses_[1].frames_lost, 2);
 }
 
+TEST_F(EdgeNodeTest, SetRoiKeepsBlobsInSensorCoordinates) {
+  cv::Mat image(240, 320, CV_8UC1, cv::Scalar(0));
+  image(cv::Rect(200, 150, 3, 3)).setTo(cv::Scalar(200));  // centre (201, 151)
+  image(cv::Rect(20, 20, 3, 3)).setTo(cv::Scalar(200));    // outside the window below
+  source_.images[0] = image;
+  source_.images[1] = image;
+  node_->on_trigger(trigger(0));
+  ASSERT_EQ(frames_.back().num_blobs, 2);
+  edge_command_t roi{};
+  roi.camera_id = 4;
+  roi.command = edge_command_t::SET_ROI;
+  roi.roi_x = 160;
+  roi.roi_y = 128;
+  roi.roi_width = 96;
+  roi.roi_height = 64;
+  EXPECT_FALSE(node_->on_command(roi));
+  EXPECT_EQ(source_.roi, cv::Rect(160, 128, 96, 64));
+  node_->on_trigger(trigger(1));
+  const blob_frame_t& f = frames_.back();
+  ASSERT_EQ(f.num_blobs, 1);
+  EXPECT_NEAR(f.blobs[0].x, 201.0f, 0.01f);
+  EXPECT_NEAR(f.blobs[0].y, 151.0f, 0.01f);
+  EXPECT_EQ(f.blobs[0].bbox_x, 200);
+  EXPECT_EQ(f.blobs[0].bbox_y, 150);
+  EXPECT_EQ(f.image_width, 320);  // the sensor, not the window
+  EXPECT_EQ(f.image_height, 240);
+  roi.roi_width = 0;  // back to the whole sensor
+  node_->on_command(roi);
+  EXPECT_TRUE(source_.roi.empty());
+  roi.roi_x = -5;
+  roi.roi_width = 10;
+  node_->on_command(roi);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
+  EXPECT_NE(statuses_.back().message.find("SET_ROI refused: fake: region refused"),
+            std::string::npos)
+      << statuses_.back().message;
+}
+
+TEST_F(EdgeNodeTest, TellsTheSourceEveryTriggerAndReportsItsProblem) {
+  source_.images[3] = image_with_spots(1);
+  node_->on_trigger(trigger(3));
+  node_->on_trigger(trigger(4));
+  EXPECT_EQ(source_.noted, (std::vector<int64_t>{3, 4}));
+  node_->publish_status();
+  EXPECT_NE(statuses_.back().message.find("no exposure for frame 4"), std::string::npos);
+  source_.trouble = "camera lost (unplugged); reopening in 0.5 s";
+  node_->on_trigger(trigger(5));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
+  EXPECT_EQ(statuses_.back().message, source_.trouble);
+  source_.trouble.clear();
+  source_.images[6] = image_with_spots(1);
+  node_->on_trigger(trigger(6));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ACQUIRING);
+  EXPECT_EQ(statuses_.back().last_frame_number, 6);
+}
+
+TEST_F(EdgeNodeTest, HeartbeatCarriesThePublishingQueue) {
+  node_ = std::make_unique<EdgeNode>(
+      options_, source_,
+      EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
+                    [this](const camera_status_t& s) { statuses_.push_back(s); },
+                    [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                    [] {
+                      return PublishQueueStats{5, 64, 17, 1000};
+                    }});
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "queue 5/64, 17 dropped");
+  node_->on_trigger(trigger(1));  // lost
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message.rfind("no exposure for frame 1", 0), 0u);
+  EXPECT_NE(statuses_.back().message.find("; queue 5/64, 17 dropped"), std::string::npos);
+}
+
 TEST_F(EdgeNodeTest, RemembersTheLastPulse) {
   source_.images[9] = image_with_spots(1);
   EXPECT_FALSE(node_->saw_last_pulse());
@@ -126,7 +218,8 @@ class EdgeNodeMaskTest : public EdgeNodeTest {
         options_, source_,
         EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
                       [this](const camera_status_t& s) { statuses_.push_back(s); },
-                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); }});
+                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                      {}});
   }
 };
 
@@ -186,6 +279,67 @@ TEST_F(EdgeNodeMaskTest, ReportsTrainingProgressAndIgnoresOtherCameras) {
   EXPECT_TRUE(node_->on_command(stop));
 }
 
+TEST_F(EdgeNodeMaskTest, TrainsOnTheFramesFromTheGivenNumber) {
+  options_.train_frames = 6;
+  options_.train_from_frame = 20;
+  node_ = std::make_unique<EdgeNode>(
+      options_, source_,
+      EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
+                    [this](const camera_status_t& s) { statuses_.push_back(s); },
+                    [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                    {}});
+  // Frames 0..19 show the person: trained on them, the model would hide it.
+  for (int k = 0; k < 20; ++k) source_.images[k] = scene(k, true);
+  for (int k = 20; k < 26; ++k) source_.images[k] = scene(k, false);
+  source_.images[26] = scene(26, true);
+  source_.images.erase(23);  // a lost frame inside the range: trained without it
+  for (int k = 0; k < 20; ++k) node_->on_trigger(trigger(k));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "waiting for frame 20 to train background");
+  for (int k = 20; k < 23; ++k) node_->on_trigger(trigger(k));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "training background 3/6");
+  for (int k = 23; k < 26; ++k) node_->on_trigger(trigger(k));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "no exposure for frame 23 in fake");  // the lost one
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "masking");
+  EXPECT_TRUE(silhouettes_.empty());
+  node_->on_trigger(trigger(26));
+  ASSERT_FALSE(silhouettes_.empty());
+  const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
+  EXPECT_EQ(s.frame_number, 26);
+  ASSERT_EQ(s.contours.size(), 1u);
+}
+
+TEST_F(EdgeNodeMaskTest, SilhouettesInAWindowAreInSensorPixels) {
+  for (int k = 0; k < 4; ++k) source_.images[k] = scene(k, false);
+  source_.images[4] = scene(4, true);
+  source_.roi = cv::Rect(80, 20, 120, 200);  // holds the person block (100, 40, 60x150)
+  edge_command_t train{};
+  train.camera_id = 4;
+  train.command = edge_command_t::TRAIN_BACKGROUND;
+  train.int_value = 4;
+  node_->on_command(train);
+  for (int k = 0; k <= 4; ++k) node_->on_trigger(trigger(k));
+  ASSERT_FALSE(silhouettes_.empty());
+  const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
+  EXPECT_EQ(s.image_width, 320);
+  ASSERT_EQ(s.contours.size(), 1u);
+  int x0 = 1000, y0 = 1000;
+  for (const auto& p : s.contours[0].points) x0 = std::min(x0, p.x), y0 = std::min(y0, p.y);
+  EXPECT_NEAR(x0, 100, 2);
+  EXPECT_NEAR(y0, 40, 2);
+  // The window changes: the model (of 120x200 frames) no longer fits, masking pauses.
+  source_.roi = cv::Rect(0, 0, 100, 100);
+  source_.images[5] = scene(5, true);
+  const std::size_t parts = silhouettes_.size();
+  node_->on_trigger(trigger(5));
+  EXPECT_EQ(silhouettes_.size(), parts);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "masking paused: frame 100x100, background model 120x200");
+}
+
 TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   const auto o =
       parse_edge_options({"--camera-id", "3", "--source", "replay:/tmp/x", "--threshold", "90"});
@@ -212,7 +366,21 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode", "all"}),
                UsageError);
   EXPECT_THROW(parse_edge_options({"--source", "replay:/x"}), UsageError);
-  EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--bogus"}),
+  try {
+    parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--bogus"});
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "syncap-edge: unknown option '--bogus'");
+  }
+  const auto trained = parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode",
+                                           "both", "--train-from-frame", "40", "--train-frames",
+                                           "20", "--roi", "8,16,640,480"});
+  EXPECT_EQ(trained.train_from_frame, 40);
+  EXPECT_EQ(trained.roi, cv::Rect(8, 16, 640, 480));
+  EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode", "both",
+                                   "--train-from-frame", "40"}),
+               UsageError);  // from which frame, but how many?
+  EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--roi", "1,2,3"}),
                UsageError);
 }
 

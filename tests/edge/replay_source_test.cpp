@@ -81,5 +81,29 @@ TEST_F(ReplaySourceTest, CorruptImageNamesFileAndFrame) {
   EXPECT_TRUE(source.grab(1).has_value());  // the source stays usable
 }
 
+TEST_F(ReplaySourceTest, RegionOfInterestCropsLikeASensorWindow) {
+  cv::Mat image(6, 8, CV_8UC1);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 8; ++x) image.at<uint8_t>(y, x) = static_cast<uint8_t>(10 * y + x);
+  cv::imwrite((dir_ / "frame_7.pgm").string(), image);
+  ReplaySource source(dir_, 0);
+  EXPECT_EQ(source.set_roi(cv::Rect(2, 1, 4, 3)), cv::Rect(2, 1, 4, 3));
+  auto frame = source.grab(7);
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_EQ(frame->image.size(), cv::Size(4, 3));
+  EXPECT_EQ(frame->origin, cv::Point(2, 1));
+  EXPECT_EQ(frame->full_size(), cv::Size(8, 6));
+  EXPECT_EQ(frame->image.at<uint8_t>(0, 0), 12);  // sensor pixel (2, 1)
+  source.set_roi(cv::Rect(6, 4, 10, 10));         // clipped to the image
+  EXPECT_EQ(source.grab(7)->image.size(), cv::Size(2, 2));
+  source.set_roi({});
+  frame = source.grab(7);
+  EXPECT_EQ(frame->image.size(), cv::Size(8, 6));
+  EXPECT_EQ(frame->origin, cv::Point(0, 0));
+  EXPECT_THROW(source.set_roi(cv::Rect(-1, 0, 4, 4)), FrameSourceError);
+  source.set_roi(cv::Rect(20, 20, 4, 4));  // outside the image: named when grabbed
+  EXPECT_THROW(source.grab(7), FrameSourceError);
+}
+
 }  // namespace
 }  // namespace syncap::edge

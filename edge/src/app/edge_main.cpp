@@ -2,6 +2,7 @@
 // bright targets and publishes them; sends a heartbeat; obeys edge commands.
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -10,8 +11,11 @@
 
 #include "app/edge_node.hpp"
 #include "app/edge_options.hpp"
+#include "app/publish_queue.hpp"
 #include "sensor/aravis_source.hpp"
+#include "sensor/reconnecting_source.hpp"
 #include "sensor/replay_source.hpp"
+#include "sensor/trigger_matched_source.hpp"
 #include "sensor/v4l2/v4l2_source.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/proto/channels.hpp"
@@ -23,23 +27,39 @@ std::atomic<bool> g_stop{false};
 
 void on_signal(int) { g_stop = true; }
 
+// The camera named by --source. Cameras (aravis, v4l2) are reopened with back-off when they
+// vanish; v4l2 frames, which carry no trigger number, are numbered by trigger time.
 std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeOptions& o) {
-  const std::string target = o.source.substr(7);
+  using namespace syncap::edge;
+  if (o.source.starts_with("replay:")) {
+    return std::make_unique<ReplaySource>(o.source.substr(7), o.camera_id);
+  }
+  SourceFactory factory;
   if (o.source.starts_with("aravis:")) {
-    syncap::edge::AravisOptions aravis;
-    aravis.device_address = target;
-    aravis.trigger_source = o.trigger_source;
-    aravis.exposure_us = o.exposure_us;
-    aravis.udp_socket = o.udp_socket;
-    return std::make_unique<syncap::edge::AravisSource>(aravis, o.camera_id);
+    factory = [o](int64_t next_frame_number) -> std::unique_ptr<FrameSource> {
+      AravisOptions aravis;
+      aravis.device_address = o.source.substr(7);
+      aravis.trigger_source = o.trigger_source;
+      aravis.exposure_us = o.exposure_us;
+      aravis.udp_socket = o.udp_socket;
+      if (next_frame_number > 0) aravis.first_frame_number = next_frame_number;
+      return std::make_unique<AravisSource>(aravis, o.camera_id);
+    };
+  } else {
+    factory = [o](int64_t) -> std::unique_ptr<FrameSource> {
+      v4l2::V4l2Options v4l2;
+      v4l2.device_path = o.source.substr(5);
+      v4l2.exposure_us = static_cast<int32_t>(o.exposure_us);
+      const auto tolerance_ns = static_cast<int64_t>(o.match_tolerance_ms * 1e6);
+      return std::make_unique<TriggerMatchedSource>(v4l2::make_v4l2_source(v4l2, o.camera_id),
+                                                    tolerance_ns);
+    };
   }
-  if (o.source.starts_with("v4l2:")) {
-    syncap::edge::v4l2::V4l2Options v4l2;
-    v4l2.device_path = target;
-    v4l2.exposure_us = static_cast<int32_t>(o.exposure_us);
-    return syncap::edge::v4l2::make_v4l2_source(v4l2, o.camera_id);
-  }
-  return std::make_unique<syncap::edge::ReplaySource>(target, o.camera_id);
+  ReconnectOptions reconnect;
+  reconnect.first_delay_s = o.reopen_first_s;
+  reconnect.max_delay_s = std::max(o.reopen_max_s, o.reopen_first_s);
+  reconnect.silent_s = o.camera_silent_s;
+  return std::make_unique<ReconnectingSource>(std::move(factory), reconnect);
 }
 
 int run(const syncap::edge::EdgeOptions& options) {
@@ -52,11 +72,18 @@ int run(const syncap::edge::EdgeOptions& options) {
   const std::string blob_channel = syncap::proto::blob_channel(options.camera_id);
   const std::string status_channel = syncap::proto::status_channel(options.camera_id);
   const std::string silhouette_channel = syncap::proto::silhouette_channel(options.camera_id);
+  // Acquisition never waits for the network: messages are sent by the queue's thread (LCM's
+  // publish is thread-safe), the oldest dropped when it is full.
+  syncap::edge::PublishQueue queue(static_cast<std::size_t>(options.publish_queue));
+  auto send = [&](const std::string& channel, auto message) {
+    queue.push([&lcm, &channel, message] { lcm.publish(channel, &message); });
+  };
   syncap::edge::EdgeNode node(
       options, *source,
-      {[&](const syncap::blob_frame_t& m) { lcm.publish(blob_channel, &m); },
-       [&](const syncap::camera_status_t& m) { lcm.publish(status_channel, &m); },
-       [&](const syncap::silhouette_part_t& m) { lcm.publish(silhouette_channel, &m); }});
+      {[&](const syncap::blob_frame_t& m) { send(blob_channel, m); },
+       [&](const syncap::camera_status_t& m) { send(status_channel, m); },
+       [&](const syncap::silhouette_part_t& m) { send(silhouette_channel, m); },
+       [&] { return queue.stats(); }});
 
   bool shutdown = false;
   syncap::proto::Subscriber subscriber(
@@ -86,9 +113,11 @@ int run(const syncap::edge::EdgeOptions& options) {
     }
   }
   node.publish_status(/*final=*/true);
+  queue.flush();
   if (!options.quiet) {
     std::cerr << "syncap-edge camera " << options.camera_id << ": " << node.frames_received()
-              << " frames processed, " << node.frames_lost() << " lost\n";
+              << " frames processed, " << node.frames_lost() << " lost, " << queue.stats().dropped
+              << " messages dropped from the publishing queue\n";
   }
   return 0;
 }

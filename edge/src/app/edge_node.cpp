@@ -24,8 +24,10 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
       interval_start_ns_(now_ns(CLOCK_MONOTONIC)) {
   if (options_.mask) {
     silhouettes_.emplace(options_.contour_tolerance_px, MediPictureOptions{});
-    if (options_.train_frames > 0) silhouettes_->start_training(options_.train_frames);
+    if (options_.train_frames > 0)
+      silhouettes_->start_training(options_.train_frames, options_.train_from_frame);
   }
+  if (!options_.roi.empty()) source_.set_roi(options_.roi);
 }
 
 bool EdgeNode::on_command(const edge_command_t& c) {
@@ -41,6 +43,25 @@ bool EdgeNode::on_command(const edge_command_t& c) {
       if (c.int_value >= 0 && c.int_value <= 255)
         options_.detector.threshold = static_cast<int>(c.int_value);
       break;
+    case edge_command_t::SET_ROI: {
+      const cv::Rect roi(c.roi_x, c.roi_y, c.roi_width, c.roi_height);
+      try {
+        const cv::Rect applied =
+            source_.set_roi(roi.width > 0 && roi.height > 0 ? roi : cv::Rect());
+        if (!options_.quiet) {
+          std::cerr << "syncap-edge camera " << options_.camera_id << ": region of interest "
+                    << (applied.empty()
+                            ? "the whole sensor"
+                            : std::to_string(applied.width) + "x" + std::to_string(applied.height) +
+                                  " at (" + std::to_string(applied.x) + ", " +
+                                  std::to_string(applied.y) + ")")
+                    << "\n";
+        }
+      } catch (const FrameSourceError& e) {
+        note_error(std::string("SET_ROI refused: ") + e.what());
+      }
+      break;
+    }
     default:
       break;
   }
@@ -49,7 +70,7 @@ bool EdgeNode::on_command(const edge_command_t& c) {
 
 void EdgeNode::on_trigger(const trigger_t& trigger) {
   if (trigger.flags & trigger_t::FLAG_LAST) saw_last_pulse_ = true;
-  const int64_t start_ns = now_ns(CLOCK_MONOTONIC);
+  source_.note_trigger(trigger.frame_number, trigger.monotonic_ns);
   std::optional<Frame> frame;
   try {
     frame = source_.grab(trigger.frame_number);
@@ -59,22 +80,35 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   if (!frame) {
     ++frames_lost_;
     if (last_error_.empty()) {
-      note_error("no exposure for frame " + std::to_string(trigger.frame_number) + " in " +
-                 source_.describe());
+      const std::string problem = source_.problem();
+      note_error(problem.empty() ? "no exposure for frame " + std::to_string(trigger.frame_number) +
+                                       " in " + source_.describe()
+                                 : problem);
     }
     return;
   }
+  const int64_t start_ns = now_ns(CLOCK_MONOTONIC);  // processing only, not the wait
+  const cv::Size sensor = frame->full_size();
   blob_frame_t out{};
   out.camera_id = static_cast<int16_t>(options_.camera_id);
   out.frame_number = trigger.frame_number;
   out.monotonic_ns = frame->monotonic_ns;
   out.exposure_us = frame->exposure_us;
-  out.image_width = static_cast<int16_t>(frame->image.cols);
-  out.image_height = static_cast<int16_t>(frame->image.rows);
-  if (options_.blobs) out.blobs = detect_blobs(frame->image, options_.detector);
+  out.image_width = static_cast<int16_t>(sensor.width);
+  out.image_height = static_cast<int16_t>(sensor.height);
+  if (options_.blobs) {
+    out.blobs = detect_blobs(frame->image, options_.detector);
+    for (blob_t& b : out.blobs) {
+      b.x += static_cast<float>(frame->origin.x);
+      b.y += static_cast<float>(frame->origin.y);
+      b.bbox_x = static_cast<int16_t>(b.bbox_x + frame->origin.x);
+      b.bbox_y = static_cast<int16_t>(b.bbox_y + frame->origin.y);
+    }
+  }
   std::vector<silhouette_part_t> silhouette;
   if (silhouettes_) {
-    silhouette = silhouettes_->process(frame->image, options_.camera_id, trigger.frame_number);
+    silhouette = silhouettes_->process(frame->image, options_.camera_id, trigger.frame_number,
+                                       frame->origin, frame->sensor_size);
   }
   const int64_t done_ns = now_ns(CLOCK_MONOTONIC);
   out.processing_us = static_cast<int32_t>((done_ns - start_ns) / 1000);
@@ -95,6 +129,8 @@ void EdgeNode::publish_status(bool final) {
   const int64_t now = now_ns(CLOCK_MONOTONIC);
   camera_status_t s{};
   s.camera_id = static_cast<int16_t>(options_.camera_id);
+  const std::string problem = source_.problem();
+  if (!problem.empty()) last_error_ = problem;  // the source's state outranks a lost frame
   s.state = final ? camera_status_t::STATE_STOPPED
                   : (last_error_.empty() ? camera_status_t::STATE_ACQUIRING
                                          : camera_status_t::STATE_ERROR);
@@ -110,6 +146,16 @@ void EdgeNode::publish_status(bool final) {
       interval_frames_ > 0 ? static_cast<float>(interval_processing_us_ / interval_frames_) : 0.0f;
   std::string note = last_error_;
   if (silhouettes_ && note.empty()) note = silhouettes_->state();
+  if (publish_.queue) {
+    // camera_status_t has no fields for the publishing queue: its state goes in the text, last
+    // so that a long error cuts nothing else.
+    const PublishQueueStats q = publish_.queue();
+    const std::string queue = "queue " + std::to_string(q.depth) + "/" +
+                              std::to_string(q.capacity) + ", " + std::to_string(q.dropped) +
+                              " dropped";
+    const std::size_t room = camera_status_t::MAX_MESSAGE - queue.size() - 2;
+    note = note.empty() ? queue : note.substr(0, room) + "; " + queue;
+  }
   s.message = note.substr(0, camera_status_t::MAX_MESSAGE);
   publish_.status(s);
   interval_frames_ = 0;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/edge_options.hpp"
+#include "app/publish_queue.hpp"
 #include "app/silhouette_stage.hpp"
 #include "sensor/frame_source.hpp"
 #include "syncap/blob_frame_t.hpp"
@@ -21,16 +22,21 @@ struct EdgePublisher {
   std::function<void(const blob_frame_t&)> blobs;
   std::function<void(const camera_status_t&)> status;
   std::function<void(const silhouette_part_t&)> silhouette;
+  // The publishing queue's state for the heartbeat (optional).
+  std::function<PublishQueueStats()> queue;
 };
 
 class EdgeNode {
  public:
+  // Applies options.roi to the source (FrameSourceError when it refuses).
   EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher);
 
-  // Grabs and processes the exposure of this trigger; publishes its blob frame (in parts).
+  // Grabs and processes the exposure of this trigger; publishes its blob frame (in parts). Blob
+  // coordinates are sensor pixels whatever the region of interest.
   void on_trigger(const trigger_t& trigger);
-  // Obeys a command meant for this camera: TRAIN_BACKGROUND (int_value frames), SET_THRESHOLD.
-  // Returns true for SHUTDOWN.
+  // Obeys a command meant for this camera: TRAIN_BACKGROUND (int_value frames), SET_THRESHOLD,
+  // SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor). Returns true for
+  // SHUTDOWN.
   bool on_command(const edge_command_t& command);
   // Publishes a heartbeat; `final` marks the last one before the process exits.
   void publish_status(bool final = false);

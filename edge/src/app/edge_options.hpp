@@ -1,9 +1,11 @@
-// Command line of syncap-edge.
+// Command line and config file of syncap-edge.
 #pragma once
 
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <opencv2/core/types.hpp>
 
 #include "detection/blob_detector.hpp"
 
@@ -11,28 +13,38 @@ namespace syncap::edge {
 
 struct EdgeOptions {
   int camera_id = 0;
-  std::string source;          // "replay:FOLDER" or "aravis:ADDRESS"
+  std::string source;          // "replay:FOLDER", "aravis:ADDRESS" or "v4l2:DEVICE"
   std::string trigger_source;  // aravis: camera TriggerSource; empty: as configured
   double exposure_us = 0;      // aravis: 0 = as configured
   bool udp_socket = false;     // aravis: plain UDP socket instead of a packet socket
   bool blobs = true;           // --mode blobs|mask|both
   bool mask = false;
-  int train_frames = 0;  // mask: train on the first N frames (0: wait for the command)
+  int train_frames = 0;           // mask: train on N frames (0: wait for the command) ...
+  int64_t train_from_frame = -1;  // ... numbered from this one (-1: the first N frames)
   double contour_tolerance_px = 1.0;
+  cv::Rect roi;  // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;
   BlobDetectorConfig detector;
   double heartbeat_s = 1.0;
-  bool exit_after_last = false;  // leave after the trigger's last pulse of a run
+  int publish_queue = 64;          // messages waiting to be sent before the oldest is dropped
+  double reopen_first_s = 0.5;     // camera lost: first wait before reopening, doubling ...
+  double reopen_max_s = 10;        // ... up to this
+  double camera_silent_s = 5;      // no frame for this long while triggered: camera lost
+  double match_tolerance_ms = 10;  // v4l2: frame-to-trigger time tolerance
+  bool exit_after_last = false;    // leave after the trigger's last pulse of a run
   bool quiet = false;
 };
 
-// A bad command line; what() names the option and the value.
+// A bad command line or config file; what() names the option (or file:line:column and key) and
+// the value.
 class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// Parses argv[1..]; throws UsageError. --help is reported as UsageError("help").
+// Parses argv[1..]; throws UsageError. --help is reported as UsageError("help"). With
+// `--config FILE` the file's keys (the long option names: `camera-id: 3`) are read first and
+// the other command-line options override them.
 EdgeOptions parse_edge_options(const std::vector<std::string>& args);
 
 std::string edge_usage();

@@ -1,8 +1,10 @@
-// The mask half of the edge process: when asked, the next frames of the empty scene train the
-// medi-picture model; after that every frame becomes silhouette contours, encoded into
-// datagram-sized silhouette_part_t messages.
+// The mask half of the edge process: when asked, frames of the empty scene train the
+// medi-picture model (the next N, or those numbered F..F+N-1: the replay bench's empty-room
+// phase); after that every frame becomes silhouette contours, encoded into datagram-sized
+// silhouette_part_t messages.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,20 +18,31 @@ class SilhouetteStage {
  public:
   SilhouetteStage(double contour_tolerance_px, MediPictureOptions options);
 
-  // The next `frames` frames train a new model (the previous one is kept until then).
-  void start_training(int frames);
+  // `frames` frames train a new model: the next ones, or with `from_frame` >= 0 those numbered
+  // from_frame..from_frame+frames-1 (frames of that range lost on the way are done without).
+  // The previous model is kept, and used, until the new one is trained.
+  void start_training(int frames, int64_t from_frame = -1);
   // Trains on the image, or returns its silhouette parts (of this camera and frame number);
-  // nothing before a model exists.
-  std::vector<silhouette_part_t> process(const cv::Mat& image, int camera_id, int64_t frame_number);
-  // "no background model", "training background 12/60" or "masking".
+  // nothing before a model exists, or while the frame's size differs from the model's (a
+  // sensor region of interest). Contours are given in sensor pixels: shifted by `origin`, the
+  // sensor position of image(0, 0), in a sensor of `sensor_size` (empty: the image's).
+  std::vector<silhouette_part_t> process(const cv::Mat& image, int camera_id, int64_t frame_number,
+                                         cv::Point origin = {}, cv::Size sensor_size = {});
+  // "no background model", "training background 12/60", "waiting for frame 40 to train",
+  // "masking" or why masking is paused.
   std::string state() const;
 
  private:
+  bool in_training_range(int64_t frame_number) const;
+  void finish_training();
+
   double tolerance_px_;
   MediPictureOptions options_;
   int training_wanted_ = 0;
+  int64_t training_from_ = -1;
   std::vector<cv::Mat> training_;
   std::optional<MediPicture> model_;
+  std::string paused_;  // why the last frame was not masked
 };
 
 }  // namespace syncap::edge

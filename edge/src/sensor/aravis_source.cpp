@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstring>
 
@@ -73,7 +74,17 @@ uint64_t BlockIdUnwrapper::next(uint16_t block_id) {
 struct AravisSource::Camera {
   GPtr<ArvCamera> camera;
   GPtr<ArvStream> stream;
+  std::atomic<bool> control_lost{false};  // set from Aravis' heartbeat thread
+  gulong control_lost_handler = 0;
 };
+
+namespace {
+
+void on_control_lost(ArvDevice*, gpointer flag) {
+  static_cast<std::atomic<bool>*>(flag)->store(true);
+}
+
+}  // namespace
 
 AravisSource::AravisSource(const AravisOptions& options, int camera_id)
     : options_(options), camera_id_(camera_id), camera_(std::make_unique<Camera>()) {
@@ -93,6 +104,8 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
   }
   camera_->camera.reset(arv_camera_new_with_device(device.get(), &error));
   check(error, address, "creating the camera");
+  camera_->control_lost_handler = g_signal_connect(
+      device.get(), "control-lost", G_CALLBACK(on_control_lost), &camera_->control_lost);
   ArvCamera* cam = camera_->camera.get();
   arv_camera_set_pixel_format(cam, ARV_PIXEL_FORMAT_MONO_8, &error);
   check(error, address, "setting Mono8");
@@ -106,8 +119,14 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
     arv_camera_set_exposure_time(cam, options_.exposure_us, &error);
     check(error, address, "setting the exposure");
   }
-  const guint payload = arv_camera_get_payload(cam, &error);
-  check(error, address, "reading the payload size");
+  gint sensor_width = 0, sensor_height = 0;
+  arv_camera_get_sensor_size(cam, &sensor_width, &sensor_height, &error);
+  check(error, address, "reading the sensor size");
+  sensor_size_ = {sensor_width, sensor_height};
+  gint x = 0, y = 0, width = 0, height = 0;
+  arv_camera_get_region(cam, &x, &y, &width, &height, &error);
+  check(error, address, "reading the region of interest");
+  region_ = {x, y, width, height};
   camera_->stream.reset(arv_camera_create_stream(cam, nullptr, nullptr, &error));
   check(error, address, "creating the stream");
   // A frame is hundreds of packets and lost ones are not resent: give the socket room for a
@@ -118,15 +137,64 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
     g_object_set(camera_->stream.get(), "socket-buffer", ARV_GV_STREAM_SOCKET_BUFFER_FIXED,
                  "socket-buffer-size", 4 << 20, "frame-retention", 500000u, nullptr);
   }
-  for (int i = 0; i < options_.buffers; ++i) {
-    arv_stream_push_buffer(camera_->stream.get(), arv_buffer_new_allocate(payload));
-  }
+  push_buffers();
   arv_camera_start_acquisition(cam, &error);
   check(error, address, "starting acquisition");
 }
 
 AravisSource::~AravisSource() {
-  if (camera_ && camera_->camera) arv_camera_stop_acquisition(camera_->camera.get(), nullptr);
+  if (!camera_ || !camera_->camera) return;
+  ArvCamera* cam = camera_->camera.get();
+  // A vanished camera does not answer: skip the stop command's retries.
+  if (!camera_->control_lost) arv_camera_stop_acquisition(cam, nullptr);
+  if (camera_->control_lost_handler)
+    g_signal_handler_disconnect(arv_camera_get_device(cam), camera_->control_lost_handler);
+}
+
+void AravisSource::push_buffers() {
+  GError* error = nullptr;
+  const guint payload = arv_camera_get_payload(camera_->camera.get(), &error);
+  check(error, options_.device_address, "reading the payload size");
+  for (int i = 0; i < options_.buffers; ++i) {
+    arv_stream_push_buffer(camera_->stream.get(), arv_buffer_new_allocate(payload));
+  }
+}
+
+cv::Rect AravisSource::set_roi(const cv::Rect& roi) {
+  const std::string& address = options_.device_address;
+  const cv::Rect wanted = roi.empty() ? cv::Rect(cv::Point(0, 0), sensor_size_) : roi;
+  ArvCamera* cam = camera_->camera.get();
+  ArvStream* stream = camera_->stream.get();
+  GError* error = nullptr;
+  // Width and Height are locked while acquiring, and the payload changes with them.
+  arv_camera_stop_acquisition(cam, &error);
+  check(error, address, "stopping acquisition for a new region");
+  arv_stream_stop_thread(stream, TRUE);  // and free the buffers of the old payload size
+  arv_camera_set_region(cam, wanted.x, wanted.y, wanted.width, wanted.height, &error);
+  GError* refused = error;
+  error = nullptr;
+  gint x = 0, y = 0, width = 0, height = 0;
+  arv_camera_get_region(cam, &x, &y, &width, &height, &error);
+  check(error, address, "reading the region of interest");
+  region_ = {x, y, width, height};
+  read_ahead_ = ReadAheadFrame{};  // a held frame of the old region
+  arv_stream_start_thread(stream);
+  push_buffers();
+  arv_camera_start_acquisition(cam, &error);
+  check(error, address, "starting acquisition");
+  check(refused, address,
+        "setting the region " + std::to_string(wanted.width) + "x" + std::to_string(wanted.height) +
+            " at (" + std::to_string(wanted.x) + ", " + std::to_string(wanted.y) + ")");
+  return region_;
+}
+
+int64_t AravisSource::frame_number_of(uint16_t block_id) {
+  const auto unwrapped = static_cast<int64_t>(block_ids_.next(block_id));
+  if (!number_offset_) {
+    number_offset_ =
+        options_.first_frame_number >= 0 ? options_.first_frame_number - unwrapped : int64_t{-1};
+  }
+  return unwrapped + *number_offset_;
 }
 
 void AravisSource::software_trigger() {
@@ -141,6 +209,8 @@ Frame AravisSource::copy_frame(ArvBuffer* buffer, int64_t number) const {
   frame.frame_number = number;
   frame.monotonic_ns = monotonic_now_ns();
   frame.exposure_us = static_cast<int32_t>(options_.exposure_us);
+  frame.origin = {arv_buffer_get_image_x(buffer), arv_buffer_get_image_y(buffer)};
+  frame.sensor_size = sensor_size_;
   size_t size = 0;
   const void* data = arv_buffer_get_image_data(buffer, &size);
   const cv::Mat view(arv_buffer_get_image_height(buffer), arv_buffer_get_image_width(buffer),
@@ -150,6 +220,10 @@ Frame AravisSource::copy_frame(ArvBuffer* buffer, int64_t number) const {
 }
 
 std::optional<Frame> AravisSource::grab(int64_t frame_number) {
+  if (camera_->control_lost) {
+    throw FrameSourceError("camera " + options_.device_address +
+                           ": control lost (no answer to the heartbeat)");
+  }
   bool lost = false;
   if (auto held = read_ahead_.take(frame_number, lost, stale_)) return held;
   if (lost) return std::nullopt;
@@ -161,9 +235,7 @@ std::optional<Frame> AravisSource::grab(int64_t frame_number) {
     ArvBuffer* buffer =
         arv_stream_timeout_pop_buffer(camera_->stream.get(), static_cast<guint64>(left));
     if (!buffer) break;
-    const int64_t number = static_cast<int64_t>(block_ids_.next(
-                               static_cast<uint16_t>(arv_buffer_get_frame_id(buffer)))) -
-                           1;
+    const int64_t number = frame_number_of(static_cast<uint16_t>(arv_buffer_get_frame_id(buffer)));
     const bool complete = arv_buffer_get_status(buffer) == ARV_BUFFER_STATUS_SUCCESS;
     std::optional<Frame> frame;
     if (complete && number >= frame_number) frame = copy_frame(buffer, number);

@@ -6,7 +6,15 @@
 // unwrapped block id - 1, so the first exposure of an acquisition (block id 1) is frame 0: the
 // trigger's first pulse of a run, provided the camera is acquiring before the run starts. The
 // replay bench's fake cameras send block id = frame number mod 65535 + 1 (docs/fakecam.md),
-// which the same rule turns back into the frame number.
+// which the same rule turns back into the frame number. A camera reopened mid-run (after it
+// vanished) restarts its block ids: `first_frame_number` then numbers its first exposure, and the
+// block ids count on from there.
+//
+// Region of interest: set_roi() stops the acquisition, sets OffsetX/Y and Width/Height, gives the
+// stream buffers of the new payload size and starts again; the stream channel stays open, so
+// block ids (and frame numbers) go on. Frames carry the region's origin and the sensor size.
+//
+// A camera that stops answering its heartbeat (Aravis' control-lost signal) makes grab() throw.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +40,9 @@ struct AravisOptions {
   // frame starts, so under load the first frame's burst can overflow the default buffer: the
   // replay bench lost frame 0 in 2 of 5 short runs that way, and none with packet sockets.
   bool udp_socket = false;
+  // -1: frame number = block id - 1 (acquiring before the trigger's first pulse). Otherwise the
+  // number of the first exposure received (a camera reopened mid-run).
+  int64_t first_frame_number = -1;
 };
 
 // Unwraps GigE Vision block ids (1..65535, then 1 again) into a running 64-bit count.
@@ -58,6 +69,9 @@ class AravisSource : public FrameSource {
   // next call. Incomplete buffers are counted and never returned.
   std::optional<Frame> grab(int64_t frame_number) override;
   std::string describe() const override;
+  // Applies the region (empty: the whole sensor) as the camera rounds it; throws
+  // FrameSourceError naming the camera when it refuses.
+  cv::Rect set_roi(const cv::Rect& roi) override;
 
   // For TriggerSource=Software: expose one frame now.
   void software_trigger();
@@ -69,11 +83,16 @@ class AravisSource : public FrameSource {
  private:
   struct Camera;  // Aravis objects
   Frame copy_frame(::_ArvBuffer* buffer, int64_t number) const;
+  void push_buffers();
+  int64_t frame_number_of(uint16_t block_id);
 
   AravisOptions options_;
   int camera_id_;
   std::unique_ptr<Camera> camera_;
   BlockIdUnwrapper block_ids_;
+  std::optional<int64_t> number_offset_;  // frame number - unwrapped block id
+  cv::Rect region_;                       // the sensor window frames come from
+  cv::Size sensor_size_;
   ReadAheadFrame read_ahead_;  // a frame that arrived before its trigger was asked for
   int64_t stale_ = 0;
   int64_t incomplete_ = 0;

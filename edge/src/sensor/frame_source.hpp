@@ -1,5 +1,5 @@
-// Where frames come from: one interface for every kind of camera (replay now; Aravis and V4L2
-// sources implement the same interface).
+// Where frames come from: one interface for every kind of camera (replay, Aravis, V4L2), and
+// for the wrappers that reopen a vanished camera or number frames by trigger time.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +17,11 @@ struct Frame {
   int32_t exposure_us = 0;
   int64_t monotonic_ns = 0;  // board clock when the frame arrived
   cv::Mat image;             // CV_8UC1
+  // Where image(0, 0) lies on the sensor (a region of interest) and the sensor's size; an empty
+  // sensor_size means the image is the whole sensor.
+  cv::Point origin{0, 0};
+  cv::Size sensor_size{};
+  cv::Size full_size() const { return sensor_size.empty() ? image.size() : sensor_size; }
 };
 
 // A frame source failed in a way the caller should report (missing file, corrupt image, ...);
@@ -62,6 +67,19 @@ class FrameSource {
   virtual std::string describe() const = 0;
   // Buffers the camera delivered incomplete (lost packets), since start.
   virtual int64_t frames_incomplete() const { return 0; }
+
+  // A trigger pulse is about to be grabbed (its frame number and CLOCK_MONOTONIC time): sources
+  // that number frames by time keep it.
+  virtual void note_trigger(int64_t /*frame_number*/, int64_t /*monotonic_ns*/) {}
+  // Restricts the sensor readout to `roi` (sensor pixels; an empty rectangle: the whole sensor)
+  // and returns the region applied (cameras round to their increments). Throws FrameSourceError
+  // when the source cannot window or refuses the region.
+  virtual cv::Rect set_roi(const cv::Rect& roi) {
+    if (roi.empty()) return roi;
+    throw FrameSourceError(describe() + ": cannot set a region of interest");
+  }
+  // Why the source delivers nothing right now (camera gone, reopening ...), or empty.
+  virtual std::string problem() const { return {}; }
 };
 
 }  // namespace syncap::edge

@@ -67,7 +67,27 @@ std::optional<Frame> ReplaySource::grab(int64_t frame_number) {
     throw FrameSourceError("replay image " + it->second.string() + " (frame " +
                            std::to_string(frame_number) + ") cannot be decoded");
   }
+  if (!roi_.empty()) {
+    frame.sensor_size = frame.image.size();
+    const cv::Rect inside = roi_ & cv::Rect(cv::Point(0, 0), frame.image.size());
+    if (inside.empty()) {
+      throw FrameSourceError("replay image " + it->second.string() +
+                             ": the region of interest lies outside it");
+    }
+    frame.origin = inside.tl();
+    frame.image = frame.image(inside).clone();
+  }
   return frame;
+}
+
+cv::Rect ReplaySource::set_roi(const cv::Rect& roi) {
+  if (!roi.empty() && (roi.x < 0 || roi.y < 0)) {
+    throw FrameSourceError("replay " + folder_.string() + ": region of interest at (" +
+                           std::to_string(roi.x) + ", " + std::to_string(roi.y) +
+                           ") starts outside the image");
+  }
+  roi_ = roi;
+  return roi_;
 }
 
 std::string ReplaySource::describe() const {

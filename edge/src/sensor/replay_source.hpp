@@ -1,6 +1,7 @@
 // Replays a folder of 8-bit images as a camera: the image for frame k is the file whose name's
 // last run of digits is k (e.g. frame_000042.pgm), so a replayed scene stays tied to the
-// trigger's frame numbers.
+// trigger's frame numbers. A region of interest crops the images as a camera's sensor window
+// would.
 #pragma once
 
 #include <filesystem>
@@ -18,6 +19,8 @@ class ReplaySource : public FrameSource {
 
   std::optional<Frame> grab(int64_t frame_number) override;
   std::string describe() const override;
+  // Crops every image to `roi` clipped to the image (empty: the whole image).
+  cv::Rect set_roi(const cv::Rect& roi) override;
 
   std::size_t size() const { return files_.size(); }
   int64_t first_frame() const { return files_.begin()->first; }
@@ -28,6 +31,7 @@ class ReplaySource : public FrameSource {
   int camera_id_;
   int32_t exposure_us_;
   std::map<int64_t, std::filesystem::path> files_;
+  cv::Rect roi_;
 };
 
 // The frame number in a file name: its last run of decimal digits, or nothing.

@@ -1,0 +1,115 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "app/edge_options.hpp"
+
+namespace syncap::edge {
+namespace {
+
+class EdgeConfigTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    file_ = std::filesystem::temp_directory_path() /
+            ("syncap_edge_config_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml");
+  }
+  void TearDown() override { std::filesystem::remove(file_); }
+  void write(const std::string& text) { std::ofstream(file_) << text; }
+  // The UsageError's text for these arguments after --config FILE.
+  std::string error_of(std::vector<std::string> args = {}) {
+    args.insert(args.begin(), {"--config", file_.string()});
+    try {
+      parse_edge_options(args);
+    } catch (const UsageError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+  std::filesystem::path file_;
+};
+
+TEST_F(EdgeConfigTest, KeysAreTheLongOptions) {
+  write(
+      "# camera 3 of the lab ring\n"
+      "camera-id: 3\n"
+      "source: aravis:192.168.1.10\n"
+      "mode: both\n"
+      "threshold: 200\n"
+      "lcm-url: udpm://239.255.76.67:7667?ttl=1\n"
+      "train-frames: 30\n"
+      "train-from-frame: 100\n"
+      "roi: 0,64,1280,896\n"
+      "udp-socket: true\n"
+      "quiet: false\n"
+      "reopen-max-s: 20\n");
+  const EdgeOptions o = parse_edge_options({"--config", file_.string()});
+  EXPECT_EQ(o.camera_id, 3);
+  EXPECT_EQ(o.source, "aravis:192.168.1.10");
+  EXPECT_TRUE(o.blobs && o.mask);
+  EXPECT_EQ(o.detector.threshold, 200);
+  EXPECT_EQ(o.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
+  EXPECT_EQ(o.train_frames, 30);
+  EXPECT_EQ(o.train_from_frame, 100);
+  EXPECT_EQ(o.roi, cv::Rect(0, 64, 1280, 896));
+  EXPECT_TRUE(o.udp_socket);
+  EXPECT_FALSE(o.quiet);
+  EXPECT_DOUBLE_EQ(o.reopen_max_s, 20);
+}
+
+TEST_F(EdgeConfigTest, CommandLineOverridesTheFile) {
+  write("camera-id: 3\nsource: replay:/tmp/a\nthreshold: 200\n");
+  // Before or after --config: the command line wins either way.
+  const EdgeOptions o = parse_edge_options(
+      {"--threshold", "90", "--config", file_.string(), "--source", "replay:/tmp/b", "--quiet"});
+  EXPECT_EQ(o.camera_id, 3);
+  EXPECT_EQ(o.detector.threshold, 90);
+  EXPECT_EQ(o.source, "replay:/tmp/b");
+  EXPECT_TRUE(o.quiet);
+}
+
+TEST_F(EdgeConfigTest, ErrorsNameFileLineAndKey) {
+  write("camera-id: 3\nsource: replay:/x\n\nthreshold: 300\n");
+  EXPECT_EQ(error_of(), "syncap-edge: " + file_.string() +
+                            ":4:1: key 'threshold' '300': expected a number in 1..255");
+  write("camera-id: 3\n  thresold: 20\n");
+  EXPECT_NE(error_of().find(file_.string() + ":2:"), std::string::npos) << error_of();
+  write("camera-id: 3\nsource: replay:/x\nthresold: 20\n");
+  EXPECT_EQ(error_of(), "syncap-edge: " + file_.string() +
+                            ":3:1: key 'thresold': unknown key (keys are syncap-edge's long "
+                            "options)");
+  write("camera-id: 3\nsource: [replay:/x]\n");
+  EXPECT_EQ(error_of(),
+            "syncap-edge: " + file_.string() + ":2:1: key 'source': expected a single value");
+  write("camera-id: 3\nsource: replay:/x\nquiet: maybe\n");
+  EXPECT_NE(error_of().find(":3:1: key 'quiet' 'maybe': expected true or false"), std::string::npos)
+      << error_of();
+  write("- camera-id\n");
+  EXPECT_NE(error_of().find("expected `key: value` lines"), std::string::npos) << error_of();
+  std::filesystem::remove(file_);
+  EXPECT_EQ(error_of(), "syncap-edge: --config " + file_.string() + ": cannot be read");
+}
+
+TEST_F(EdgeConfigTest, TheFileStillNeedsACameraAndASource) {
+  write("threshold: 50\n");
+  EXPECT_EQ(error_of(), "syncap-edge: --camera-id is required");
+  EXPECT_EQ(error_of({"--camera-id", "1"}),
+            "syncap-edge: --source '': expected replay:FOLDER, aravis:ADDRESS or v4l2:DEVICE");
+  EXPECT_EQ(error_of({"--camera-id", "1", "--source", "replay:/x"}), "no error");
+}
+
+// What edge/systemd/syncap-edge@.service runs with the installed example.
+TEST(EdgeConfigExample, TheShippedExampleParses) {
+  const std::string example = SYNCAP_SOURCE_DIR "/edge/systemd/edge.yaml.example";
+  const EdgeOptions o = parse_edge_options({"--config", example, "--camera-id", "3"});
+  EXPECT_EQ(o.camera_id, 3);
+  EXPECT_EQ(o.source, "aravis:192.168.1.10");
+  EXPECT_EQ(o.trigger_source, "Line1");
+  EXPECT_EQ(o.detector.threshold, 200);
+  EXPECT_EQ(o.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
+}
+
+}  // namespace
+}  // namespace syncap::edge
