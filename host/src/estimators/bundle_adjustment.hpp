@@ -1,0 +1,151 @@
+// The unified least squares self-calibrating bundle adjustment of thesis section 4.1.3 (lines
+// 2669-2930) on Ceres, with the covariance of the parameters and the tests of section 4.1.4:
+//
+//   - parameter blocks: interior[10] per camera model, exterior[6] per station, and the object
+//     points, grouped where distance constraints link them (cost_functors.hpp);
+//   - residuals: image measurements / sigma_px, parameter observations (eqs 4.40-4.41) for
+//     kObserved values, distance constraints; kFixed values are constants;
+//   - datum: from the fixed and observed exterior / object point values when there are any;
+//     otherwise a free network: solved with a minimal-constraint datum (the first station's
+//     exterior orientation held, and, without distances, one coordinate of the second station's
+//     centre for the scale), its covariance S-transformed to the inner-constraint datum of the
+//     object points (minimum trace of their covariance). docs/calibration.md, "Bundle adjustment";
+//   - statistics: sigma0, redundancy, the variance-factor test, the goodness of fit of the
+//     standardised residuals, data snooping with iterative rejection.
+//
+// Usage:
+//   scene::Network network = ...;          // models, stations, points, measurements, distances
+//   BundleAdjustmentResult r = estimators::adjust(network, {});
+//   r.models[0].interior.c, r.models[0].interior_sigma[InteriorBlock::kC], r.sigma0, ...
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "estimators/statistical_tests.hpp"
+#include "scene/network.hpp"
+#include "sensor/camera_parameters.hpp"
+
+namespace syncap::estimators {
+
+// What adjust() needs beyond the network (whose DesignOptions and ResidualTest it follows).
+struct BundleOptions {
+  int num_threads = 1;
+  // Data snooping standardises with the a priori sigma0 = 1 (Baarda's w-test, the default) or
+  // with the a posteriori sigma0 (Pope's tau-like variant, robust to a wrong sigma_px).
+  bool snoop_with_a_posteriori_sigma0 = false;
+  // The standard deviation given to a distance constraint of sigma 0 ("exact") [mm].
+  double exact_distance_sigma_mm = 1e-4;
+  // Ceres' progress per iteration on stderr (OUTPUT ITERATIONS also switches it on).
+  bool log_iterations = false;
+};
+
+// Thrown for a network adjust() cannot take: the message names the element (measurement index,
+// station, point, distance) and what is wrong.
+struct NetworkError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+struct ModelResult {
+  std::string name;
+  sensor::InteriorOrientation interior;
+  std::array<double, sensor::InteriorBlock::kSize> interior_sigma{};  // 0 when fixed
+  Eigen::Matrix<double, 10, 10> interior_covariance = Eigen::Matrix<double, 10, 10>::Zero();
+  // Table 4.6: the correlations of the estimated (not fixed) interior values, in block order.
+  std::vector<int> estimated_interior;  // InteriorBlock indices
+  Eigen::MatrixXd interior_correlation;
+};
+
+struct StationResult {
+  std::string name;
+  int camera_id = -1;
+  sensor::ExteriorOrientation exterior;
+  std::array<double, sensor::ExteriorBlock::kSize> exterior_sigma{};  // 0 when fixed
+  double rms_px = 0.0;    // of the residuals of its accepted measurements, both coordinates
+  long measurements = 0;  // accepted
+  long rejected = 0;      // removed by data snooping or as undetermined
+};
+
+struct PointResult {
+  std::string name;
+  std::array<double, 3> xyz{};
+  std::array<double, 3> sigma{};  // stdX, stdY, stdZ [mm]
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  bool adjusted = false;  // false: dropped (fewer than two rays from distinct stations)
+};
+
+enum class MeasurementStatus {
+  kAccepted,
+  kRejectedBlunder,  // data snooping: |w| above the critical value
+  kUndetermined,     // its point had fewer than two rays from distinct stations
+};
+
+// One image measurement after the adjustment, in the order of Network::measurements.
+struct MeasurementResult {
+  double residual_u = 0.0;  // v = adjusted - measured [px] (at the last adjustment it was in)
+  double residual_v = 0.0;
+  double w_u = 0.0;  // standardised residuals v / (sigma0 sigma_px sqrt(q_vv)); 0 if not computed
+  double w_v = 0.0;
+  double redundancy_u = 0.0;  // q_vv / q_ll: the share of the residual the network controls
+  double redundancy_v = 0.0;
+  MeasurementStatus status = MeasurementStatus::kAccepted;
+};
+
+// A measurement data snooping removed, in the order of removal.
+struct RejectedMeasurement {
+  size_t index = 0;  // into Network::measurements
+  std::string station;
+  std::string point;
+  int64_t frame_number = -1;
+  double w = 0.0;  // the standardised residual that condemned it
+};
+
+enum class Datum {
+  kGivenParameters,   // fixed / observed exterior or object point values
+  kInnerConstraints,  // free network: minimal constraints, covariance S-transformed
+};
+
+struct BundleAdjustmentResult {
+  bool converged = false;
+  int iterations = 0;       // of the last adjustment
+  int adjustments = 0;      // 1 + the re-adjustments after rejections
+  std::string termination;  // Ceres' message of the last adjustment
+  Datum datum = Datum::kGivenParameters;
+
+  long observations = 0;  // residuals: 2 per measurement, + parameter observations + distances
+  long unknowns = 0;      // estimated values (minus the minimal constraints of a free network)
+  long redundancy = 0;
+  double sigma0 = 0.0;  // a posteriori, sqrt(v^T P v / r)
+
+  bool covariance_computed = false;
+  bool tests_computed = false;
+  VarianceFactorTest variance_test;
+  GoodnessOfFitTest goodness_of_fit;
+  double critical_w = 0.0;
+
+  std::vector<ModelResult> models;
+  std::vector<StationResult> stations;
+  std::vector<PointResult> points;
+  std::vector<MeasurementResult> measurements;
+  std::vector<RejectedMeasurement> rejected;
+  // Cofactors of all camera parameters times sigma0^2: models' interior[10] in order, then
+  // stations' exterior[6] in order (rows of fixed values zero).
+  Eigen::MatrixXd camera_covariance;
+  std::vector<std::string> messages;  // what happened: datum, triangulations, rejections
+};
+
+// Adjusts the network. Points without approximation (and all points with IGNORE APPROXIMATES) are
+// triangulated from the stations' approximate orientations; stations need approximations.
+// Throws NetworkError for a network it cannot take, naming the element.
+BundleAdjustmentResult adjust(const scene::Network& network, const BundleOptions& options);
+
+// The result as text a person reads: the adjustment's figures and tests, per camera the interior
+// orientation with standard deviations, rms and removals, and the correlation matrices of the
+// interior parameters laid out as thesis Table 4.6 (upper triangle).
+std::string format_summary(const BundleAdjustmentResult& result);
+
+}  // namespace syncap::estimators
