@@ -92,6 +92,7 @@ struct DistanceConstraint {
 // The design-block tags of thesis section 4.2.1: what the adjustment computes and prints.
 struct DesignOptions {
   bool simulate = false;                   // SIMULATE: measurements generated from the approximates
+  uint32_t simulation_seed = 1;            // SIMULATE SEED n: the random seed of the noise
   bool unified_least_squares = true;       // UNIFIED LEAST SQUARES: parameter observations in use
   bool residuals = true;                   // RESIDUALS
   bool calculate_covariance = true;        // CALCULATE COVARIANCE
