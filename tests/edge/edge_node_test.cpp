@@ -340,6 +340,59 @@ TEST_F(EdgeNodeMaskTest, SilhouettesInAWindowAreInSensorPixels) {
   EXPECT_EQ(statuses_.back().message, "masking paused: frame 100x100, background model 120x200");
 }
 
+// Windowed detection with the sensor window following the targets: after the first frames the
+// source reads only the windows' region, and the blobs are still published in sensor pixels.
+TEST(EdgeNodeWindowed, TheSensorWindowFollowsTheTargets) {
+  EdgeOptions options;
+  options.camera_id = 2;
+  options.detection = DetectionMode::kWindowed;
+  options.roi_follows_windows = true;
+  FakeSource source;
+  std::vector<blob_frame_t> frames;
+  EdgeNode node(options, source, {[&](const blob_frame_t& f) { frames.push_back(f); }, {}, {}, {}});
+  for (int k = 0; k < 6; ++k) {
+    cv::Mat image(240, 320, CV_8UC1, cv::Scalar(0));
+    image(cv::Rect(150 + 2 * k, 100 + k, 3, 3)).setTo(cv::Scalar(200));  // centre (151+2k, 101+k)
+    image(cv::Rect(170 + 2 * k, 110 + k, 3, 3)).setTo(cv::Scalar(200));
+    source.images[k] = image;
+    trigger_t t{};
+    t.frame_number = k;
+    node.on_trigger(t);
+    ASSERT_EQ(frames.size(), static_cast<size_t>(k + 1));
+    ASSERT_EQ(frames.back().num_blobs, 2) << "frame " << k;
+    const blob_t& left = frames.back().blobs[0].x < frames.back().blobs[1].x
+                             ? frames.back().blobs[0]
+                             : frames.back().blobs[1];
+    EXPECT_NEAR(left.x, 151 + 2 * k, 1e-3) << "frame " << k;
+    EXPECT_NEAR(left.y, 101 + k, 1e-3) << "frame " << k;
+    EXPECT_EQ(frames.back().image_width, 320);
+  }
+  EXPECT_FALSE(source.roi.empty()) << "the source was never windowed";
+  EXPECT_LT(source.roi.area(), 320 * 240 / 4);
+}
+
+TEST(EdgeOptions, WindowedDetectionOptions) {
+  const EdgeOptions o =
+      parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--detection", "windowed",
+                          "--full-scan-every", "15", "--roi-follows-windows", "--gain-db", "6"});
+  EXPECT_EQ(o.detection, DetectionMode::kWindowed);
+  EXPECT_EQ(o.full_scan_every, 15);
+  EXPECT_TRUE(o.roi_follows_windows);
+  EXPECT_DOUBLE_EQ(o.gain_db, 6.0);
+  EXPECT_THROW(
+      parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--detection", "sometimes"}),
+      UsageError);
+  try {
+    parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--roi-follows-windows"});
+    FAIL() << "--roi-follows-windows without windowed detection was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("--detection windowed"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--detection",
+                                   "windowed", "--roi-follows-windows", "--mode", "both"}),
+               UsageError);
+}
+
 TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   const auto o =
       parse_edge_options({"--camera-id", "3", "--source", "replay:/tmp/x", "--threshold", "90"});

@@ -21,7 +21,9 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
     : options_(options),
       source_(source),
       publish_(std::move(publisher)),
-      interval_start_ns_(now_ns(CLOCK_MONOTONIC)) {
+      interval_start_ns_(now_ns(CLOCK_MONOTONIC)),
+      detection_({options.detection, options.detector, options.full_scan_every,
+                  options.roi_follows_windows}) {
   if (options_.mask) {
     silhouettes_.emplace(options_.contour_tolerance_px, MediPictureOptions{});
     if (options_.train_frames > 0)
@@ -40,8 +42,10 @@ bool EdgeNode::on_command(const edge_command_t& c) {
         silhouettes_->start_training(static_cast<int>(c.int_value));
       break;
     case edge_command_t::SET_THRESHOLD:
-      if (c.int_value >= 0 && c.int_value <= 255)
+      if (c.int_value >= 0 && c.int_value <= 255) {
         options_.detector.threshold = static_cast<int>(c.int_value);
+        detection_.set_threshold(options_.detector.threshold);
+      }
       break;
     case edge_command_t::SET_ROI: {
       const cv::Rect roi(c.roi_x, c.roi_y, c.roi_width, c.roi_height);
@@ -97,13 +101,8 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   out.image_width = static_cast<int16_t>(sensor.width);
   out.image_height = static_cast<int16_t>(sensor.height);
   if (options_.blobs) {
-    out.blobs = detect_blobs(frame->image, options_.detector);
-    for (blob_t& b : out.blobs) {
-      b.x += static_cast<float>(frame->origin.x);
-      b.y += static_cast<float>(frame->origin.y);
-      b.bbox_x = static_cast<int16_t>(b.bbox_x + frame->origin.x);
-      b.bbox_y = static_cast<int16_t>(b.bbox_y + frame->origin.y);
-    }
+    out.blobs = detection_.process(*frame);
+    follow_windows(sensor);
   }
   std::vector<silhouette_part_t> silhouette;
   if (silhouettes_) {
@@ -123,6 +122,25 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   ++interval_frames_;
   interval_processing_us_ += out.processing_us;
   last_frame_number_ = trigger.frame_number;
+}
+
+void EdgeNode::follow_windows(cv::Size sensor) {
+  const std::optional<cv::Rect> wanted = detection_.next_roi();
+  if (!wanted) return;
+  // Reprogramming the sensor costs the camera a restart of its acquisition: only when the
+  // windows leave the current region, or it has become far larger than they need.
+  const bool whole = wanted->empty();
+  const bool inside = !whole && !sensor_roi_.empty() && (*wanted & sensor_roi_) == *wanted;
+  const bool far_larger = inside && sensor_roi_.area() > 4 * wanted->area();
+  if (whole ? sensor_roi_.empty() : (inside && !far_larger)) return;
+  // Some slack around the windows, so that the next small moves stay inside.
+  const cv::Rect slack(wanted->tl() - cv::Point(16, 16), wanted->size() + cv::Size(32, 32));
+  const cv::Rect request = whole ? cv::Rect() : slack & cv::Rect({0, 0}, sensor);
+  try {
+    sensor_roi_ = source_.set_roi(request);
+  } catch (const FrameSourceError& e) {
+    note_error(std::string("region of interest refused: ") + e.what());
+  }
 }
 
 void EdgeNode::publish_status(bool final) {

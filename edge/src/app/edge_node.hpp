@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "app/detection_stage.hpp"
 #include "app/edge_options.hpp"
 #include "app/publish_queue.hpp"
 #include "app/silhouette_stage.hpp"
@@ -47,6 +48,8 @@ class EdgeNode {
 
  private:
   void note_error(const std::string& message);
+  // Windowed mode with --roi-follows-windows: moves the sensor window to the next search windows.
+  void follow_windows(cv::Size sensor);
 
   EdgeOptions options_;
   FrameSource& source_;
@@ -58,6 +61,8 @@ class EdgeNode {
   double interval_processing_us_ = 0;
   int64_t interval_start_ns_ = 0;
   bool saw_last_pulse_ = false;
+  DetectionStage detection_;
+  cv::Rect sensor_roi_;  // the window last applied by follow_windows (empty: the whole sensor)
   std::optional<SilhouetteStage> silhouettes_;
   std::string last_error_;
 };

@@ -55,7 +55,8 @@ cv::Rect parse_roi(const std::string& text) {
 }
 
 bool is_flag(const std::string& option) {
-  return option == "--udp-socket" || option == "--exit-after-last" || option == "--quiet";
+  return option == "--udp-socket" || option == "--exit-after-last" || option == "--quiet" ||
+         option == "--roi-follows-windows";
 }
 
 bool takes_value(const std::string& option) {
@@ -64,6 +65,9 @@ bool takes_value(const std::string& option) {
                                               "--source",
                                               "--trigger-source",
                                               "--exposure-us",
+                                              "--gain-db",
+                                              "--detection",
+                                              "--full-scan-every",
                                               "--mode",
                                               "--train-frames",
                                               "--train-from-frame",
@@ -92,6 +96,7 @@ bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std:
     if (a == "--udp-socket") o.udp_socket = on;
     if (a == "--exit-after-last") o.exit_after_last = on;
     if (a == "--quiet") o.quiet = on;
+    if (a == "--roi-follows-windows") o.roi_follows_windows = on;
     return true;
   }
   const std::string& v = value.value();
@@ -104,6 +109,13 @@ bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std:
     o.trigger_source = v;
   } else if (a == "--exposure-us") {
     o.exposure_us = parse_number<int>(v, 1, 10'000'000);
+  } else if (a == "--gain-db") {
+    o.gain_db = parse_number<double>(v, 0, 100);
+  } else if (a == "--detection") {
+    if (v != "full" && v != "windowed") throw BadValue("'" + v + "': expected full or windowed");
+    o.detection = v == "full" ? DetectionMode::kFull : DetectionMode::kWindowed;
+  } else if (a == "--full-scan-every") {
+    o.full_scan_every = parse_number<int>(v, 1, 100000);
   } else if (a == "--mode") {
     if (v != "blobs" && v != "mask" && v != "both")
       throw BadValue("'" + v + "': expected blobs, mask or both");
@@ -190,9 +202,14 @@ std::string edge_usage() {
          "                      v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/v4l2.md)\n"
          "  --trigger-source S  aravis: the camera's TriggerSource (Line1, Software, ...)\n"
          "  --exposure-us US    aravis: exposure time\n"
+         "  --gain-db DB        aravis: analog gain (Gain, in dB)\n"
          "  --udp-socket        aravis: receive with a UDP socket, not a packet socket (no\n"
          "                      CAP_NET_RAW needed; its buffer grows only after the first frame)\n"
          "  --roi X,Y,W,H       sensor region of interest at start (blobs stay in sensor pixels)\n"
+         "  --detection D       full (default): every frame whole; windowed: tracked blobs\n"
+         "                      searched around their prediction (docs/edge.md)\n"
+         "  --full-scan-every N windowed: a full scan for new blobs every N frames (30)\n"
+         "  --roi-follows-windows  windowed: the sensor ROI follows the union of the windows\n"
          "  --mode M            blobs (default), mask (silhouettes) or both\n"
          "  --train-frames N    mask: train the background on N frames (else on the host's\n"
          "                      TRAIN_BACKGROUND command) ...\n"
@@ -255,6 +272,13 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
   }
   if (o.train_frames > 0 && !o.mask) {
     throw UsageError("syncap-edge: --train-frames needs --mode mask or both");
+  }
+  if (o.roi_follows_windows && o.detection != DetectionMode::kWindowed) {
+    throw UsageError("syncap-edge: --roi-follows-windows needs --detection windowed");
+  }
+  if (o.roi_follows_windows && o.mask) {
+    // The silhouette needs the whole sensor every frame.
+    throw UsageError("syncap-edge: --roi-follows-windows needs --mode blobs");
   }
   return o;
 }

@@ -7,6 +7,7 @@
 
 #include <opencv2/core/types.hpp>
 
+#include "app/detection_stage.hpp"
 #include "detection/blob_detector.hpp"
 
 namespace syncap::edge {
@@ -16,6 +17,7 @@ struct EdgeOptions {
   std::string source;          // "replay:FOLDER", "aravis:ADDRESS" or "v4l2:DEVICE"
   std::string trigger_source;  // aravis: camera TriggerSource; empty: as configured
   double exposure_us = 0;      // aravis: 0 = as configured
+  double gain_db = -1;         // aravis: analog gain; < 0 = as configured
   bool udp_socket = false;     // aravis: plain UDP socket instead of a packet socket
   bool blobs = true;           // --mode blobs|mask|both
   bool mask = false;
@@ -25,6 +27,9 @@ struct EdgeOptions {
   cv::Rect roi;  // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;
   BlobDetectorConfig detector;
+  DetectionMode detection = DetectionMode::kFull;  // --detection full|windowed
+  int full_scan_every = 30;                        // windowed: frames between full scans
+  bool roi_follows_windows = false;  // windowed: the sensor ROI follows the search windows
   double heartbeat_s = 1.0;
   int publish_queue = 64;          // messages waiting to be sent before the oldest is dropped
   double reopen_first_s = 0.5;     // camera lost: first wait before reopening, doubling ...

@@ -119,6 +119,10 @@ AravisSource::AravisSource(const AravisOptions& options, int camera_id)
     arv_camera_set_exposure_time(cam, options_.exposure_us, &error);
     check(error, address, "setting the exposure");
   }
+  if (options_.gain_db >= 0) {
+    arv_camera_set_gain(cam, options_.gain_db, &error);
+    check(error, address, "setting the gain");
+  }
   gint sensor_width = 0, sensor_height = 0;
   arv_camera_get_sensor_size(cam, &sensor_width, &sensor_height, &error);
   check(error, address, "reading the sensor size");

@@ -33,6 +33,7 @@ struct AravisOptions {
   std::string interface_address;  // local address that reaches it; empty: from the routing table
   std::string trigger_source;     // "Line1", "Software", ...; empty: as the camera is configured
   double exposure_us = 0;         // 0: as configured
+  double gain_db = -1;            // analog gain (GenICam Gain) [dB]; < 0: as configured
   int buffers = 16;               // buffer pool size
   int frame_timeout_ms = 1000;    // how long grab() waits for a frame
   // Receive with a plain UDP socket instead of Aravis' packet socket (which needs CAP_NET_RAW
