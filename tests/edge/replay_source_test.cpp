@@ -107,3 +107,67 @@ TEST_F(ReplaySourceTest, RegionOfInterestCropsLikeASensorWindow) {
 
 }  // namespace
 }  // namespace syncap::edge
+
+namespace syncap::edge {
+namespace {
+
+// A video whose frame k is a flat grey of 10 * k + 20 DN with a bright square at x = 4k.
+void write_video(const std::filesystem::path& file, int frames) {
+  cv::VideoWriter writer(file.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30,
+                         cv::Size(64, 48), /*isColor=*/true);
+  ASSERT_TRUE(writer.isOpened()) << "OpenCV cannot write MJPEG AVI here";
+  for (int k = 0; k < frames; ++k) {
+    cv::Mat picture(48, 64, CV_8UC3, cv::Scalar::all(10 * k + 20));
+    picture(cv::Rect(4 * k, 20, 8, 8)).setTo(cv::Scalar::all(250));
+    writer.write(picture);
+  }
+}
+
+class VideoReplaySourceTest : public ReplaySourceTest {};
+
+TEST_F(VideoReplaySourceTest, FrameKIsTheKthFrameInGray) {
+  const auto file = dir_ / "take.avi";
+  write_video(file, 6);
+  const std::unique_ptr<FrameSource> source = make_replay_source(file, 5);
+  ASSERT_NE(dynamic_cast<VideoReplaySource*>(source.get()), nullptr);
+  // In order, with a lost trigger (frame 2 skipped), then back again (a seek).
+  for (int k : {0, 1, 3, 4, 1}) {
+    const auto frame = source->grab(k);
+    ASSERT_TRUE(frame.has_value()) << "frame " << k;
+    EXPECT_EQ(frame->frame_number, k);
+    EXPECT_EQ(frame->camera_id, 5);
+    ASSERT_EQ(frame->image.type(), CV_8UC1);
+    EXPECT_NEAR(frame->image.at<uint8_t>(2, 60), 10 * k + 20, 3) << "frame " << k;  // MJPEG
+    EXPECT_GT(frame->image.at<uint8_t>(24, 4 * k + 4), 200) << "frame " << k;
+  }
+  EXPECT_FALSE(source->grab(6).has_value()) << "past the end";
+  EXPECT_NE(source->describe().find("take.avi"), std::string::npos);
+}
+
+TEST_F(VideoReplaySourceTest, RegionOfInterestCropsTheVideo) {
+  const auto file = dir_ / "take.avi";
+  write_video(file, 3);
+  VideoReplaySource source(file, 0);
+  source.set_roi(cv::Rect(8, 16, 32, 24));
+  const auto frame = source.grab(2);
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_EQ(frame->image.size(), cv::Size(32, 24));
+  EXPECT_EQ(frame->origin, cv::Point(8, 16));
+  EXPECT_EQ(frame->full_size(), cv::Size(64, 48));
+  EXPECT_GT(frame->image.at<uint8_t>(24 - 16, 12 - 8), 200);  // the square at x = 8..15
+}
+
+TEST_F(VideoReplaySourceTest, AFileThatIsNoVideoIsNamed) {
+  const auto file = dir_ / "notes.avi";
+  std::ofstream(file) << "this is not a video";
+  try {
+    VideoReplaySource source(file, 0);
+    FAIL() << "a text file was opened as a video";
+  } catch (const FrameSourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("notes.avi"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(VideoReplaySource(dir_ / "missing.avi", 0), FrameSourceError);
+}
+
+}  // namespace
+}  // namespace syncap::edge

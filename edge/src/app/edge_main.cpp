@@ -32,7 +32,7 @@ void on_signal(int) { g_stop = true; }
 std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeOptions& o) {
   using namespace syncap::edge;
   if (o.source.starts_with("replay:")) {
-    return std::make_unique<ReplaySource>(o.source.substr(7), o.camera_id);
+    return make_replay_source(o.source.substr(7), o.camera_id);
   }
   SourceFactory factory;
   if (o.source.starts_with("aravis:")) {

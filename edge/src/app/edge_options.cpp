@@ -198,6 +198,7 @@ std::string edge_usage() {
          "                      below (camera-id: 3); options on the command line override it\n"
          "  --camera-id N       camera id 0..99 (channel SYNCAP_BLOBS_NN)\n"
          "  --source SPEC       replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
+         "                      replay:VIDEO   a video file, frame k = its k-th frame (from 0)\n"
          "                      aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
          "                      v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/v4l2.md)\n"
          "  --trigger-source S  aravis: the camera's TriggerSource (Line1, Software, ...)\n"

@@ -1,11 +1,17 @@
-// Replays a folder of 8-bit images as a camera: the image for frame k is the file whose name's
-// last run of digits is k (e.g. frame_000042.pgm), so a replayed scene stays tied to the
-// trigger's frame numbers. A region of interest crops the images as a camera's sensor window
-// would.
+// Replays recorded images as a camera:
+//   - ReplaySource: a folder of 8-bit images; the image for frame k is the file whose name's last
+//     run of digits is k (e.g. frame_000042.pgm), so a replayed scene stays tied to the trigger's
+//     frame numbers;
+//   - VideoReplaySource: a video file (anything OpenCV's videoio reads: AVI/MJPEG, and with
+//     FFmpeg MP4, MKV ...); frame k is the file's k-th frame (counted from 0), converted to gray.
+// A region of interest crops the images as a camera's sensor window would.
 #pragma once
 
 #include <filesystem>
 #include <map>
+#include <memory>
+
+#include <opencv2/videoio.hpp>
 
 #include "sensor/frame_source.hpp"
 
@@ -33,6 +39,32 @@ class ReplaySource : public FrameSource {
   std::map<int64_t, std::filesystem::path> files_;
   cv::Rect roi_;
 };
+
+class VideoReplaySource : public FrameSource {
+ public:
+  // Opens the video. Throws FrameSourceError when it cannot be opened or holds no frame.
+  VideoReplaySource(std::filesystem::path file, int camera_id, int32_t exposure_us = 0);
+
+  // Frame k: read on from the last frame, or sought when k lies behind it. nullopt past the end.
+  // A frame that cannot be decoded throws FrameSourceError naming the file and the frame.
+  std::optional<Frame> grab(int64_t frame_number) override;
+  std::string describe() const override;
+  cv::Rect set_roi(const cv::Rect& roi) override;
+
+  int64_t frame_count() const { return frame_count_; }
+
+ private:
+  std::filesystem::path file_;
+  int camera_id_;
+  int32_t exposure_us_;
+  cv::VideoCapture video_;
+  int64_t frame_count_ = 0;  // as the container says; may be an estimate
+  int64_t next_index_ = 0;   // the frame the next read() returns
+  cv::Rect roi_;
+};
+
+// The replay source for `path`: a VideoReplaySource for a file, a ReplaySource for a folder.
+std::unique_ptr<FrameSource> make_replay_source(const std::filesystem::path& path, int camera_id);
 
 // The frame number in a file name: its last run of decimal digits, or nothing.
 std::optional<int64_t> frame_number_from_name(const std::string& file_name);
