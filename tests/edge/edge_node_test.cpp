@@ -39,6 +39,12 @@ class FakeSource : public FrameSource {
     return roi = r;
   }
   std::string problem() const override { return trouble; }
+  std::vector<double> exposures, gains;  // set_exposure_us, set_gain_db
+  void set_exposure_us(double us) override {
+    if (us > 1e6) throw FrameSourceError("fake: exposure refused");
+    exposures.push_back(us);
+  }
+  void set_gain_db(double db) override { gains.push_back(db); }
   void note_trigger(int64_t frame_number, int64_t) override { noted.push_back(frame_number); }
 };
 
@@ -186,6 +192,54 @@ TEST_F(EdgeNodeTest, HeartbeatCarriesThePublishingQueue) {
   node_->publish_status();
   EXPECT_EQ(statuses_.back().message.rfind("no exposure for frame 1", 0), 0u);
   EXPECT_NE(statuses_.back().message.find("; queue 5/64, 17 dropped"), std::string::npos);
+}
+
+TEST_F(EdgeNodeTest, StopIgnoresTriggersUntilStart) {
+  source_.images[0] = image_with_spots(1);
+  source_.images[1] = image_with_spots(1);
+  edge_command_t stop{};
+  stop.camera_id = edge_command_t::ALL_CAMERAS;
+  stop.command = edge_command_t::STOP;
+  EXPECT_FALSE(node_->on_command(stop));
+  node_->on_trigger(trigger(0));
+  EXPECT_TRUE(frames_.empty());
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_IDLE);
+  EXPECT_EQ(statuses_.back().frames_lost, 0) << "a stopped camera loses nothing";
+  edge_command_t start = stop;
+  start.command = edge_command_t::START;
+  node_->on_command(start);
+  node_->on_trigger(trigger(1));
+  ASSERT_EQ(frames_.size(), 1u);
+  EXPECT_EQ(frames_[0].frame_number, 1);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ACQUIRING);
+}
+
+TEST_F(EdgeNodeTest, ExposureAndGainGoToTheCameraAndRefusalsAreReported) {
+  edge_command_t c{};
+  c.camera_id = 4;
+  c.command = edge_command_t::SET_EXPOSURE;
+  c.real_value = 2500;
+  node_->on_command(c);
+  c.command = edge_command_t::SET_GAIN;
+  c.real_value = 6;
+  node_->on_command(c);
+  EXPECT_EQ(source_.exposures, std::vector<double>{2500});
+  EXPECT_EQ(source_.gains, std::vector<double>{6});
+  c.command = edge_command_t::SET_EXPOSURE;
+  c.real_value = -1;  // out of range: never reaches the camera
+  node_->on_command(c);
+  EXPECT_EQ(source_.exposures.size(), 1u);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
+  EXPECT_NE(statuses_.back().message.find("SET_EXPOSURE refused"), std::string::npos)
+      << statuses_.back().message;
+  c.real_value = 5e6;  // the camera refuses
+  node_->on_command(c);
+  node_->publish_status();
+  EXPECT_NE(statuses_.back().message.find("fake: exposure refused"), std::string::npos)
+      << statuses_.back().message;
 }
 
 TEST_F(EdgeNodeTest, RemembersTheLastPulse) {

@@ -1,6 +1,7 @@
 #include "app/edge_node.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 #include "detection/blob_detector.hpp"
@@ -37,6 +38,14 @@ bool EdgeNode::on_command(const edge_command_t& c) {
   switch (c.command) {
     case edge_command_t::SHUTDOWN:
       return true;
+    case edge_command_t::START:
+    case edge_command_t::STOP:
+      acquiring_ = c.command == edge_command_t::START;
+      break;
+    case edge_command_t::SET_EXPOSURE:
+    case edge_command_t::SET_GAIN:
+      set_camera_control(c);
+      break;
     case edge_command_t::TRAIN_BACKGROUND:
       if (silhouettes_ && c.int_value > 0)
         silhouettes_->start_training(static_cast<int>(c.int_value));
@@ -72,8 +81,28 @@ bool EdgeNode::on_command(const edge_command_t& c) {
   return false;
 }
 
+void EdgeNode::set_camera_control(const edge_command_t& c) {
+  const bool exposure = c.command == edge_command_t::SET_EXPOSURE;
+  const std::string what = exposure ? "SET_EXPOSURE " : "SET_GAIN ";
+  if (!std::isfinite(c.real_value) || (exposure ? c.real_value <= 0 : c.real_value < 0)) {
+    note_error(what + "refused: " + std::to_string(c.real_value) + " is out of range");
+    return;
+  }
+  try {
+    if (exposure) {
+      source_.set_exposure_us(c.real_value);
+    } else {
+      source_.set_gain_db(c.real_value);
+    }
+  } catch (const FrameSourceError& e) {
+    note_error(what + "refused: " + e.what());
+  }
+}
+
 void EdgeNode::on_trigger(const trigger_t& trigger) {
   if (trigger.flags & trigger_t::FLAG_LAST) saw_last_pulse_ = true;
+  // Stopped by the host: the pulses' exposures are left to the camera and counted nowhere.
+  if (!acquiring_) return;
   source_.note_trigger(trigger.frame_number, trigger.monotonic_ns);
   std::optional<Frame> frame;
   try {
@@ -149,9 +178,10 @@ void EdgeNode::publish_status(bool final) {
   s.camera_id = static_cast<int16_t>(options_.camera_id);
   const std::string problem = source_.problem();
   if (!problem.empty()) last_error_ = problem;  // the source's state outranks a lost frame
-  s.state = final ? camera_status_t::STATE_STOPPED
-                  : (last_error_.empty() ? camera_status_t::STATE_ACQUIRING
-                                         : camera_status_t::STATE_ERROR);
+  s.state = final                  ? camera_status_t::STATE_STOPPED
+            : !last_error_.empty() ? camera_status_t::STATE_ERROR
+            : acquiring_           ? camera_status_t::STATE_ACQUIRING
+                                   : camera_status_t::STATE_IDLE;
   s.monotonic_ns = now;
   s.realtime_ns = now_ns(CLOCK_REALTIME);
   s.last_frame_number = last_frame_number_;

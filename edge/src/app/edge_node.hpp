@@ -36,8 +36,9 @@ class EdgeNode {
   // coordinates are sensor pixels whatever the region of interest.
   void on_trigger(const trigger_t& trigger);
   // Obeys a command meant for this camera: TRAIN_BACKGROUND (int_value frames), SET_THRESHOLD,
-  // SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor). Returns true for
-  // SHUTDOWN.
+  // SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor), SET_EXPOSURE
+  // (real_value us), SET_GAIN (real_value dB), STOP (triggers are ignored, heartbeat IDLE) and
+  // START. Returns true for SHUTDOWN.
   bool on_command(const edge_command_t& command);
   // Publishes a heartbeat; `final` marks the last one before the process exits.
   void publish_status(bool final = false);
@@ -48,6 +49,8 @@ class EdgeNode {
 
  private:
   void note_error(const std::string& message);
+  // SET_EXPOSURE / SET_GAIN: range-checked, passed to the source; a refusal goes in the heartbeat.
+  void set_camera_control(const edge_command_t& command);
   // Windowed mode with --roi-follows-windows: moves the sensor window to the next search windows.
   void follow_windows(cv::Size sensor);
 
@@ -61,6 +64,7 @@ class EdgeNode {
   double interval_processing_us_ = 0;
   int64_t interval_start_ns_ = 0;
   bool saw_last_pulse_ = false;
+  bool acquiring_ = true;  // STOP / START commands
   DetectionStage detection_;
   cv::Rect sensor_roi_;  // the window last applied by follow_windows (empty: the whole sensor)
   std::optional<SilhouetteStage> silhouettes_;

@@ -201,6 +201,20 @@ int64_t AravisSource::frame_number_of(uint16_t block_id) {
   return unwrapped + *number_offset_;
 }
 
+void AravisSource::set_exposure_us(double exposure_us) {
+  GError* error = nullptr;
+  arv_camera_set_exposure_time(camera_->camera.get(), exposure_us, &error);
+  check(error, options_.device_address, "setting the exposure to " + std::to_string(exposure_us));
+  options_.exposure_us = exposure_us;
+}
+
+void AravisSource::set_gain_db(double gain_db) {
+  GError* error = nullptr;
+  arv_camera_set_gain(camera_->camera.get(), gain_db, &error);
+  check(error, options_.device_address, "setting the gain to " + std::to_string(gain_db));
+  options_.gain_db = gain_db;
+}
+
 void AravisSource::software_trigger() {
   GError* error = nullptr;
   arv_camera_software_trigger(camera_->camera.get(), &error);

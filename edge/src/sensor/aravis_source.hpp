@@ -74,6 +74,10 @@ class AravisSource : public FrameSource {
   // FrameSourceError naming the camera when it refuses.
   cv::Rect set_roi(const cv::Rect& roi) override;
 
+  // Exposure and gain while acquiring (GenICam ExposureTime, Gain); frames carry the new exposure.
+  void set_exposure_us(double exposure_us) override;
+  void set_gain_db(double gain_db) override;
+
   // For TriggerSource=Software: expose one frame now.
   void software_trigger();
 

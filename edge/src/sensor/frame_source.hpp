@@ -78,6 +78,16 @@ class FrameSource {
     if (roi.empty()) return roi;
     throw FrameSourceError(describe() + ": cannot set a region of interest");
   }
+  // Sets the exposure time [us] / the analog gain [dB] (edge_command_t SET_EXPOSURE, SET_GAIN).
+  // Throws FrameSourceError when the source has no such control or the camera refuses it.
+  virtual void set_exposure_us(double exposure_us) {
+    throw FrameSourceError(describe() + ": cannot set the exposure (" +
+                           std::to_string(exposure_us) + " us)");
+  }
+  virtual void set_gain_db(double gain_db) {
+    throw FrameSourceError(describe() + ": cannot set the gain (" + std::to_string(gain_db) +
+                           " dB)");
+  }
   // Why the source delivers nothing right now (camera gone, reopening ...), or empty.
   virtual std::string problem() const { return {}; }
 };

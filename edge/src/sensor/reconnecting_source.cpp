@@ -78,6 +78,8 @@ void ReconnectingSource::try_reopen(int64_t frame_number, int64_t now) {
   try {
     auto source = open_(frame_number + 1);
     if (!roi_.empty()) source->set_roi(roi_);
+    if (exposure_us_) source->set_exposure_us(*exposure_us_);
+    if (gain_db_) source->set_gain_db(*gain_db_);
     source_ = std::move(source);
     description_ = source_->describe();
     why_.clear();
@@ -105,6 +107,16 @@ cv::Rect ReconnectingSource::set_roi(const cv::Rect& roi) {
   const cv::Rect applied = source_ ? source_->set_roi(roi) : roi;
   roi_ = roi;
   return applied;
+}
+
+void ReconnectingSource::set_exposure_us(double exposure_us) {
+  if (source_) source_->set_exposure_us(exposure_us);
+  exposure_us_ = exposure_us;
+}
+
+void ReconnectingSource::set_gain_db(double gain_db) {
+  if (source_) source_->set_gain_db(gain_db);
+  gain_db_ = gain_db;
 }
 
 std::string ReconnectingSource::problem() const {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "sensor/frame_source.hpp"
@@ -41,8 +42,10 @@ class ReconnectingSource : public FrameSource {
   std::string describe() const override;
   int64_t frames_incomplete() const override;
   void note_trigger(int64_t frame_number, int64_t monotonic_ns) override;
-  // Also applied again after every reopen.
+  // Also applied again after every reopen (as are exposure and gain).
   cv::Rect set_roi(const cv::Rect& roi) override;
+  void set_exposure_us(double exposure_us) override;
+  void set_gain_db(double gain_db) override;
   std::string problem() const override;
 
   bool connected() const { return source_ != nullptr; }
@@ -58,7 +61,8 @@ class ReconnectingSource : public FrameSource {
   std::unique_ptr<FrameSource> source_;
   std::string description_;  // of the last source opened
   cv::Rect roi_;
-  int misses_ = 0;  // consecutive triggers without a frame
+  std::optional<double> exposure_us_, gain_db_;  // set by command, re-applied after a reopen
+  int misses_ = 0;                               // consecutive triggers without a frame
   int64_t first_miss_ns_ = 0;
   int64_t retry_at_ns_ = 0;
   double delay_s_ = 0;

@@ -49,6 +49,8 @@ class TriggerMatchedSource : public FrameSource {
   std::string describe() const override;
   int64_t frames_incomplete() const override { return source_->frames_incomplete(); }
   cv::Rect set_roi(const cv::Rect& roi) override { return source_->set_roi(roi); }
+  void set_exposure_us(double exposure_us) override { source_->set_exposure_us(exposure_us); }
+  void set_gain_db(double gain_db) override { source_->set_gain_db(gain_db); }
   std::string problem() const override { return source_->problem(); }
 
   int64_t frames_unmatched() const { return unmatched_; }

@@ -20,6 +20,7 @@ class FlakyCamera : public FrameSource {
     if (missing.contains(frame_number)) return std::nullopt;
     Frame frame;
     frame.frame_number = frame_number;
+    frame.exposure_us = static_cast<int32_t>(exposure_us);
     frame.image = cv::Mat(24, 32, CV_8UC1, cv::Scalar(0));
     frame.image(cv::Rect(10, 10, 3, 3)).setTo(cv::Scalar(250));
     if (!roi.empty()) frame.image = frame.image(roi).clone(), frame.origin = roi.tl();
@@ -27,6 +28,9 @@ class FlakyCamera : public FrameSource {
   }
   std::string describe() const override { return "flaky camera"; }
   cv::Rect set_roi(const cv::Rect& r) override { return roi = r; }
+  void set_exposure_us(double us) override { exposure_us = us; }
+  void set_gain_db(double db) override { gain_db = db; }
+  double exposure_us = 0, gain_db = -1;
   int64_t frames_incomplete() const override { return 2; }
   cv::Rect roi;
   std::set<int64_t> missing;  // lost exposures
@@ -93,6 +97,21 @@ TEST_F(ReconnectingSourceTest, ReopensWithDoublingDelaysAndContinuesTheNumbering
   EXPECT_EQ(frame->frame_number, 39);
   EXPECT_EQ(frame->origin, cv::Point(8, 8));  // the region is applied again
   EXPECT_EQ(source->frames_incomplete(), 4);  // the lost camera's count is kept
+}
+
+TEST_F(ReconnectingSourceTest, ExposureAndGainSurviveAReopen) {
+  failing_opens_ = 0;
+  auto source = make();
+  source->set_exposure_us(1800);
+  source->set_gain_db(3);
+  ASSERT_EQ(source->grab(0)->exposure_us, 1800);
+  EXPECT_FALSE(source->grab(3).has_value());  // the camera vanishes
+  advance_s(1);
+  EXPECT_FALSE(source->grab(4).has_value());  // reopened at this trigger, numbering from 5
+  ASSERT_EQ(source->reopened(), 1);
+  const auto frame = source->grab(5);
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_EQ(frame->exposure_us, 1800) << "the new camera got the commanded exposure";
 }
 
 TEST_F(ReconnectingSourceTest, BackOffStopsGrowingAtTheMaximum) {
