@@ -95,6 +95,18 @@ void to_json(nlohmann::ordered_json& json, const edge_command_t& msg) {
   };
 }
 
+void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg) {
+  json = {
+      {"camera_id", msg.camera_id},
+      {"sequence", msg.sequence},
+      {"image_width", msg.image_width},
+      {"image_height", msg.image_height},
+      {"num_points", msg.num_points},
+      {"x", msg.x},
+      {"y", msg.y},
+  };
+}
+
 }  // namespace syncap
 
 namespace syncap::tools {
@@ -132,11 +144,11 @@ KnownType known() {
   return {Message::getHash(), &decode_as<Message>};
 }
 
-const std::array<KnownType, 7>& known_types() {
-  static const std::array<KnownType, 7> types{known<trigger_t>(),       known<blob_t>(),
-                                              known<blob_frame_t>(),    known<silhouette_part_t>(),
-                                              known<camera_status_t>(), known<edge_command_t>(),
-                                              known<trigger_status_t>()};
+const std::array<KnownType, 8>& known_types() {
+  static const std::array<KnownType, 8> types{known<trigger_t>(),        known<blob_t>(),
+                                              known<blob_frame_t>(),     known<silhouette_part_t>(),
+                                              known<camera_status_t>(),  known<edge_command_t>(),
+                                              known<trigger_status_t>(), known<clip_polygon_t>()};
   return types;
 }
 

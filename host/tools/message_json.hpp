@@ -11,6 +11,7 @@
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/blob_t.hpp"
 #include "syncap/camera_status_t.hpp"
+#include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
@@ -25,6 +26,7 @@ void to_json(nlohmann::ordered_json& json, const blob_frame_t& msg);
 void to_json(nlohmann::ordered_json& json, const silhouette_part_t& msg);
 void to_json(nlohmann::ordered_json& json, const camera_status_t& msg);
 void to_json(nlohmann::ordered_json& json, const edge_command_t& msg);
+void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg);
 
 }  // namespace syncap
 

@@ -42,6 +42,8 @@ pid_t spawn_publisher(int rounds) {
     lcm.publish(proto::status_channel(99), &status);
     const edge_command_t command = test::max_edge_command();
     lcm.publish(proto::kEdgeCommandChannel, &command);
+    const clip_polygon_t clip = test::max_clip_polygon();
+    lcm.publish(proto::kEdgeClipChannel, &clip);
     const trigger_status_t trigger_status = test::max_trigger_status();
     lcm.publish(kTriggerStatusChannel, &trigger_status);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -135,7 +137,7 @@ TEST(LcmExchange, EveryMaximalMessageIsOneDatagram) {
   std::map<std::string, int> short_messages;
   int fragments = 0;
   std::vector<uint8_t> buf(65536);
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 7; ++i) {
     const ssize_t n = recv(fd, buf.data(), buf.size(), 0);
     ASSERT_GT(n, 8) << "datagram " << i << " missing";
     if (std::memcmp(buf.data(), "LC02", 4) == 0) {
@@ -147,10 +149,11 @@ TEST(LcmExchange, EveryMaximalMessageIsOneDatagram) {
   close(fd);
   ASSERT_EQ(wait_for_exit(child), 0);
   EXPECT_EQ(fragments, 0) << "a message was fragmented (LC03)";
-  EXPECT_EQ(short_messages.size(), 6u);
+  EXPECT_EQ(short_messages.size(), 7u);
   EXPECT_EQ(short_messages[proto::silhouette_channel(99)], 1);
   EXPECT_EQ(short_messages[proto::blob_channel(99)], 1);
   EXPECT_EQ(short_messages[kTriggerStatusChannel], 1);
+  EXPECT_EQ(short_messages[proto::kEdgeClipChannel], 1);
 }
 
 }  // namespace

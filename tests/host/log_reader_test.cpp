@@ -305,6 +305,22 @@ TEST(LogJson, EdgeCommandRoundTrips) {
       "int_value":-7,"real_value":0.125,"roi_x":8,"roi_y":16,"roi_width":320,"roi_height":240})"));
 }
 
+TEST(LogJson, ClipPolygonRoundTrips) {
+  clip_polygon_t msg{};
+  msg.camera_id = 3;
+  msg.sequence = 12;
+  msg.image_width = 640;
+  msg.image_height = 480;
+  msg.num_points = 3;
+  msg.x = {10, 600, 300};
+  msg.y = {470, 470, 200};
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":3,"sequence":12,"image_width":640,
+      "image_height":480,"num_points":3,"x":[10,600,300],"y":[470,470,200]})"));
+}
+
 TEST(LogJson, InvalidUtf8InStringsIsReplacedNotFatal) {
   camera_status_t msg{};
   msg.message = "bad \xff byte";

@@ -8,6 +8,7 @@
 
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
+#include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_status_t.hpp"
@@ -116,6 +117,20 @@ inline edge_command_t max_edge_command() {
   c.roi_y = 32;
   c.roi_width = 640;
   c.roi_height = 480;
+  return c;
+}
+
+inline clip_polygon_t max_clip_polygon() {
+  clip_polygon_t c{};
+  c.camera_id = 99;
+  c.sequence = (int64_t{1} << 50) + 3;
+  c.image_width = 1280;
+  c.image_height = 1024;
+  c.num_points = clip_polygon_t::MAX_POINTS;
+  for (int i = 0; i < c.num_points; ++i) {
+    c.x.push_back(static_cast<int16_t>(i * 5));
+    c.y.push_back(static_cast<int16_t>(1023 - i * 4));
+  }
   return c;
 }
 

@@ -79,6 +79,15 @@ TEST(MessageBudget, EdgeCommandFitsAndRoundTrips) {
   expect_fits_and_round_trips(test::max_edge_command(), 43);
 }
 
+TEST(MessageBudget, ClipPolygonWithMostPointsFitsAndRoundTrips) {
+  const clip_polygon_t clip = test::max_clip_polygon();
+  expect_fits_and_round_trips(clip, 8 + 16 + 4 * clip_polygon_t::MAX_POINTS);
+  EXPECT_EQ(8 + 16 + 4 * clip_polygon_t::MAX_POINTS, 1048);  // as documented in the .lcm file
+  const clip_polygon_t back = decode<clip_polygon_t>(encode(clip));
+  EXPECT_EQ(back.x, clip.x);
+  EXPECT_EQ(back.y, clip.y);
+}
+
 TEST(MessageBudget, DecodingATruncatedBufferFails) {
   std::vector<uint8_t> bytes = encode(test::max_blob_frame());
   bytes.resize(bytes.size() - 5);

@@ -25,6 +25,8 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 inline constexpr const char* kTriggerChannel = "SYNCAP_TRIGGER";
 inline constexpr const char* kEdgeCommandChannel = "SYNCAP_EDGE_CMD";
+// clip_polygon_t, host -> edge (each message names its camera).
+inline constexpr const char* kEdgeClipChannel = "SYNCAP_EDGE_CLIP";
 
 // Per-camera channels carry the camera id as two decimal digits: SYNCAP_BLOBS_03.
 inline constexpr int kMaxCameraId = 99;
