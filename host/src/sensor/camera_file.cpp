@@ -153,9 +153,72 @@ ordered_json parameters_json(const InteriorOrientation& interior,
   return j;
 }
 
+// The quality block; every error names the source and the field ("quality.rms_px").
+CalibrationQuality read_quality(const json& object, const std::string& where) {
+  const auto fail = [&](const std::string& field, const std::string& what) -> void {
+    throw CameraFileError(where + ": field \"quality." + field + "\" " + what);
+  };
+  if (!object.is_object()) throw CameraFileError(where + ": field \"quality\" must be an object");
+  static const std::set<std::string> known{"sigma0_px",         "rms_px",
+                                           "per_camera_rms_px", "observations",
+                                           "outliers_removed",  "wand_length_mean_mm",
+                                           "wand_length_sd_mm"};
+  for (const auto& item : object.items()) {
+    if (known.count(item.key()) == 0) fail(item.key(), "is unknown");
+  }
+  const auto number = [&](const char* name) {
+    const auto it = object.find(name);
+    if (it == object.end()) fail(name, "is missing");
+    if (!it->is_number() || !(it->get<double>() >= 0.0)) {
+      fail(name, "must be a non-negative number");
+    }
+    return it->get<double>();
+  };
+  const auto optional_number = [&](const char* name) -> std::optional<double> {
+    const auto it = object.find(name);
+    if (it == object.end() || it->is_null()) return std::nullopt;
+    return number(name);
+  };
+  CalibrationQuality q;
+  q.sigma0_px = number("sigma0_px");
+  q.rms_px = number("rms_px");
+  q.observations = static_cast<long>(number("observations"));
+  q.outliers_removed = static_cast<long>(number("outliers_removed"));
+  q.wand_length_mean_mm = optional_number("wand_length_mean_mm");
+  q.wand_length_sd_mm = optional_number("wand_length_sd_mm");
+  const auto per_camera = object.find("per_camera_rms_px");
+  if (per_camera == object.end()) fail("per_camera_rms_px", "is missing");
+  if (!per_camera->is_object()) fail("per_camera_rms_px", "must be an object by camera id");
+  for (const auto& item : per_camera->items()) {
+    const std::string& key = item.key();
+    const bool digits =
+        !key.empty() && key.size() <= 2 && key.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits) fail("per_camera_rms_px." + key, "is not a camera id (0-99)");
+    if (!item.value().is_number() || !(item.value().get<double>() >= 0.0)) {
+      fail("per_camera_rms_px." + key, "must be a non-negative number");
+    }
+    q.per_camera_rms_px[std::stoi(key)] = item.value().get<double>();
+  }
+  return q;
+}
+
+ordered_json quality_json(const CalibrationQuality& q) {
+  ordered_json j;
+  j["sigma0_px"] = q.sigma0_px;
+  j["rms_px"] = q.rms_px;
+  ordered_json per_camera = ordered_json::object();
+  for (const auto& [id, rms] : q.per_camera_rms_px) per_camera[std::to_string(id)] = rms;
+  j["per_camera_rms_px"] = std::move(per_camera);
+  j["observations"] = q.observations;
+  j["outliers_removed"] = q.outliers_removed;
+  j["wand_length_mean_mm"] = q.wand_length_mean_mm ? json(*q.wand_length_mean_mm) : json(nullptr);
+  j["wand_length_sd_mm"] = q.wand_length_sd_mm ? json(*q.wand_length_sd_mm) : json(nullptr);
+  return j;
+}
+
 }  // namespace
 
-std::vector<CameraModel> parse_cameras(std::string_view text, std::string_view source) {
+CameraSet parse_camera_set(std::string_view text, std::string_view source) {
   json document;
   try {
     document = json::parse(text);
@@ -167,28 +230,33 @@ std::vector<CameraModel> parse_cameras(std::string_view text, std::string_view s
     throw CameraFileError(where + ": the top level must be an object with a \"cameras\" array");
   }
   for (const auto& item : document.items()) {
-    if (item.key() != "cameras") {
+    if (item.key() != "cameras" && item.key() != "quality") {
       throw CameraFileError(where + ": field \"" + item.key() + "\" is unknown");
     }
   }
-  std::vector<CameraModel> cameras;
+  CameraSet set;
   std::map<int, std::size_t> index_of_id;
   const json& list = document["cameras"];
   for (std::size_t i = 0; i < list.size(); ++i) {
-    cameras.push_back(CameraReader(source, i).read(list[i]));
-    const auto [it, inserted] = index_of_id.emplace(cameras.back().id, i);
+    set.cameras.push_back(CameraReader(source, i).read(list[i]));
+    const auto [it, inserted] = index_of_id.emplace(set.cameras.back().id, i);
     if (!inserted) {
       throw CameraFileError(where + ": cameras[" + std::to_string(i) + "]: id " +
-                            std::to_string(cameras.back().id) + " is already used by cameras[" +
+                            std::to_string(set.cameras.back().id) + " is already used by cameras[" +
                             std::to_string(it->second) + "]");
     }
   }
-  return cameras;
+  if (document.contains("quality")) set.quality = read_quality(document["quality"], where);
+  return set;
 }
 
-std::string format_cameras(const std::vector<CameraModel>& cameras) {
+std::vector<CameraModel> parse_cameras(std::string_view text, std::string_view source) {
+  return parse_camera_set(text, source).cameras;
+}
+
+std::string format_camera_set(const CameraSet& set) {
   ordered_json list = ordered_json::array();
-  for (const CameraModel& camera : cameras) {
+  for (const CameraModel& camera : set.cameras) {
     ordered_json j;
     j["id"] = camera.id;
     j["image_size"] = {camera.sensor.width_px, camera.sensor.height_px};
@@ -201,24 +269,37 @@ std::string format_cameras(const std::vector<CameraModel>& cameras) {
   }
   ordered_json document;
   document["cameras"] = std::move(list);
+  if (set.quality) document["quality"] = quality_json(*set.quality);
   return document.dump(2) + "\n";
 }
 
-std::vector<CameraModel> read_cameras(const std::filesystem::path& file) {
+std::string format_cameras(const std::vector<CameraModel>& cameras) {
+  return format_camera_set({cameras, std::nullopt});
+}
+
+CameraSet read_camera_set(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw CameraFileError(file.string() + ": cannot open for reading");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw CameraFileError(file.string() + ": read error");
-  return parse_cameras(text.str(), file.string());
+  return parse_camera_set(text.str(), file.string());
+}
+
+std::vector<CameraModel> read_cameras(const std::filesystem::path& file) {
+  return read_camera_set(file).cameras;
+}
+
+void write_camera_set(const std::filesystem::path& file, const CameraSet& set) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) throw CameraFileError(file.string() + ": cannot open for writing");
+  out << format_camera_set(set);
+  out.close();
+  if (!out) throw CameraFileError(file.string() + ": write error");
 }
 
 void write_cameras(const std::filesystem::path& file, const std::vector<CameraModel>& cameras) {
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) throw CameraFileError(file.string() + ": cannot open for writing");
-  out << format_cameras(cameras);
-  out.close();
-  if (!out) throw CameraFileError(file.string() + ": write error");
+  write_camera_set(file, {cameras, std::nullopt});
 }
 
 }  // namespace syncap::sensor

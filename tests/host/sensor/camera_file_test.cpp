@@ -163,5 +163,42 @@ TEST(CameraFile, ErrorsForTheFileAsAWhole) {
   }
 }
 
+TEST(CameraFile, QualityBlockRoundTripsAndIsChecked) {
+  CameraSet set{two_cameras(), CalibrationQuality{}};
+  set.quality->sigma0_px = 0.11;
+  set.quality->rms_px = 0.125;
+  set.quality->per_camera_rms_px = {{0, 0.12}, {7, 0.13}};
+  set.quality->observations = 1800;
+  set.quality->outliers_removed = 3;
+  set.quality->wand_length_mean_mm = 1000.02;
+  set.quality->wand_length_sd_mm = 0.21;
+  const CameraSet back = parse_camera_set(format_camera_set(set), "q.json");
+  ASSERT_TRUE(back.quality.has_value());
+  EXPECT_EQ(back.quality->rms_px, 0.125);
+  EXPECT_EQ(back.quality->per_camera_rms_px, set.quality->per_camera_rms_px);
+  EXPECT_EQ(back.quality->observations, 1800);
+  EXPECT_EQ(back.quality->wand_length_sd_mm, 0.21);
+  EXPECT_EQ(parse_cameras(format_camera_set(set), "q.json").size(), 2u);
+
+  set.quality->wand_length_mean_mm.reset();  // LED mode: written as null, read as absent
+  set.quality->wand_length_sd_mm.reset();
+  const std::string led = format_camera_set(set);
+  EXPECT_NE(led.find("\"wand_length_mean_mm\": null"), std::string::npos);
+  EXPECT_FALSE(parse_camera_set(led, "q.json").quality->wand_length_mean_mm.has_value());
+
+  nlohmann::json j = nlohmann::json::parse(format_camera_set(set));
+  j["quality"]["per_camera_rms_px"]["x"] = 0.1;
+  try {
+    parse_camera_set(j.dump(), "q.json");
+    FAIL() << "a bad camera key was accepted";
+  } catch (const CameraFileError& e) {
+    EXPECT_STREQ(e.what(),
+                 "q.json: field \"quality.per_camera_rms_px.x\" is not a camera id (0-99)");
+  }
+  j = nlohmann::json::parse(format_camera_set(set));
+  j["quality"].erase("rms_px");
+  EXPECT_THROW(parse_camera_set(j.dump(), "q.json"), CameraFileError);
+}
+
 }  // namespace
 }  // namespace syncap::sensor
