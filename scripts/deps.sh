@@ -18,6 +18,8 @@ PACKAGES=(
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
   # tests and benchmarks
   libcmocka-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # fuzzing the SDL parser (scripts/fuzz-sdl.sh): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
   # private network namespaces (ip), unshare comes with util-linux
   iproute2 util-linux
 )

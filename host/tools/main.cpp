@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "bundle_command.hpp"
 #include "log_command.hpp"
 #include "subcommand.hpp"
 
@@ -28,6 +29,8 @@ struct Subcommand {
 constexpr std::array kSubcommands{
     Subcommand{"log", "print the events of an LCM log file as JSON lines",
                &syncap::tools::log_command},
+    Subcommand{"bundle", "adjust a scene description (SDL) file: bundle adjustment",
+               &syncap::tools::bundle_command},
 };
 
 // Subcommands that are programs of their own, `syncap-NAME`, looked for beside this program,

@@ -55,6 +55,7 @@ std::string describe(const Token& token) {
       return "string \"" + token.text + "\"";
     case TokenKind::kSymbol:
       return "'" + token.text + "'";
+    case TokenKind::kEndOfInclude:
     case TokenKind::kEnd:
       break;
   }

@@ -15,7 +15,9 @@ struct Position {
   int column = 1;
 };
 
-enum class TokenKind { kIdentifier, kNumber, kString, kSymbol, kEnd };
+// kEndOfInclude: where an included file ended (the parser accepts it only between statements
+// and between the items of a block, so that an included file holds whole ones).
+enum class TokenKind { kIdentifier, kNumber, kString, kSymbol, kEndOfInclude, kEnd };
 
 struct Token {
   TokenKind kind = TokenKind::kEnd;

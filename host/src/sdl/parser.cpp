@@ -69,6 +69,7 @@ class Parser {
   // Tokens, with includes spliced in.
   void advance();
   void include(const Token& keyword);
+  bool at_boundary(char symbol);
   bool at_symbol(char symbol) const;
   bool at_word(std::string_view word) const;
   [[noreturn]] void fail(const Position& at, const std::string& message) const;
@@ -129,7 +130,7 @@ void Parser::advance() {
     Token token = sources_.back().lexer.next();
     if (token.kind == TokenKind::kEnd && sources_.size() > 1) {
       sources_.pop_back();
-      continue;
+      token.kind = TokenKind::kEndOfInclude;
     }
     if (token.kind == TokenKind::kIdentifier && token.text == "include") {
       include(token);
@@ -167,6 +168,13 @@ void Parser::include(const Token& keyword) {
   sources_.push_back(
       {Lexer(std::move(file.text), std::make_shared<const std::string>(path.string())), path,
        file.identity});
+}
+
+// Between statements or block items: passes the ends of included files; true at `symbol` (the
+// end of the input for '\0').
+bool Parser::at_boundary(char symbol) {
+  while (current_.kind == TokenKind::kEndOfInclude) advance();
+  return symbol == '\0' ? current_.kind == TokenKind::kEnd : at_symbol(symbol);
 }
 
 bool Parser::at_symbol(char symbol) const {
@@ -209,7 +217,7 @@ template <typename ItemFunction>
 void Parser::block(const std::string& what, ItemFunction item) {
   const Position open = current_.position;
   expect_symbol('{', "to open " + what);
-  while (!at_symbol('}')) {
+  while (!at_boundary('}')) {
     if (current_.kind == TokenKind::kEnd) {
       fail(current_.position,
            "expected '}' to close " + what + " (opened at " + at_text(open) + ")");
@@ -316,7 +324,7 @@ scene::Network Parser::parse(std::string text, const std::filesystem::path& path
   sources_.push_back(
       {Lexer(std::move(text), std::make_shared<const std::string>(path.string())), path, identity});
   advance();
-  while (current_.kind != TokenKind::kEnd) statement();
+  while (!at_boundary('\0')) statement();
   check_references();
   return std::move(network_);
 }
