@@ -126,7 +126,7 @@ bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std:
   } else if (a == "--train-from-frame") {
     o.train_from_frame = parse_number<int64_t>(v, 0, int64_t{1} << 53);
   } else if (a == "--contour-tolerance") {
-    o.contour_tolerance_px = parse_number<int>(v, 0, 100);
+    o.contour_tolerance_px = parse_number<double>(v, 0, 100);
   } else if (a == "--roi") {
     o.roi = parse_roi(v);
   } else if (a == "--threshold") {
@@ -215,7 +215,7 @@ std::string edge_usage() {
          "  --train-frames N    mask: train the background on N frames (else on the host's\n"
          "                      TRAIN_BACKGROUND command) ...\n"
          "  --train-from-frame F  ... numbered F..F+N-1 (default: the first N frames)\n"
-         "  --contour-tolerance PX  mask: polygon simplification (default 1)\n"
+         "  --contour-tolerance PX  mask: polygon simplification (default 0.5)\n"
          "  --threshold DN      blob threshold 1..255 (default 128)\n"
          "  --min-area PX       smallest blob area (default 2)\n"
          "  --max-area PX       largest blob area (default 20000)\n"

@@ -27,12 +27,27 @@ struct MediPictureModel {
 // between two consecutive stationary frames. Throws std::invalid_argument on bad input.
 MediPictureModel train_medi_picture(std::span<const cv::Mat> frames);
 
+// How darker foreground pixels are recognised as shadow.
+enum class ShadowTest {
+  // Eqs 5.6-5.11: the window around the pixel correlates with the background's (NCC >= L_NCC)
+  // and holds less energy.
+  kCorrelation,
+  // Our alternative for scenes with one light: every shadow pixel is the background darkened by
+  // the same factor. The factor is the mode of I / lambda over the candidates of the frame; a
+  // candidate is shadow when |I - factor lambda| <= shadow_ratio_sigmas x max(sigma, 1 DN).
+  // Per pixel, so it has no border band where the window straddles the shadow's edge, and a
+  // smooth dark body part is kept unless its darkening happens to equal the shadow's.
+  kCommonRatio,
+};
+
 struct MediPictureOptions {
   // A pixel is foreground outside [m - k d', n + k d'] with d' = max(d, min_difference).
   float k = 3.0f;
   float min_difference = 6.0f;  // DN: d of a pixel still in training is not its noise
   // Shadow test (eqs 5.6-5.11) on a (2 ncc_half_window + 1)^2 window.
   bool remove_shadows = true;
+  ShadowTest shadow_test = ShadowTest::kCorrelation;
+  float shadow_ratio_sigmas = 4.0f;  // kCommonRatio: tolerance in the pixel's training sigmas
   int ncc_half_window = 2;
   float ncc_threshold = 0.98f;  // L_NCC
   // Our addition: a shadow keeps at least this share of the background's energy (E_T / E_B);
@@ -40,9 +55,20 @@ struct MediPictureOptions {
   float min_shadow_energy_ratio = 0.5f;
   int closing_diameter = 9;     // elliptical element, pixels; 0 disables the closing
   int min_component_area = 40;  // smaller 8-connected components are noise, pixels
-  float update_rate = 0.0f;     // slow update where the mask is background, 0 = frozen model
+  // Holes of the foreground (4-connected background not reaching the image border) up to this
+  // area are filled, pixels; 0 keeps every hole. A person's silhouette has few true holes that
+  // small; pixels of the body that match the background leave many.
+  int max_hole_area = 0;
+  float update_rate = 0.0f;  // slow update where the mask is background, 0 = frozen model
   std::vector<cv::Point> clip_polygon;  // when not empty, pixels outside it are background
 };
+
+// The options syncap-edge masks a person with (the indoor capture scene of the thesis, one light,
+// the person darker than a textured floor in places and casting a shadow on it): a narrow
+// interval (k = 1: a pixel 6 DN outside its training range is foreground), the common-ratio
+// shadow test at 3 sigmas, a closing of 5 px (9 px bridges the gaps between limbs) and holes up
+// to 100 px filled. Measured on the replay bench's ring-6cam-person (docs/segmentation.md).
+MediPictureOptions person_masking_options();
 
 // Classifies frames against a trained model; holds the thresholds derived from it.
 class MediPicture {
@@ -69,6 +95,9 @@ class MediPicture {
   cv::Mat apply_whole_frame(const cv::Mat& frame);
   // Eqs 5.6-5.11 on the pixels marked kBelow in `mask` within `box`: 0 if shadow, else 255.
   void resolve_shadows(const cv::Mat& frame, cv::Mat& mask, cv::Rect box);
+  // The common-ratio test on the pixels marked kBelow in `mask` within `box`: 0 if shadow, else
+  // 255.
+  void resolve_common_ratio_shadows(const cv::Mat& frame, cv::Mat& mask, cv::Rect box);
   // clean_mask and the clip inside `box`, which holds every foreground pixel of `mask`.
   void clean_inside(cv::Mat& mask, cv::Rect box);
 
@@ -102,6 +131,20 @@ cv::Mat classify_against_model(const MediPictureModel& model, const cv::Mat& fra
 // the window of `frame` correlates with that of `background` and holds less energy.
 cv::Mat shadow_pixels(const cv::Mat& background, const cv::Mat& frame, const cv::Mat& candidates,
                       const MediPictureOptions& options);
+
+// kCommonRatio: the darkening factor of the frame's shadow, the mode of frame / lambda over the
+// pixels of `candidates` (bins of 0.01 below 1, smoothed over three); 0 when there is none.
+float shadow_ratio(const MediPictureModel& model, const cv::Mat& frame, const cv::Mat& candidates);
+
+// kCommonRatio: 255 where a pixel of `candidates` is the background darkened by `ratio` within
+// options.shadow_ratio_sigmas x max(sigma, 1).
+cv::Mat common_ratio_shadow_pixels(const MediPictureModel& model, const cv::Mat& frame,
+                                   const cv::Mat& candidates, float ratio,
+                                   const MediPictureOptions& options);
+
+// Fills the holes of `mask` (4-connected background components that do not touch the image
+// border) of at most `max_area` pixels. Works in place.
+void fill_holes(cv::Mat& mask, int max_area);
 
 // Closing with an elliptical element of `closing_diameter`, then removal of 8-connected
 // components smaller than `min_component_area`. Works in place.

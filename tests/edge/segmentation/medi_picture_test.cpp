@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -50,6 +53,74 @@ TEST(MediPicture, TrainingFollowsEq55OnAKnownSequence) {
   EXPECT_FLOAT_EQ(model.maximum.at<float>(0, 0), 13.0f);
   // Steps between consecutive stationary frames only: |12-10| and |11-12|.
   EXPECT_FLOAT_EQ(model.max_difference.at<float>(0, 0), 2.0f);
+}
+
+// Eq 5.5 for one pixel, straight from its definition (nth_element per pixel): the reference
+// the sorting-network training must equal exactly.
+MediPictureModel reference_training(const std::vector<cv::Mat>& frames) {
+  const std::size_t n = frames.size();
+  MediPictureModel model;
+  for (cv::Mat* image :
+       {&model.median, &model.sigma, &model.minimum, &model.maximum, &model.max_difference}) {
+    image->create(frames[0].size(), CV_32FC1);
+  }
+  std::vector<int> samples(n);
+  for (int y = 0; y < frames[0].rows; ++y) {
+    for (int x = 0; x < frames[0].cols; ++x) {
+      for (std::size_t z = 0; z < n; ++z) samples[z] = frames[z].at<uchar>(y, x);
+      std::vector<int> sorted = samples;
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
+                       sorted.end());
+      const int median = sorted[n / 2];
+      for (std::size_t z = 0; z < n; ++z) sorted[z] = std::abs(samples[z] - median);
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
+                       sorted.end());
+      const float sigma = 1.4826f * static_cast<float>(sorted[n / 2]);
+      float low = 255, high = 0, step = 0;
+      for (std::size_t z = 0; z < n; ++z) {
+        const bool stationary = static_cast<float>(std::abs(samples[z] - median)) <= 2.0f * sigma;
+        const bool before =
+            z > 0 && static_cast<float>(std::abs(samples[z - 1] - median)) <= 2.0f * sigma;
+        if (!stationary) continue;
+        low = std::min(low, static_cast<float>(samples[z]));
+        high = std::max(high, static_cast<float>(samples[z]));
+        if (before)
+          step = std::max(step, static_cast<float>(std::abs(samples[z] - samples[z - 1])));
+      }
+      model.median.at<float>(y, x) = static_cast<float>(median);
+      model.sigma.at<float>(y, x) = sigma;
+      model.minimum.at<float>(y, x) = low;
+      model.maximum.at<float>(y, x) = high;
+      model.max_difference.at<float>(y, x) = step;
+    }
+  }
+  return model;
+}
+
+TEST(MediPicture, TrainingEqualsThePerPixelDefinition) {
+  // Frame counts around powers of two (the sorting network pads to one), an image size that is
+  // no multiple of the stripe width, passing objects in some frames, and ROI (non-continuous)
+  // frames.
+  cv::RNG rng(11);
+  for (int count : {2, 3, 7, 8, 9, 30, 31, 60}) {
+    std::vector<cv::Mat> frames;
+    for (int z = 0; z < count; ++z) {
+      cv::Mat big = noisy_frame(rng, cv::Size(101, 83), 120, 4);
+      if (z % 5 == 2) cv::circle(big, cv::Point(30 + 7 * z % 50, 40), 12, cv::Scalar(250), -1);
+      frames.push_back(count == 31 ? big(cv::Rect(3, 2, 91, 77)) : big);
+    }
+    const MediPictureModel fast = train_medi_picture(frames);
+    const MediPictureModel reference = reference_training(frames);
+    const std::pair<const cv::Mat*, const cv::Mat*> images[] = {
+        {&fast.median, &reference.median},
+        {&fast.sigma, &reference.sigma},
+        {&fast.minimum, &reference.minimum},
+        {&fast.maximum, &reference.maximum},
+        {&fast.max_difference, &reference.max_difference}};
+    for (const auto& [ours, theirs] : images) {
+      EXPECT_EQ(cv::norm(*ours, *theirs, cv::NORM_INF), 0.0) << count << " frames";
+    }
+  }
 }
 
 TEST(MediPicture, TrainingRejectsTooFewOrMixedFrames) {
@@ -112,6 +183,91 @@ TEST(MediPicture, DarkObjectWithOtherTextureIsNotShadow) {
   EXPECT_LT(cv::countNonZero(shadow), patch.area() / 20);
 }
 
+// A person's scene: a shadow (the floor darkened by one factor) beside a smooth dark body part
+// whose darkening varies, on a noisy floor.
+struct ShadowAndBody {
+  MediPictureModel model;
+  cv::Mat frame;
+  cv::Rect shadow{10, 40, 50, 30}, body{70, 30, 30, 50};
+};
+
+ShadowAndBody shadow_and_body() {
+  // A smooth floor (grain of a few DN), as the rendered tiles: any smooth patch correlates.
+  cv::Mat floor(100, 120, CV_8UC1);
+  cv::RNG(4).fill(floor, cv::RNG::UNIFORM, 120, 141);
+  cv::GaussianBlur(floor, floor, cv::Size(5, 5), 1.0);
+  cv::RNG rng(9);
+  std::vector<cv::Mat> training;
+  for (int i = 0; i < 20; ++i) {
+    cv::Mat noise(floor.size(), CV_16SC1), frame;
+    rng.fill(noise, cv::RNG::NORMAL, 0, 2);
+    cv::add(floor, noise, frame, cv::noArray(), CV_8U);
+    training.push_back(frame);
+  }
+  ShadowAndBody scene;
+  scene.model = train_medi_picture(training);
+  cv::Mat frame = training[0].clone();
+  frame(scene.shadow).convertTo(frame(scene.shadow), CV_8U, 0.55);
+  // Smooth shading from 82 to 117 DN down the body: darker than the floor by 0.63..0.9, never
+  // by the shadow's 0.55.
+  for (int y = 0; y < scene.body.height; ++y) {
+    frame.row(scene.body.y + y)
+        .colRange(scene.body.x, scene.body.br().x)
+        .setTo(82 + 35 * y / scene.body.height);
+  }
+  scene.frame = frame;
+  return scene;
+}
+
+TEST(MediPicture, CommonRatioFindsTheShadowsFactorAndSparesTheBody) {
+  const ShadowAndBody scene = shadow_and_body();
+  MediPictureOptions options = bare_options();
+  options.k = 1;
+  const cv::Mat candidates = classify_against_model(scene.model, scene.frame, options);
+  EXPECT_NEAR(shadow_ratio(scene.model, scene.frame, candidates), 0.55, 0.011);
+  const cv::Mat shadow = common_ratio_shadow_pixels(
+      scene.model, scene.frame, candidates, shadow_ratio(scene.model, scene.frame, candidates),
+      person_masking_options());
+  // Per pixel, so the shadow's border band is shadow too (the correlation test keeps it).
+  EXPECT_GT(cv::countNonZero(shadow(scene.shadow)), scene.shadow.area() * 98 / 100);
+  EXPECT_EQ(cv::countNonZero(shadow(scene.body)), 0);
+  EXPECT_EQ(shadow_ratio(scene.model, scene.frame, cv::Mat::zeros(scene.frame.size(), CV_8UC1)),
+            0.0f);
+
+  // The whole pipeline: the body stays (its brightest rows are near the floor's), the shadow goes;
+  // the thesis' correlation test takes the smooth body for shadow and keeps the shadow's border
+  // band.
+  MediPicture person(scene.model, person_masking_options());
+  const cv::Mat mask = person.apply(scene.frame);
+  EXPECT_GE(cv::countNonZero(mask(scene.body)), scene.body.area() * 99 / 100);
+  EXPECT_LT(cv::countNonZero(mask), scene.body.area() * 11 / 10);
+  MediPictureOptions correlation = person_masking_options();
+  correlation.shadow_test = ShadowTest::kCorrelation;
+  const cv::Mat thesis = MediPicture(scene.model, correlation).apply(scene.frame);
+  EXPECT_LT(cv::countNonZero(thesis(scene.body)), scene.body.area() * 9 / 10);
+  EXPECT_GT(cv::countNonZero(thesis(scene.shadow)), scene.shadow.area() / 10);
+}
+
+TEST(MediPicture, FillHolesFillsOnlySmallEnclosedHoles) {
+  cv::Mat mask = cv::Mat::zeros(60, 80, CV_8UC1);
+  mask(cv::Rect(10, 10, 60, 40)).setTo(255);
+  mask(cv::Rect(15, 15, 5, 4)).setTo(0);    // 20 px hole
+  mask(cv::Rect(30, 20, 20, 20)).setTo(0);  // 400 px hole
+  mask(cv::Rect(60, 30, 10, 5)).setTo(0);   // a notch open to the outside, not a hole
+  cv::Mat corner = cv::Mat::zeros(60, 80, CV_8UC1);
+  corner(cv::Rect(0, 0, 6, 6)).setTo(255);
+  corner.at<uchar>(0, 0) = 0;  // background at the image border, not a hole
+  mask |= corner;
+  cv::Mat expected = mask.clone();
+  expected(cv::Rect(15, 15, 5, 4)).setTo(255);
+  fill_holes(mask, 100);
+  EXPECT_EQ(cv::countNonZero(mask != expected), 0);
+  fill_holes(mask, 400);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(30, 20, 20, 20))), 400);
+  EXPECT_EQ(mask.at<uchar>(0, 0), 0);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(60, 30, 10, 5))), 0);
+}
+
 TEST(MediPicture, ClosingFillsGapsAndSmallComponentsGo) {
   cv::Mat mask = cv::Mat::zeros(100, 100, CV_8UC1);
   mask(cv::Rect(20, 20, 40, 40)).setTo(255);
@@ -167,9 +323,15 @@ cv::Mat reference_apply(const MediPictureModel& model, const MediPictureOptions&
     cv::Mat background;
     model.median.convertTo(background, CV_8U);
     const cv::Mat candidates = mask & (frame < background);
-    mask.setTo(0, shadow_pixels(background, frame, candidates, options));
+    if (options.shadow_test == ShadowTest::kCommonRatio) {
+      const float ratio = shadow_ratio(model, frame, candidates);
+      mask.setTo(0, common_ratio_shadow_pixels(model, frame, candidates, ratio, options));
+    } else {
+      mask.setTo(0, shadow_pixels(background, frame, candidates, options));
+    }
   }
   clean_mask(mask, options.closing_diameter, options.min_component_area);
+  fill_holes(mask, options.max_hole_area);
   clip_to_polygon(mask, options.clip_polygon);
   return mask;
 }
@@ -251,6 +413,14 @@ TEST(MediPicture, FastApplyMatchesTheStepByStepReference) {
   variants[7] = bare_options();
   variants[8].closing_diameter = 15;
   variants[8].min_component_area = 200;
+  variants.push_back(person_masking_options());
+  variants.push_back(person_masking_options());
+  variants.back().clip_polygon = variants[6].clip_polygon;
+  variants.push_back(person_masking_options());
+  variants.back().shadow_ratio_sigmas = 8;
+  variants.back().max_hole_area = 0;
+  variants.push_back(MediPictureOptions{});
+  variants.back().max_hole_area = 400;
   int foreground = 0;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     MediPicture medi(model, variants[v]);
