@@ -26,6 +26,7 @@ sensor::ExteriorOrientation looking_at(const Eigen::Vector3d& centre,
 }
 
 std::vector<sensor::CameraModel> true_cameras(const WandSimulation& sim) {
+  if (!sim.true_cameras.empty()) return sim.true_cameras;
   std::vector<sensor::CameraModel> cameras;
   const bool ring = sim.arc_deg >= 360.0;
   for (int i = 0; i < sim.cameras; ++i) {

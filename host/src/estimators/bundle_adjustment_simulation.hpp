@@ -26,6 +26,9 @@ struct WandSimulation {
   sensor::SensorGeometry sensor{1280, 1024, 0.0067, 0.0067};
   sensor::InteriorOrientation interior{6.0,    0.02,   -0.03,  5.6e-3, 2.0e-5,
                                        4.0e-6, 3.0e-5, 2.0e-5, 0.0,    0.0};
+  // When not empty, these cameras (e.g. a scenario's rig, hil/sim/src/camera_rig.hpp) are the
+  // truth instead of the arc above; their ids become the stations' camera ids.
+  std::vector<sensor::CameraModel> true_cameras;
   int frames = 200;
   std::vector<double> target_offsets_mm{0.0, 400.0, 1000.0};
   double wand_sigma_mm = 0.1;  // each frame's distance observations scatter by this
