@@ -20,7 +20,8 @@
 namespace syncap::sdl {
 
 // A scene that does not parse: where (file, line, column, 1-based; the column counts bytes) and
-// what was expected. what() is "FILE:LINE:COLUMN: MESSAGE", as compilers print it.
+// what was expected. what() is "FILE:LINE:COLUMN: MESSAGE", as compilers print it; for a file
+// that cannot be read at all line and column are 0 and what() is "FILE: MESSAGE".
 class ParseError : public std::runtime_error {
  public:
   ParseError(std::string file, int line, int column, const std::string& message);
