@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bundle_command.hpp"
+#include "clip_command.hpp"
 #include "log_command.hpp"
 #include "subcommand.hpp"
 
@@ -29,6 +30,8 @@ struct Subcommand {
 constexpr std::array kSubcommands{
     Subcommand{"log", "print the events of an LCM log file as JSON lines",
                &syncap::tools::log_command},
+    Subcommand{"clip", "send each camera the capture volume's outline as its masking's clip",
+               &syncap::tools::clip_command},
     Subcommand{"bundle", "adjust a scene description (SDL) file: bundle adjustment",
                &syncap::tools::bundle_command},
 };

@@ -1,0 +1,110 @@
+// `syncap clip`: per camera of a cameras.json, the capture volume's outline as a clip polygon
+// message; --remove sends polygons of no points; bad arguments and files are named.
+#include "clip_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "sensor/camera_file.hpp"
+#include "sensor/test_cameras.hpp"
+#include "subcommand.hpp"
+
+namespace syncap::tools {
+namespace {
+
+struct ClipRun {
+  int status = -1;
+  std::vector<nlohmann::json> lines;
+  std::string err;
+};
+
+ClipRun run(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  ClipRun r;
+  r.status = clip_command(args, out, err);
+  std::istringstream lines(out.str());
+  for (std::string line; std::getline(lines, line);) r.lines.push_back(nlohmann::json::parse(line));
+  r.err = err.str();
+  return r;
+}
+
+class ClipCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    file_ = std::filesystem::temp_directory_path() /
+            ("syncap_clip_" + std::to_string(::getpid()) + ".json");
+    sensor::CameraModel a = sensor::test::basler_camera();  // id 3
+    sensor::CameraModel b = a;
+    b.id = 4;
+    b.exterior = sensor::test::looking_at({-4000, 1500, 2200}, {0, 0, 1000});
+    sensor::write_cameras(file_, {a, b});
+  }
+  void TearDown() override { std::filesystem::remove(file_); }
+  std::filesystem::path file_;
+};
+
+TEST_F(ClipCommandTest, OneOutlinePerCameraInsideItsImage) {
+  const ClipRun r = run({"--cameras", file_.string(), "--volume", "-1000,-1000,0,1000,1000,2000"});
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  ASSERT_EQ(r.lines.size(), 2u);
+  EXPECT_EQ(r.lines[0]["camera_id"], 3);
+  EXPECT_EQ(r.lines[1]["camera_id"], 4);
+  for (const nlohmann::json& m : r.lines) {
+    EXPECT_EQ(m["image_width"], 1280);
+    const int n = m["num_points"];
+    EXPECT_GE(n, 4);
+    ASSERT_EQ(m["x"].size(), static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      EXPECT_GE(m["x"][i].get<int>(), 0);
+      EXPECT_LT(m["x"][i].get<int>(), 1280);
+      EXPECT_GE(m["y"][i].get<int>(), 0);
+      EXPECT_LT(m["y"][i].get<int>(), 1024);
+    }
+  }
+  // Sequences increase, so that an edge can tell a newer polygon.
+  EXPECT_LT(r.lines[0]["sequence"].get<int64_t>(), r.lines[1]["sequence"].get<int64_t>());
+}
+
+TEST_F(ClipCommandTest, OnlyTheCamerasAskedForAndRemove) {
+  const ClipRun r = run({"--cameras", file_.string(), "--remove", "--camera", "4"});
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_EQ(r.lines[0]["camera_id"], 4);
+  EXPECT_EQ(r.lines[0]["num_points"], 0);
+}
+
+TEST_F(ClipCommandTest, AVolumeACameraCannotSeeIsNamedAndTheOthersStillGo) {
+  // A volume around camera 4 itself reaches behind it: no clip there, and said so.
+  const ClipRun r =
+      run({"--cameras", file_.string(), "--volume", "-4500,1000,1700,-3500,2000,2700"});
+  EXPECT_EQ(r.status, kExitReportedErrors);
+  EXPECT_NE(r.err.find("camera 4"), std::string::npos) << r.err;
+  bool camera4 = false;
+  for (const nlohmann::json& m : r.lines) {
+    if (m["camera_id"] != 4) continue;
+    camera4 = true;
+    EXPECT_EQ(m["num_points"], 0);
+  }
+  EXPECT_TRUE(camera4);
+}
+
+TEST_F(ClipCommandTest, BadArgumentsAndFilesAreNamed) {
+  ClipRun r = run({"--cameras", file_.string(), "--volume", "1,2,3"});
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("--volume '1,2,3'"), std::string::npos) << r.err;
+  r = run({"--cameras", file_.string(), "--volume", "0,0,0,1,1,1", "--remove"});
+  EXPECT_EQ(r.status, kExitUsage);
+  r = run({"--cameras", "/nonexistent/cameras.json", "--remove"});
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("/nonexistent/cameras.json"), std::string::npos) << r.err;
+  r = run({"--cameras", file_.string(), "--remove", "--camera", "7"});
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("none of the cameras"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace syncap::tools
