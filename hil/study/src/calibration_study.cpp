@@ -215,6 +215,22 @@ void image_residual_figures(const BundleAdjustmentResult& r, double noise_px, Ru
       noise_px * std::sqrt(static_cast<double>(r.redundancy) / static_cast<double>(r.observations));
 }
 
+void image_coverage(const SimulatedWandNetwork& simulated, RunResult& out) {
+  std::map<std::string, const sensor::CameraModel*> cameras;
+  for (const auto& camera : simulated.cameras) {
+    cameras["camera" + std::to_string(camera.id)] = &camera;
+  }
+  for (const auto& m : simulated.network.measurements) {
+    const sensor::CameraModel& camera = *cameras.at(m.station);
+    const Eigen::Vector2d image = camera.image_from_pixel({m.u, m.v}) -
+                                  Eigen::Vector2d(camera.interior.xp, camera.interior.yp);
+    out.max_image_radius_mm = std::max(out.max_image_radius_mm, image.norm());
+    out.half_diagonal_mm =
+        0.5 * std::hypot(camera.sensor.width_px * camera.sensor.pixel_width_mm,
+                         camera.sensor.height_px * camera.sensor.pixel_height_mm);
+  }
+}
+
 double mean(double sum, int count) { return count > 0 ? sum / count : 0.0; }
 
 }  // namespace
@@ -284,6 +300,7 @@ RunResult run_calibration(const WandSimulation& simulation, int wand_check_frame
     out.redundancy = r.redundancy;
     out.sigma0 = r.sigma0;
     image_residual_figures(r, simulation.noise_px, out);
+    image_coverage(simulated, out);
     std::map<std::string, const sensor::CameraModel*> truth;
     for (const auto& camera : simulated.cameras) {
       truth["camera" + std::to_string(camera.id)] = &camera;
@@ -343,6 +360,8 @@ Table43Row run_table_4_3_row(const sim::Scenario& basler, const Table43Options& 
     }
     for (int k = 0; k < 3; ++k) row.ours[5 + k] += r.mean_point_sigma[k];
     row.points_3.merge(r.point_errors_3);
+    row.max_image_radius_mm = std::max(row.max_image_radius_mm, r.max_image_radius_mm);
+    row.half_diagonal_mm = r.half_diagonal_mm;
   }
   const int good = row.runs - row.failed;
   for (size_t p = 0; p < kTableParameters.size(); ++p) row.ours[p] = mean(row.ours[p], cameras);

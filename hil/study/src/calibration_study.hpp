@@ -52,7 +52,11 @@ struct RunResult {
   double noise_px = 0.0;         // simulated
   double sigma_image_px = 0.0;   // a posteriori: sigma0 * sigma_px = sqrt(v^T v / r)
   double rms_px = 0.0;           // plain RMS of all accepted image residuals
-  double expected_rms_px = 0.0;  // noise * sqrt(r_image / n_image): what the plain RMS should be
+  double expected_rms_px = 0.0;  // ~ noise * sqrt(r / n): what the plain RMS should be
+  // How far from the principal point the measurements reach [mm] (the lens distortion is only
+  // determined where there are measurements), and the sensor's half diagonal.
+  double max_image_radius_mm = 0.0;
+  double half_diagonal_mm = 0.0;
   // Per camera, in block order (c, xp, yp, k1, k2, k3, p1, p2, sc, sh): estimate - truth, sigma.
   std::vector<std::array<double, sensor::InteriorBlock::kSize>> interior_error, interior_sigma;
   std::array<double, 3> mean_point_sigma{};  // stdX, stdY, stdZ over the adjusted points [mm]
@@ -88,6 +92,7 @@ struct Table43Row {
   std::array<SigmaCount, 5> per_parameter{};    // c, xp, yp, sc, k1 (k = 3)
   SigmaCount points_3{3.0};
   double mean_sigma0 = 0.0;
+  double max_image_radius_mm = 0.0, half_diagonal_mm = 0.0;  // largest over the runs
   double seconds = 0.0;
 };
 
