@@ -1,13 +1,17 @@
-// syncap-segment-eval: scores a foreground method on a CDnet 2014 folder.
+// syncap-segment-eval: scores a foreground method on a CDnet 2014 folder, or medi-picture on a
+// scene rendered by syncap-sim.
 //   syncap-segment-eval --cdnet DIR --method medipicture|mog2|knn [--train-frames N] ...
+//   syncap-segment-eval --scene DIR [--person] [medi-picture options]
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "segmentation/cdnet_eval.hpp"
+#include "segmentation/scene_eval.hpp"
 
 namespace {
 
@@ -17,15 +21,23 @@ constexpr int kExitUsage = 2;
 
 void print_usage(std::ostream& out) {
   out << "usage: syncap segment-eval --cdnet DIR --method medipicture|mog2|knn [options]\n"
+         "       syncap segment-eval --scene DIR [--person] [medi-picture options]\n"
          "Scores the method on a CDnet 2014 folder (frames of temporalROI.txt, pixels of\n"
-         "ROI.bmp; ground truth 255 foreground, 0 and 50 background, 85 and 170 not scored).\n"
+         "ROI.bmp; ground truth 255 foreground, 0 and 50 background, 85 and 170 not scored),\n"
+         "or medi-picture on a syncap-sim scene: per camera, trained on the room phase, IoU\n"
+         "against the true masks of the person frames.\n"
+         "  --person            start from the options syncap-edge masks with (k 1, common-\n"
+         "                      ratio shadow test at 3 sigmas, closing 5, holes up to 100 px)\n"
          "  --train-frames N    medi-picture: train on the last N frames before the scored\n"
          "                      range (default: all of them)\n"
          "  --frame-step N      score every N-th frame (default 1)\n"
          "  --k K               interval width in units of d (default 3)\n"
          "  --min-difference D  floor of d, DN (default 6)\n"
          "  --ncc L             shadow threshold L_NCC (default 0.98)\n"
-         "  --no-shadows        skip the NCC shadow test\n"
+         "  --no-shadows        skip the shadow test\n"
+         "  --shadow-test T     correlation (eqs 5.6-5.11, default) or common-ratio\n"
+         "  --shadow-sigmas S   common-ratio tolerance in training sigmas (default 4)\n"
+         "  --fill-holes A      fill holes of the mask up to A pixels (default 0)\n"
          "  --closing D         elliptical closing diameter, pixels, 0 = none (default 9)\n"
          "  --min-area A        smallest component kept, pixels (default 40)\n"
          "  --update-rate R     slow model update where background (default 0)\n";
@@ -33,6 +45,7 @@ void print_usage(std::ostream& out) {
 
 struct Arguments {
   std::string folder;
+  bool scene = false;  // --scene DIR rather than --cdnet DIR
   syncap::edge::CdnetEvalOptions options;
 };
 
@@ -40,17 +53,25 @@ struct Arguments {
 Arguments parse_arguments(int argc, char** argv) {
   Arguments arguments;
   bool have_method = false;
+  // --person is the base the other options change, wherever it stands.
+  for (int i = 1; i < argc; ++i) {
+    if (std::string_view(argv[i]) == "--person") {
+      arguments.options.medi_picture = syncap::edge::person_masking_options();
+    }
+  }
   for (int i = 1; i < argc; ++i) {
     const std::string_view flag = argv[i];
     if (flag == "--no-shadows") {
       arguments.options.medi_picture.remove_shadows = false;
       continue;
     }
+    if (flag == "--person") continue;
     if (i + 1 >= argc) throw std::invalid_argument("missing value after " + std::string(flag));
     const std::string value = argv[++i];
     auto& medi = arguments.options.medi_picture;
-    if (flag == "--cdnet") {
+    if (flag == "--cdnet" || flag == "--scene") {
       arguments.folder = value;
+      arguments.scene = flag == "--scene";
     } else if (flag == "--method") {
       arguments.options.method = syncap::edge::parse_segmentation_method(value);
       have_method = true;
@@ -70,12 +91,28 @@ Arguments parse_arguments(int argc, char** argv) {
       medi.min_component_area = std::stoi(value);
     } else if (flag == "--update-rate") {
       medi.update_rate = std::stof(value);
+    } else if (flag == "--shadow-test") {
+      if (value != "correlation" && value != "common-ratio") {
+        throw std::invalid_argument("--shadow-test '" + value +
+                                    "': expected correlation or common-ratio");
+      }
+      medi.shadow_test = value == "correlation" ? syncap::edge::ShadowTest::kCorrelation
+                                                : syncap::edge::ShadowTest::kCommonRatio;
+    } else if (flag == "--shadow-sigmas") {
+      medi.shadow_ratio_sigmas = std::stof(value);
+    } else if (flag == "--fill-holes") {
+      medi.max_hole_area = std::stoi(value);
     } else {
       throw std::invalid_argument("unknown argument " + std::string(flag));
     }
   }
-  if (arguments.folder.empty()) throw std::invalid_argument("--cdnet DIR is required");
-  if (!have_method) throw std::invalid_argument("--method is required");
+  if (arguments.folder.empty())
+    throw std::invalid_argument("--cdnet DIR or --scene DIR is required");
+  if (arguments.scene && have_method &&
+      arguments.options.method != syncap::edge::SegmentationMethod::kMediPicture) {
+    throw std::invalid_argument("--scene scores medi-picture only");
+  }
+  if (!arguments.scene && !have_method) throw std::invalid_argument("--method is required");
   return arguments;
 }
 
@@ -87,6 +124,17 @@ void print_scores(const std::string& method, const syncap::edge::CdnetScores& sc
               static_cast<long long>(scores.false_positives),
               static_cast<long long>(scores.false_negatives),
               static_cast<long long>(scores.true_negatives));
+}
+
+void print_scene_scores(const std::vector<syncap::edge::SceneCameraScore>& scores) {
+  std::printf("camera frames iou_mean iou_min fp_px fn_px truth_px\n");
+  double sum = 0;
+  for (const auto& s : scores) {
+    std::printf("%6d %6d %8.4f %7.4f %5.0f %5.0f %8.0f\n", s.camera, s.frames, s.iou_mean,
+                s.iou_min, s.false_positives, s.false_negatives, s.truth_pixels);
+    sum += s.iou_mean;
+  }
+  std::printf("all    %15.4f\n", sum / static_cast<double>(scores.size()));
 }
 
 }  // namespace
@@ -107,6 +155,11 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   try {
+    if (arguments.scene) {
+      print_scene_scores(
+          syncap::edge::evaluate_scene(arguments.folder, arguments.options.medi_picture));
+      return kExitOk;
+    }
     const auto scores = syncap::edge::evaluate_cdnet(arguments.folder, arguments.options);
     std::string method;
     for (int i = 1; i + 1 < argc; ++i) {
