@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bundle_command.hpp"
+#include "calibrate_command.hpp"
 #include "clip_command.hpp"
 #include "log_command.hpp"
 #include "subcommand.hpp"
@@ -30,10 +31,12 @@ struct Subcommand {
 constexpr std::array kSubcommands{
     Subcommand{"log", "print the events of an LCM log file as JSON lines",
                &syncap::tools::log_command},
-    Subcommand{"clip", "send each camera the capture volume's outline as its masking's clip",
-               &syncap::tools::clip_command},
     Subcommand{"bundle", "adjust a scene description (SDL) file: bundle adjustment",
                &syncap::tools::bundle_command},
+    Subcommand{"calibrate", "calibrate the cameras from wand or LED observations",
+               &syncap::tools::calibrate_command},
+    Subcommand{"clip", "send each camera the capture volume's outline as its masking's clip",
+               &syncap::tools::clip_command},
 };
 
 // Subcommands that are programs of their own, `syncap-NAME`, looked for beside this program,

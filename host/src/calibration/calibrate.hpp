@@ -1,0 +1,90 @@
+// The calibration pipeline of `syncap calibrate` (docs/calibration.md, "syncap calibrate"), from
+// observations to calibrated cameras:
+//
+//   1. identify the wand's targets (or the LED) per camera and frame (wand_identification.hpp);
+//   2. build the network: a camera model and a station per camera, an object point per target and
+//      frame seen by at least two cameras, the wand's distances between neighbouring targets;
+//      start interiors from the image size alone (below);
+//   3. start values from the measurements alone (network_start.hpp: RDLT pair tree, resection,
+//      scale from the wand);
+//   4. the bundle adjustment (estimators/bundle_adjustment.hpp) in two stages: first c, xp, yp
+//      and the exterior orientations with the lens distortion held at zero and no snooping (the
+//      start's camera constants can be 20-30 % off, a free distortion model would swallow part of
+//      that error), then every interior value free, with data snooping;
+//   5. the cameras with their standard deviations, the quality figures and the report.
+//
+// Start interiors from the image size alone: the principal point at the centre, no distortion,
+// and c from a typical horizontal field of view (`field_of_view_deg`, 60 deg: between a 6 mm lens
+// on a 2/3" sensor, 54 deg, and on the Basler A620f's 1/2", 71 deg): c = (width x pixel size / 2)
+// / tan(fov / 2). The pixel size comes from the sensor's data sheet (`pixel_size_mm`); when it is
+// not known any value gives the same pixels (c and the distortion then come out in units of that
+// nominal pixel size).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "calibration/network_start.hpp"
+#include "calibration/observations.hpp"
+#include "calibration/report.hpp"
+#include "calibration/wand_identification.hpp"
+#include "estimators/bundle_adjustment.hpp"
+#include "scene/network.hpp"
+#include "sensor/camera_file.hpp"
+#include "sensor/camera_model.hpp"
+
+namespace syncap::calibration {
+
+struct CalibrationOptions {
+  WandSpec wand;
+  IdentificationOptions identification;
+  double pixel_size_mm = 0.005;                   // nominal, when the source does not know it
+  std::map<int, double> pixel_size_mm_by_camera;  // overrides per camera id
+  double field_of_view_deg = 60.0;                // horizontal, for the start value of c
+  double sigma_px = 0.1;            // a priori standard deviation of a measured coordinate
+  double wand_sigma_mm = 0.2;       // of each wand distance (the wand's manufacture, flexing)
+  double critical_snooping = 3.29;  // |w| above this is a blunder
+  // Standardise the residuals with the a posteriori sigma0 (robust to a wrong sigma_px).
+  bool snoop_with_a_posteriori_sigma0 = true;
+  // Interior values estimated in the final adjustment (InteriorBlock indices); the others stay 0.
+  // Empty: the mode's default, square pixels (sc, sh held) and for a wand c, xp, yp, k1, k2, k3,
+  // p1, p2, for an LED (weaker: one point a frame, no scale) the same without k3.
+  std::vector<int> free_interior;
+  int max_frames = 0;  // use at most this many frames, evenly spread (0: all)
+  NetworkStartOptions start;
+  // Called with one line per step ("identified 3 cameras: ...", "start values: ..."); the CLI
+  // prints them on a terminal.
+  std::function<void(const std::string&)> progress;
+};
+
+struct CalibrationResult {
+  std::vector<sensor::CameraModel> cameras;  // adjusted, with standard deviations
+  sensor::CalibrationQuality quality;
+  CalibrationReport report;
+  Identification identification;
+  scene::Network network;  // as adjusted in the final stage (start values filled)
+  NetworkStartReport start;
+  estimators::BundleAdjustmentResult adjustment;
+  // Indices into network.measurements of the wand's points, per point name (for tests).
+  std::map<std::string, std::vector<size_t>> measurements_of_point;
+};
+
+// Observations that cannot be calibrated (too few cameras, a camera that never saw the wand,
+// options that contradict the observations); the message names the camera or the option.
+class CalibrationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The network of step 2, from identified targets (exposed for tests and for `syncap bundle`-like
+// uses that want to edit it before adjusting).
+scene::Network build_network(const Observations& observations, const Identification& identification,
+                             const CalibrationOptions& options);
+
+// Steps 1-5. Throws CalibrationError, NetworkStartError or estimators::NetworkError.
+CalibrationResult calibrate(const Observations& observations, const CalibrationOptions& options);
+
+}  // namespace syncap::calibration

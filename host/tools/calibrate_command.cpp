@@ -1,0 +1,329 @@
+#include "calibrate_command.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "calibration/calibrate.hpp"
+#include "calibration/observations.hpp"
+#include "calibration/outputs.hpp"
+#include "lcm_log_reader.hpp"
+#include "subcommand.hpp"
+#include "syncap/blob_frame_t.hpp"
+#include "syncap/proto/channels.hpp"
+#include "syncap/proto/subscriber.hpp"
+#include "syncap/trigger_t.hpp"
+
+namespace syncap::tools {
+namespace {
+
+constexpr const char* kPrefix = "syncap calibrate: ";
+
+struct CalibrateArgs {
+  std::string input;
+  std::string out;
+  std::optional<double> wand_length;
+  bool led = false;
+  std::set<int> cameras;
+  long frames = 0;
+  double idle_timeout_s = 5.0;
+  bool progress = false;
+  calibration::CalibrationOptions options;
+};
+
+struct UsageError {
+  std::string message;
+};
+
+double number_arg(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    throw UsageError{option + " needs a number, got '" + text + "'"};
+  }
+  return v;
+}
+
+std::set<int> camera_list(const std::string& text) {
+  std::set<int> ids;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    const double v = number_arg("--cameras", item);
+    if (v < 0 || v > proto::kMaxCameraId || v != static_cast<int>(v)) {
+      throw UsageError{"--cameras: '" + item + "' is not a camera id (0-99)"};
+    }
+    ids.insert(static_cast<int>(v));
+  }
+  if (ids.empty()) throw UsageError{"--cameras needs a list like 0,1,2"};
+  return ids;
+}
+
+std::vector<int> interior_list(const std::string& text) {
+  static const char* names[] = {"c", "xp", "yp", "k1", "k2", "k3", "p1", "p2", "sc", "sh"};
+  std::vector<int> free;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    int index = -1;
+    for (int i = 0; i < 10; ++i) {
+      if (item == names[i]) index = i;
+    }
+    if (index < 0) {
+      throw UsageError{"--interior: '" + item + "' is not one of c,xp,yp,k1,k2,k3,p1,p2,sc,sh"};
+    }
+    free.push_back(index);
+  }
+  return free;
+}
+
+CalibrateArgs parse_args(std::span<const std::string> args) {
+  CalibrateArgs a;
+  auto& o = a.options;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    const auto value = [&]() -> const std::string& {
+      if (i + 1 == args.size()) throw UsageError{arg + " needs a value"};
+      return args[++i];
+    };
+    if (arg == "--input") {
+      a.input = value();
+    } else if (arg == "--out") {
+      a.out = value();
+    } else if (arg == "--wand-length") {
+      a.wand_length = number_arg(arg, value());
+    } else if (arg == "--led") {
+      a.led = true;
+    } else if (arg == "--wand-targets") {
+      const double n = number_arg(arg, value());
+      if (n != 2 && n != 3) throw UsageError{"--wand-targets must be 2 or 3"};
+      o.wand.targets = static_cast<int>(n);
+    } else if (arg == "--wand-ratio") {
+      o.wand.middle_ratio = number_arg(arg, value());
+    } else if (arg == "--wand-ends") {
+      const std::string& v = value();
+      if (v == "size") {
+        o.wand.ends = calibration::EndIdentity::kSize;
+      } else if (v == "continuity") {
+        o.wand.ends = calibration::EndIdentity::kContinuity;
+      } else {
+        throw UsageError{"--wand-ends must be size or continuity, got '" + v + "'"};
+      }
+    } else if (arg == "--pixel-size") {
+      o.pixel_size_mm = number_arg(arg, value());
+      if (!(o.pixel_size_mm > 0)) throw UsageError{"--pixel-size must be > 0"};
+    } else if (arg == "--fov") {
+      o.field_of_view_deg = number_arg(arg, value());
+    } else if (arg == "--sigma-px") {
+      o.sigma_px = number_arg(arg, value());
+    } else if (arg == "--wand-sigma") {
+      o.wand_sigma_mm = number_arg(arg, value());
+    } else if (arg == "--critical-w") {
+      o.critical_snooping = number_arg(arg, value());
+    } else if (arg == "--max-frames") {
+      o.max_frames = static_cast<int>(number_arg(arg, value()));
+    } else if (arg == "--interior") {
+      o.free_interior = interior_list(value());
+    } else if (arg == "--cameras") {
+      a.cameras = camera_list(value());
+    } else if (arg == "--frames") {
+      a.frames = static_cast<long>(number_arg(arg, value()));
+    } else if (arg == "--idle-timeout") {
+      a.idle_timeout_s = number_arg(arg, value());
+    } else if (arg == "--progress") {
+      a.progress = true;
+    } else {
+      throw UsageError{"unknown option '" + arg + "'"};
+    }
+  }
+  if (a.input.empty()) throw UsageError{"--input SOURCE is required"};
+  if (a.out.empty()) throw UsageError{"--out DIR is required"};
+  if (a.led == a.wand_length.has_value()) {
+    throw UsageError{"give exactly one of --wand-length MM and --led"};
+  }
+  o.wand.led = a.led;
+  if (a.wand_length) {
+    if (!(*a.wand_length > 0)) throw UsageError{"--wand-length must be > 0 mm"};
+    o.wand.length_mm = *a.wand_length;
+  }
+  return a;
+}
+
+// The cameras' blob channels and the trigger go to the collector; everything else is ignored.
+bool is_blob_channel(const std::string& channel) {
+  return channel.rfind(proto::kBlobChannelPrefix, 0) == 0;
+}
+
+calibration::Observations read_lcm_log(const std::string& file, std::set<int> cameras,
+                                       std::ostream& err) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw calibration::ObservationError(file + ": cannot open for reading");
+  if (cameras.empty()) {  // every camera in the log
+    LcmLogReader scan(in);
+    while (auto event = scan.next()) {
+      if (!is_blob_channel(event->channel)) continue;
+      blob_frame_t frame;
+      if (frame.decode(event->data.data(), 0, static_cast<int>(event->data.size())) >= 0) {
+        cameras.insert(frame.camera_id);
+      }
+    }
+    in.clear();
+    in.seekg(0);
+  }
+  if (cameras.empty()) throw calibration::ObservationError(file + ": no blob frames in the log");
+  calibration::BlobFrameCollector collector("lcmlog:" + file, cameras);
+  LcmLogReader reader(in);
+  long undecodable = 0;
+  while (auto event = reader.next()) {
+    const int size = static_cast<int>(event->data.size());
+    if (is_blob_channel(event->channel)) {
+      blob_frame_t frame;
+      if (frame.decode(event->data.data(), 0, size) < 0) {
+        if (undecodable++ < 5) {
+          err << kPrefix << file << ": event " << event->event_number << " at offset "
+              << event->offset << " on " << event->channel << " is not a blob_frame_t\n";
+        }
+        continue;
+      }
+      collector.add_blob_frame(frame);
+    } else if (event->channel == proto::kTriggerChannel) {
+      trigger_t trigger;
+      if (trigger.decode(event->data.data(), 0, size) >= 0) collector.add_trigger(trigger);
+    }
+  }
+  for (const LogError& e : reader.take_errors())
+    err << kPrefix << file << ": " << e.message << '\n';
+  for (const std::string& p : collector.problems()) err << kPrefix << p << '\n';
+  return collector.finish();
+}
+
+volatile std::sig_atomic_t g_stop = 0;
+void on_signal(int) { g_stop = 1; }
+
+calibration::Observations read_live(const std::string& url, const CalibrateArgs& a,
+                                    std::ostream& err, bool progress) {
+  if (a.cameras.empty()) throw UsageError{"lcm: needs --cameras (the ids to wait for)"};
+  lcm::LCM lcm(url);
+  if (!lcm.good()) throw calibration::ObservationError("lcm:" + url + ": cannot open LCM");
+  calibration::BlobFrameCollector collector("lcm:" + url, a.cameras);
+  proto::Subscriber sub(lcm, [&](const std::string& m) { err << kPrefix << m << '\n'; });
+  using Clock = std::chrono::steady_clock;
+  std::optional<Clock::time_point> last_blob;
+  sub.subscribe<trigger_t>(proto::kTriggerChannel, [&](const trigger_t& t, const std::string&) {
+    collector.add_trigger(t);
+  });
+  sub.subscribe<blob_frame_t>(std::string(proto::kBlobChannelPrefix) + ".*",
+                              [&](const blob_frame_t& f, const std::string&) {
+                                collector.add_blob_frame(f);
+                                last_blob = Clock::now();
+                              });
+  g_stop = 0;
+  auto previous_int = std::signal(SIGINT, on_signal);
+  auto previous_term = std::signal(SIGTERM, on_signal);
+  if (progress) err << kPrefix << "listening on " << url << " (Ctrl-C ends the collection)\n";
+  long reported = 0;
+  while (!g_stop) {
+    lcm.handleTimeout(100);
+    if (a.frames > 0 && collector.frame_groups() >= a.frames) break;
+    if (last_blob && Clock::now() - *last_blob > std::chrono::duration<double>(a.idle_timeout_s)) {
+      break;
+    }
+    if (progress && collector.frame_groups() >= reported + 30) {
+      reported = collector.frame_groups();
+      err << kPrefix << reported << " frame groups\n";
+    }
+  }
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
+  return collector.finish();
+}
+
+calibration::Observations read_source(const CalibrateArgs& a, std::ostream& err, bool progress) {
+  const auto colon = a.input.find(':');
+  if (colon == std::string::npos) {
+    throw UsageError{"--input '" + a.input +
+                     "': expected lcm:URL, lcmlog:FILE, csv:FILE or mcsc:DIR"};
+  }
+  const std::string kind = a.input.substr(0, colon);
+  const std::string where = a.input.substr(colon + 1);
+  if (kind == "csv") return calibration::read_csv_observations(where);
+  if (kind == "mcsc") return calibration::read_mcsc_observations(where);
+  if (kind == "lcmlog") return read_lcm_log(where, a.cameras, err);
+  if (kind == "lcm") return read_live(where, a, err, progress);
+  throw UsageError{"--input '" + a.input + "': unknown source '" + kind +
+                   "' (lcm, lcmlog, csv, mcsc)"};
+}
+
+void print_summary(const calibration::CalibrationResult& r, std::ostream& out) {
+  const auto& q = r.quality;
+  out << std::fixed << std::setprecision(4);
+  out << "calibrated " << r.cameras.size() << " cameras: sigma0 " << q.sigma0_px << " px, RMS "
+      << q.rms_px << " px, " << q.observations << " observations, " << q.outliers_removed
+      << " outliers removed";
+  if (q.wand_length_mean_mm) {
+    out << ", wand " << *q.wand_length_mean_mm << " +- " << *q.wand_length_sd_mm << " mm";
+  }
+  out << (r.adjustment.converged ? "" : " (NOT CONVERGED)") << '\n';
+  for (const auto& c : r.cameras) {
+    out << "  camera " << c.id << ": c " << c.interior.c << " mm, RMS "
+        << q.per_camera_rms_px.at(c.id) << " px\n";
+  }
+}
+
+}  // namespace
+
+int calibrate_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+  for (const std::string& arg : args) {
+    if (arg == "--help" || arg == "-h") {
+      out << kCalibrateUsage;
+      return kExitOk;
+    }
+  }
+  CalibrateArgs a;
+  try {
+    a = parse_args(args);
+  } catch (const UsageError& e) {
+    err << kPrefix << e.message << '\n' << kCalibrateUsage;
+    return kExitUsage;
+  }
+  const bool progress = a.progress || (&err == &std::cerr && ::isatty(STDERR_FILENO));
+  if (progress)
+    a.options.progress = [&err](const std::string& line) { err << kPrefix << line << '\n'; };
+  calibration::Observations observations;
+  try {
+    observations = read_source(a, err, progress);
+  } catch (const UsageError& e) {
+    err << kPrefix << e.message << '\n';
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    err << kPrefix << e.what() << '\n';
+    return kExitUsage;
+  }
+  try {
+    const calibration::CalibrationResult result = calibration::calibrate(observations, a.options);
+    const auto files = calibration::write_calibration(result, a.out);
+    print_summary(result, out);
+    for (const auto& f : files) out << "wrote " << f.string() << '\n';
+    if (!result.adjustment.converged) {
+      err << kPrefix << "the adjustment did not converge: " << result.adjustment.termination
+          << '\n';
+      return kExitReportedErrors;
+    }
+  } catch (const std::exception& e) {
+    err << kPrefix << e.what() << '\n';
+    return kExitReportedErrors;
+  }
+  return kExitOk;
+}
+
+}  // namespace syncap::tools

@@ -1,0 +1,44 @@
+// `syncap calibrate`: calibrates the cameras from wand (or LED) observations and writes the
+// calibration folder (host/src/calibration/outputs.hpp; docs/calibration.md, "syncap calibrate").
+#pragma once
+
+#include <ostream>
+#include <span>
+#include <string>
+
+namespace syncap::tools {
+
+inline constexpr const char* kCalibrateUsage =
+    "usage: syncap calibrate --input SOURCE (--wand-length MM | --led) --out DIR [options]\n"
+    "SOURCE:\n"
+    "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --cameras; stops\n"
+    "                 at Ctrl-C, after --frames groups, or --idle-timeout s without blob frames\n"
+    "  lcmlog:FILE    blob frames recorded by lcm-logger (hil/run: OUT/traffic.lcmlog)\n"
+    "  csv:FILE       frame,camera,x,y[,point] in pixels (point: target index from end A)\n"
+    "  mcsc:DIR       a MultiCamSelfCal folder (points.dat, Res.dat, camera_order.txt)\n"
+    "Writes DIR/cameras.json (with a \"quality\" block), report.txt, report.html,\n"
+    "cameras.opencv.yaml, calibration.toml and, when built with the SDL writer, scene.sdl.\n"
+    "Options:\n"
+    "  --wand-length MM      distance between the wand's end targets\n"
+    "  --led                 one point per frame (no scale: the result is in arbitrary units)\n"
+    "  --wand-targets N      2 or 3 (default 3)\n"
+    "  --wand-ratio R        middle target's distance from end A / length (default 0.4)\n"
+    "  --wand-ends size|continuity  how a 2-target (or symmetric) wand's ends are told apart\n"
+    "                        (default continuity: the upper spot starts as end A)\n"
+    "  --pixel-size MM       the sensors' pixel pitch (default 0.005, nominal)\n"
+    "  --fov DEG             typical horizontal field of view for the start value of c (60)\n"
+    "  --sigma-px PX         a priori standard deviation of a measured coordinate (0.1)\n"
+    "  --wand-sigma MM       standard deviation of a wand distance (0.2)\n"
+    "  --critical-w W        data snooping's critical value (3.29)\n"
+    "  --max-frames N        use at most N frames, evenly spread (default all)\n"
+    "  --cameras LIST        camera ids to wait for in each frame group (lcm:, lcmlog:; for a\n"
+    "                        log default: every camera in it)\n"
+    "  --frames N            lcm: stop after N frame groups\n"
+    "  --idle-timeout S      lcm: stop S seconds after the last blob frame (default 5)\n"
+    "  --progress            print progress on stderr (default: only when stderr is a terminal)\n"
+    "Exit status: 0 calibrated, 1 the calibration failed (the reason on stderr), 2 usage error or\n"
+    "unusable input.\n";
+
+int calibrate_command(std::span<const std::string> args, std::ostream& out, std::ostream& err);
+
+}  // namespace syncap::tools

@@ -1,0 +1,187 @@
+// The calibration pipeline on simulated observations (estimators::simulate_wand_network: Basler
+// A620f-like cameras with the thesis' lens, 0.2 px noise): the spots of every image, with
+// reflections that are not targets and lost targets, go through identification, the network
+// start from the image size alone and the two-stage adjustment. The result must find the truth's
+// interior orientation, geometry and wand, and data snooping every injected blunder.
+#include "calibration/calibrate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "estimators/bundle_adjustment_simulation.hpp"
+
+namespace syncap::calibration {
+namespace {
+
+struct Simulated {
+  Observations observations;
+  std::vector<sensor::CameraModel> truth;
+  std::set<std::pair<int64_t, int>> blunders;  // (frame, camera)
+};
+
+// The simulation's measurements as spots, unlabelled unless `labelled`; every image gets a
+// reflection with probability `reflections`, and loses a target with probability `losses`.
+Simulated observe(const estimators::WandSimulation& sim, bool labelled, double reflections,
+                  double losses) {
+  const auto net = estimators::simulate_wand_network(sim);
+  Simulated out;
+  out.truth = net.cameras;
+  std::map<std::string, int> camera_of;
+  for (const auto& c : net.cameras) {
+    camera_of["camera" + std::to_string(c.id)] = c.id;
+    out.observations.image_sizes[c.id] = {c.sensor.width_px, c.sensor.height_px};
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (size_t m = 0; m < net.network.measurements.size(); ++m) {
+    const auto& meas = net.network.measurements[m];
+    if (unit(rng) < losses) continue;
+    Spot s;
+    s.x = meas.u;
+    s.y = meas.v;
+    s.area = 30;
+    if (labelled) s.target = std::stoi(meas.point.substr(meas.point.find('t') + 1));
+    out.observations.frames[meas.frame_number][camera_of.at(meas.station)].push_back(s);
+  }
+  for (auto& [frame, cameras] : out.observations.frames) {
+    for (auto& [camera, spots] : cameras) {
+      if (unit(rng) >= reflections) continue;
+      Spot s;
+      s.x = 1280 * unit(rng);
+      s.y = 1024 * unit(rng);
+      s.area = 12;
+      spots.push_back(s);
+    }
+  }
+  for (size_t m : net.blunders) {
+    const auto& meas = net.network.measurements[m];
+    out.blunders.insert({meas.frame_number, camera_of.at(meas.station)});
+  }
+  out.observations.source = "simulation";
+  return out;
+}
+
+CalibrationOptions wand_options() {
+  CalibrationOptions o;
+  o.wand.length_mm = 1000;
+  o.wand.targets = 3;
+  o.wand.middle_ratio = 0.4;
+  o.pixel_size_mm = 0.0067;
+  o.sigma_px = 0.2;
+  return o;
+}
+
+TEST(Calibrate, WandAmongReflectionsFindsTheTruthFromTheImageSizeAlone) {
+  estimators::WandSimulation sim;
+  sim.frames = 120;
+  const Simulated s = observe(sim, false, 0.3, 0.03);
+  std::vector<std::string> progress;
+  CalibrationOptions options = wand_options();
+  options.progress = [&](const std::string& line) { progress.push_back(line); };
+  const CalibrationResult r = calibrate(s.observations, options);
+
+  ASSERT_TRUE(r.adjustment.converged);
+  EXPECT_GE(progress.size(), 6u);
+  long identified = 0;
+  for (const auto& [camera, stats] : r.identification.cameras) identified += stats.identified;
+  EXPECT_GT(identified, 3 * 120 * 8 / 10);  // reflections do not hide the wand
+  // sigma0 near the simulated 0.2 px noise; the residuals are smaller by the redundancy share
+  // (three rays a point: about sqrt(1/2)).
+  EXPECT_NEAR(r.quality.sigma0_px, 0.2, 0.03);
+  EXPECT_NEAR(r.quality.rms_px, 0.2 * std::sqrt(0.5), 0.03);
+  EXPECT_EQ(r.quality.per_camera_rms_px.size(), 3u);
+  ASSERT_TRUE(r.quality.wand_length_mean_mm.has_value());
+  EXPECT_NEAR(*r.quality.wand_length_mean_mm, 1000.0, 0.5);
+  EXPECT_LT(*r.quality.wand_length_sd_mm, 2.0);
+  for (size_t i = 0; i < r.cameras.size(); ++i) {
+    const auto& c = r.cameras[i];
+    const auto& t = s.truth[i];
+    ASSERT_EQ(c.id, t.id);
+    EXPECT_NEAR(c.interior.c, t.interior.c, 0.02) << "camera " << c.id;  // from 7.4 mm at start
+    EXPECT_NEAR(c.interior.xp, t.interior.xp, 0.05);
+    // k1, k2, k3 correlate strongly (thesis Table 4.6): compare the radial correction itself,
+    // where the wand was seen (the 2 m volume fills the middle third of the images, r < 2 mm).
+    for (double radius : {0.5, 1.0, 1.5}) {
+      const auto radial = [&](const sensor::InteriorOrientation& io) {
+        const double r2 = radius * radius;
+        return radius * r2 * (io.k1 + r2 * (io.k2 + r2 * io.k3));
+      };
+      EXPECT_NEAR(radial(c.interior), radial(t.interior), 0.3 * 0.0067)
+          << "camera " << c.id << " at " << radius << " mm";
+    }
+    ASSERT_TRUE(c.std_devs.has_value());
+    EXPECT_GT(c.std_devs->interior.c, 0.0);
+  }
+  // The geometry up to the datum: distances between the projection centres.
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t j = (i + 1) % 3;
+    const double estimated =
+        (r.cameras[i].projection_centre() - r.cameras[j].projection_centre()).norm();
+    const double truth = (s.truth[i].projection_centre() - s.truth[j].projection_centre()).norm();
+    EXPECT_NEAR(estimated / truth, 1.0, 0.003);
+  }
+  // The report carries what the files need.
+  EXPECT_EQ(r.report.cameras.size(), 3u);
+  EXPECT_EQ(r.report.residuals.size(), r.network.measurements.size());
+  EXPECT_EQ(r.report.tests.size(), 2u);
+  EXPECT_FALSE(r.report.wand_lengths_mm.empty());
+}
+
+TEST(Calibrate, LedModeFlagsEveryInjectedBlunder) {
+  estimators::WandSimulation sim;
+  sim.frames = 150;
+  sim.target_offsets_mm = {0.0};
+  sim.blunder_fraction = 0.05;
+  const Simulated s = observe(sim, false, 0.0, 0.0);
+  ASSERT_GT(s.blunders.size(), 10u);
+  CalibrationOptions options;
+  options.wand.led = true;
+  options.sigma_px = 0.2;
+  const CalibrationResult r = calibrate(s.observations, options);
+  ASSERT_TRUE(r.adjustment.converged);
+  EXPECT_FALSE(r.quality.wand_length_mean_mm.has_value());
+  for (const auto& [frame, camera] : s.blunders) {
+    const auto& indices = r.measurements_of_point.at("f" + std::to_string(frame));
+    bool flagged = false;
+    for (size_t m : indices) {
+      if (r.network.measurements[m].station == "camera0" + std::to_string(camera)) {
+        flagged = r.adjustment.measurements[m].status != estimators::MeasurementStatus::kAccepted;
+      }
+    }
+    EXPECT_TRUE(flagged) << "blunder in frame " << frame << ", camera " << camera;
+  }
+  EXPECT_LE(r.quality.outliers_removed, static_cast<long>(s.blunders.size()) + 5);
+  EXPECT_GT(r.quality.rms_px, 0.1);  // two or three rays a point: below the 0.2 px noise
+  EXPECT_LT(r.quality.rms_px, 0.2);
+  EXPECT_NEAR(r.quality.sigma0_px, 0.2, 0.03);
+}
+
+TEST(Calibrate, ErrorsNameTheCameraOrTheOption) {
+  Observations obs;
+  obs.source = "csv:x.csv";
+  obs.image_sizes[0] = {640, 480};
+  obs.frames[1][0] = {Spot{}};
+  CalibrationOptions led;
+  led.wand.led = true;
+  try {
+    calibrate(obs, led);
+    FAIL();
+  } catch (const CalibrationError& e) {
+    EXPECT_STREQ(e.what(), "calibrate: csv:x.csv has 1 camera(s); a calibration needs at least 2");
+  }
+  obs.frames[1][3] = {Spot{}};
+  try {
+    calibrate(obs, led);
+    FAIL();
+  } catch (const CalibrationError& e) {
+    EXPECT_STREQ(e.what(), "calibrate: camera 3 of csv:x.csv has no image size");
+  }
+  CalibrationOptions no_length;
+  EXPECT_THROW(calibrate(obs, no_length), CalibrationError);
+}
+
+}  // namespace
+}  // namespace syncap::calibration
