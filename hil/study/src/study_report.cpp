@@ -158,7 +158,8 @@ void write_table_4_3(std::ostringstream& out, const StudyReport& report) {
          "the rigid motion that fits them onto the truth, their covariances turned with it; "
          "RMS of e/sigma is 1 when the sigmas are right):\n\n"
       << "| noise | wands | runs (failed) | c, xp, yp, sc, k1 within 3 sigma | within 2 sigma | "
-         "RMS of e/sigma: c, xp, yp, sc, k1 | point coordinates within 3 sigma | sigma0 | time |\n"
+         "RMS of e/sigma: c, xp, yp, sc, k1 | point coordinates within 3 sigma | sigma0 | wall "
+         "time |\n"
       << "|---|---|---|---|---|---|---|---|---|\n";
   for (const Table43Row& row : report.table_4_3) {
     out << printf_string("| %.2g px | %d | %d (%d) | ", row.noise_px, row.wands, row.runs,
@@ -194,7 +195,7 @@ void write_ring(std::ostringstream& out, const StudyReport& report) {
          "controls, shown beside it.\n\n"
       << "| run | iterations | sigma0 | image noise (a posteriori) [px] | residual RMS [px] "
          "(expected) | wand bias [mm] | wand sd [mm] (of length) | wand sd, true cameras [mm] | "
-         "time |\n"
+         "wall time |\n"
       << "|---|---|---|---|---|---|---|---|---|\n";
   int run = 0;
   for (const RunResult& r : ring.results) {
