@@ -1,5 +1,5 @@
 // Speed of reading a scene file (host/src/sdl): the six-camera ring of 1000 wand frames that
-// bench_calib adjusts (18000 image measurements, 9000 points, 2000 distances, ~0.9 MB of SDL).
+// bench_calib adjusts (18000 image measurements, 9000 points, 2000 distances, ~1.3 MB of SDL).
 // Baseline: nlohmann::json parsing the same content as JSON (the same names and numbers, arrays
 // instead of statements), a widely used parser for a simpler grammar. R > 1: SDL reads faster.
 #include <benchmark/benchmark.h>
