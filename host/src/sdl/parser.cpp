@@ -93,6 +93,9 @@ class Parser {
   void declaration();
   void design();
   void design_tag();
+  const DesignTag& match_design_tag(std::string& words);
+  void apply_design_tag(const DesignTag& tag, bool negated, const Position& at,
+                        const std::string& words);
   void camera_model();
   void sensor(scene::CameraModel& model);
   void station();
@@ -364,44 +367,63 @@ void Parser::design() {
   block("the design block", [this] { design_tag(); });
 }
 
-// [ "NO" ] TAG [ value ], TAG one of kDesignTags (words matched one by one).
+// The i-th word of a tag's words ("OUTPUT ITERATIONS", 1 -> "ITERATIONS"); empty past the end.
+std::string_view nth_word(std::string_view words, size_t i) {
+  for (size_t k = 0; k < i && !words.empty(); ++k) {
+    const size_t space = words.find(' ');
+    words = space == std::string_view::npos ? std::string_view() : words.substr(space + 1);
+  }
+  return words.substr(0, words.find(' '));
+}
+
+// [ "NO" ] TAG [ value ], TAG one of kDesignTags.
 void Parser::design_tag() {
   const bool negated = at_word("NO");
   if (negated) advance();
   const Position at = current_.position;
+  std::string words;
+  const DesignTag& tag = match_design_tag(words);
+  apply_design_tag(tag, negated, at, words);
+}
+
+// Reads a tag's words one by one, narrowing the candidates, until one tag is complete; `words`
+// collects what was read. No tag's words begin another's.
+const DesignTag& Parser::match_design_tag(std::string& words) {
   std::vector<const DesignTag*> candidates;
   for (const DesignTag& tag : kDesignTags) candidates.push_back(&tag);
-  const DesignTag* found = nullptr;
-  std::string words;
-  for (size_t i = 0; found == nullptr; ++i) {
+  for (size_t i = 0;; ++i) {
     std::vector<const DesignTag*> matching;
-    std::vector<std::string_view> seen;
-    std::string expected;
+    std::vector<std::string_view> expected;
     for (const DesignTag* tag : candidates) {
-      std::string_view rest = tag->words;
-      for (size_t k = 0; k < i; ++k) rest.remove_prefix(rest.find(' ') + 1);
-      const std::string_view word = rest.substr(0, rest.find(' '));
-      if (std::find(seen.begin(), seen.end(), word) == seen.end()) {
-        seen.push_back(word);
-        expected += (expected.empty() ? "" : ", ") + std::string(word);
+      const std::string_view word = nth_word(tag->words, i);
+      if (std::find(expected.begin(), expected.end(), word) == expected.end()) {
+        expected.push_back(word);
       }
       if (current_.kind == TokenKind::kIdentifier && current_.text == word) matching.push_back(tag);
     }
     if (matching.empty()) {
-      if (i == 0) fail_expected("a design tag (" + expected + ") or '}'");
-      fail_expected("one of " + expected + " after '" + words + "'");
+      std::string list;
+      for (const std::string_view word : expected)
+        list += (list.empty() ? "" : ", ") + std::string(word);
+      if (i == 0) fail_expected("a design tag (" + list + ") or '}'");
+      fail_expected("one of " + list + " after '" + words + "'");
     }
     words += (words.empty() ? "" : " ") + current_.text;
     advance();
     for (const DesignTag* tag : matching) {
-      if (tag->words == words) found = tag;
+      if (tag->words == words) return *tag;
     }
     candidates = std::move(matching);
   }
+}
+
+void Parser::apply_design_tag(const DesignTag& tag, bool negated, const Position& at,
+                              const std::string& words) {
   scene::DesignOptions& d = network_.design;
-  switch (found->kind) {
+  constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+  switch (tag.kind) {
     case TagKind::kFlag:
-      d.*(found->flag) = !negated;
+      d.*(tag.flag) = !negated;
       return;
     case TagKind::kOutputIterations:
       d.output_iterations = !negated;
@@ -409,25 +431,20 @@ void Parser::design_tag() {
       if (at_word("INLINE")) advance();
       return;
     case TagKind::kExactIterations:
-      if (negated) {
-        d.exact_iterations.reset();
-      } else {
-        d.exact_iterations =
-            static_cast<int>(integer("EXACT ITERATIONS", 0, std::numeric_limits<int>::max()));
-      }
+      d.exact_iterations.reset();
+      if (!negated) d.exact_iterations = static_cast<int>(integer(words, 0, kMaxInt));
       return;
     default:
       break;
   }
   if (negated) fail(at, "NO cannot precede " + words + " (give it a value instead)");
-  if (found->kind == TagKind::kMaxIterations) {
-    d.max_iterations =
-        static_cast<int>(integer("MAX ITERATIONS", 0, std::numeric_limits<int>::max()));
-  } else if (found->kind == TagKind::kConvergenceTolerance) {
+  if (tag.kind == TagKind::kMaxIterations) {
+    d.max_iterations = static_cast<int>(integer(words, 0, kMaxInt));
+  } else if (tag.kind == TagKind::kConvergenceTolerance) {
     d.convergence_tolerance = expression();
   } else {
     d.simulation_seed =
-        static_cast<uint32_t>(integer("SEED", 0, std::numeric_limits<uint32_t>::max()));
+        static_cast<uint32_t>(integer(words, 0, std::numeric_limits<uint32_t>::max()));
   }
 }
 
