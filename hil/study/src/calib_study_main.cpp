@@ -8,33 +8,45 @@
 #include <string>
 
 #include "calibration_study.hpp"
+#include "real_data.hpp"
 #include "scenario.hpp"
 #include "study_report.hpp"
 
 namespace {
 
 constexpr const char* kUsage =
-    R"(usage: syncap-calib-study [--short] [--out FILE] [--scenarios DIR] [--runs N]
+    R"(usage: syncap-calib-study [--short] [--out FILE] [--scenarios DIR] [--runs N] [--data DIR]
 
 The calibration accuracy study: Monte Carlo runs of the whole calibration (network start from the
 measurements, self-calibrating bundle adjustment) on simulated wand networks, compared with the
 truth: thesis Table 4.3 (wand-3cam-basler, 10/40/100 wand positions) and the six-camera network
-of section 4.4.1 (ring-6cam-person). Writes Markdown (docs/calibration-accuracy.md).
+of section 4.4.1 (ring-6cam-person); and the real strawlab LED recordings through the code of
+`syncap calibrate --led`. Writes Markdown (docs/calibration-accuracy.md).
 
-  --short          few runs and small networks (seconds; what ctest runs)
+  --short          few runs, no real data (seconds; what ctest runs)
   --out FILE       write the page to FILE (default: standard output)
   --scenarios DIR  where wand-3cam-basler.yaml and ring-6cam-person.yaml are
                    (default: the source tree's hil/scenarios)
   --runs N         runs per Table 4.3 row and for the ring (default: 50 and 20; short: 4 and 3)
+  --data DIR       the data folder with calibration/strawlab-* (default: $SYNCAP_DATA, else the
+                   source tree's ../shared/data)
 
 Exit status: 0 every claim holds, 1 a claim fails, 2 bad usage or input.
 )";
+
+std::filesystem::path default_data() {
+  const char* data = std::getenv("SYNCAP_DATA");
+  return data != nullptr && *data != '\0'
+             ? std::filesystem::path(data)
+             : std::filesystem::path(SYNCAP_SOURCE_DIR "/../shared/data");
+}
 
 struct Arguments {
   bool short_mode = false;
   std::string out;
   std::filesystem::path scenarios = SYNCAP_SOURCE_DIR "/hil/scenarios";
   int runs = 0;
+  std::filesystem::path data = default_data();
   std::string command = "syncap-calib-study";
 };
 
@@ -57,6 +69,8 @@ Arguments parse(int argc, char** argv) {
       a.command += " --out " + a.out;
     } else if (arg == "--scenarios") {
       a.scenarios = value();
+    } else if (arg == "--data") {
+      a.data = value();
     } else if (arg == "--runs") {
       const std::string text = value();
       size_t used = 0;
@@ -110,6 +124,14 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "six-camera network: %d runs of %d wand positions ...\n",
                report.ring_options.runs, report.ring_options.wands);
   report.ring = syncap::study::run_ring_study(ring, report.ring_options);
+  if (arguments.short_mode) {
+    report.real_data_markdown = "Not run in `--short` mode.\n";
+  } else {
+    const std::filesystem::path recordings = arguments.data / "calibration";
+    std::fprintf(stderr, "real data: %s ...\n", recordings.c_str());
+    report.real_data_markdown =
+        syncap::study::format_real_data(syncap::study::calibrate_real_data(recordings), recordings);
+  }
 
   const std::string page = syncap::study::format_markdown(report);
   if (arguments.out.empty()) {

@@ -239,11 +239,8 @@ void write_real_data(std::ostringstream& out, const StudyReport& report) {
     out << report.real_data_markdown << "\n";
     return;
   }
-  out << "**Not yet in this study.** This section is reserved for the calibration of the real "
-         "recordings in `$SYNCAP_DATA/calibration/strawlab-*` (a single moved LED, "
-         "`syncap calibrate --input mcsc:DIR --led`), which is being built in "
-         "`host/src/calibration/`; once its reader is in, this program includes its figures "
-         "here through that code.\n\n";
+  out << "Not computed in this run (real_data.hpp: the strawlab recordings through "
+         "`syncap calibrate --led`'s code).\n\n";
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ struct StudyReport {
   RingOptions ring_options;
   RingStudy ring;
   ClaimLimits limits;
-  // Section 3, real data: Markdown from whoever computed it; empty: the marked placeholder.
+  // Section 3, real data (real_data.hpp's format_real_data); empty: not computed.
   std::string real_data_markdown;
 };
 
