@@ -313,6 +313,85 @@ TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
   EXPECT_NEAR(y1, 189, 2);
 }
 
+// The person box spans x 100..159; a clip polygon over x < 130 keeps only its left half, and
+// removing the clip brings the whole box back.
+TEST_F(EdgeNodeMaskTest, TheHostsClipPolygonLimitsTheSilhouette) {
+  for (int k = 0; k < 8; ++k) source_.images[k] = scene(k, false);
+  for (int k = 8; k < 12; ++k) source_.images[k] = scene(k, true);
+  edge_command_t train{};
+  train.camera_id = 4;
+  train.command = edge_command_t::TRAIN_BACKGROUND;
+  train.int_value = 8;
+  node_->on_command(train);
+  for (int k = 0; k < 8; ++k) node_->on_trigger(trigger(k));
+  auto x_range = [&] {
+    const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
+    int x0 = 1000, x1 = -1;
+    for (const auto& c : s.contours) {
+      for (const auto& p : c.points) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    }
+    silhouettes_.clear();
+    return std::pair{x0, x1};
+  };
+  clip_polygon_t clip{};
+  clip.camera_id = 4;
+  clip.image_width = 320;
+  clip.image_height = 240;
+  clip.num_points = 4;
+  clip.x = {0, 129, 129, 0};
+  clip.y = {0, 0, 239, 239};
+  node_->on_clip(clip);
+  node_->on_trigger(trigger(8));
+  auto [x0, x1] = x_range();
+  EXPECT_NEAR(x0, 100, 2);
+  EXPECT_NEAR(x1, 129, 2);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "masking inside the clip polygon");
+
+  clip.camera_id = 5;  // another camera's: ignored
+  clip.x = {0, 1, 1};
+  clip.y = {0, 0, 1};
+  clip.num_points = 3;
+  node_->on_clip(clip);
+  node_->on_trigger(trigger(9));
+  EXPECT_NEAR(x_range().second, 129, 2);
+
+  clip.camera_id = 4;  // for another sensor size: not applied, and said so
+  clip.image_width = 640;
+  clip.image_height = 480;
+  node_->on_clip(clip);
+  node_->on_trigger(trigger(10));
+  EXPECT_NEAR(x_range().second, 159, 2);
+  node_->publish_status();
+  EXPECT_NE(statuses_.back().message.find("clip polygon for a 640x480 sensor"), std::string::npos)
+      << statuses_.back().message;
+
+  clip.num_points = 0;  // no clip
+  clip.x.clear();
+  clip.y.clear();
+  clip.image_width = 320;
+  clip.image_height = 240;
+  node_->on_clip(clip);
+  node_->on_trigger(trigger(11));
+  EXPECT_NEAR(x_range().second, 159, 2);
+}
+
+TEST_F(EdgeNodeMaskTest, AMalformedClipPolygonIsReported) {
+  clip_polygon_t clip{};
+  clip.camera_id = 4;
+  clip.sequence = 17;
+  clip.image_width = 320;
+  clip.image_height = 240;
+  clip.num_points = 2;
+  clip.x = {0, 5};
+  clip.y = {0, 5};
+  node_->on_clip(clip);
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
+  EXPECT_NE(statuses_.back().message.find("clip polygon 17 refused"), std::string::npos)
+      << statuses_.back().message;
+}
+
 TEST_F(EdgeNodeMaskTest, ReportsTrainingProgressAndIgnoresOtherCameras) {
   for (int k = 0; k < 3; ++k) source_.images[k] = scene(k, false);
   edge_command_t train{};

@@ -96,6 +96,9 @@ int run(const syncap::edge::EdgeOptions& options) {
       syncap::proto::kEdgeCommandChannel, [&](const syncap::edge_command_t& c, const std::string&) {
         if (node.on_command(c)) shutdown = true;
       });
+  subscriber.subscribe<syncap::clip_polygon_t>(
+      syncap::proto::kEdgeClipChannel,
+      [&](const syncap::clip_polygon_t& c, const std::string&) { node.on_clip(c); });
 
   if (!options.quiet) {
     std::cerr << "syncap-edge camera " << options.camera_id << ": " << source->describe()

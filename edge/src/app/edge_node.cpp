@@ -153,6 +153,24 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   last_frame_number_ = trigger.frame_number;
 }
 
+void EdgeNode::on_clip(const clip_polygon_t& clip) {
+  if (clip.camera_id != options_.camera_id) return;
+  const auto points = static_cast<std::size_t>(std::max<int16_t>(clip.num_points, 0));
+  if (clip.num_points < 0 || clip.num_points == 1 || clip.num_points == 2 ||
+      clip.x.size() != points || clip.y.size() != points || clip.image_width <= 0 ||
+      clip.image_height <= 0) {
+    note_error("clip polygon " + std::to_string(clip.sequence) +
+               " refused: " + std::to_string(clip.num_points) + " points for a " +
+               std::to_string(clip.image_width) + "x" + std::to_string(clip.image_height) +
+               " sensor (0, or at least 3, and a sensor size)");
+    return;
+  }
+  if (!silhouettes_) return;  // blobs only: nothing to clip
+  std::vector<cv::Point> polygon;
+  for (std::size_t i = 0; i < points; ++i) polygon.emplace_back(clip.x[i], clip.y[i]);
+  silhouettes_->set_clip_polygon(std::move(polygon), {clip.image_width, clip.image_height});
+}
+
 void EdgeNode::follow_windows(cv::Size sensor) {
   const std::optional<cv::Rect> wanted = detection_.next_roi();
   if (!wanted) return;

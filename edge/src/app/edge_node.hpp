@@ -13,6 +13,7 @@
 #include "sensor/frame_source.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
+#include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
@@ -40,6 +41,9 @@ class EdgeNode {
   // (real_value us), SET_GAIN (real_value dB), STOP (triggers are ignored, heartbeat IDLE) and
   // START. Returns true for SHUTDOWN.
   bool on_command(const edge_command_t& command);
+  // The host's clip polygon for this camera's masking (others' are ignored); a malformed one is
+  // reported in the heartbeat and changes nothing.
+  void on_clip(const clip_polygon_t& clip);
   // Publishes a heartbeat; `final` marks the last one before the process exits.
   void publish_status(bool final = false);
 

@@ -30,6 +30,7 @@ void SilhouetteStage::finish_training() {
   if (training_.size() >= 2) {
     model_.emplace(train_medi_picture(training_), options_);
     paused_.clear();
+    clip_pending_ = !clip_.empty();
   } else {
     paused_ = "training failed: " + std::to_string(training_.size()) + " frame(s) of " +
               std::to_string(training_from_) + ".." +
@@ -65,6 +66,7 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
     return {};
   }
   paused_.clear();
+  apply_clip(origin, sensor_size.empty() ? image.size() : sensor_size);
   const cv::Mat mask = model_->apply(image);
   auto contours = silhouette_contours(mask, tolerance_px_);
   for (proto::Contour& contour : contours) {
@@ -72,6 +74,30 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
   }
   const cv::Size size = sensor_size.empty() ? image.size() : sensor_size;
   return proto::encode_silhouette(camera_id, frame_number, size.width, size.height, contours);
+}
+
+void SilhouetteStage::set_clip_polygon(std::vector<cv::Point> sensor_polygon,
+                                       cv::Size sensor_size) {
+  clip_ = std::move(sensor_polygon);
+  clip_sensor_ = sensor_size;
+  clip_pending_ = true;
+  clip_note_.clear();
+}
+
+void SilhouetteStage::apply_clip(cv::Point origin, cv::Size sensor_size) {
+  if (!clip_pending_ && origin == clip_origin_) return;
+  if (!clip_.empty() && clip_sensor_ != sensor_size) {
+    clip_note_ = "clip polygon for a " + size_text(clip_sensor_) + " sensor, this one is " +
+                 size_text(sensor_size) + ": not applied";
+    model_->set_clip_polygon({});
+  } else {
+    std::vector<cv::Point> shifted = clip_;
+    for (cv::Point& p : shifted) p -= origin;
+    model_->set_clip_polygon(std::move(shifted));
+    clip_note_.clear();
+  }
+  clip_pending_ = false;
+  clip_origin_ = origin;
 }
 
 std::string SilhouetteStage::state() const {
@@ -83,7 +109,9 @@ std::string SilhouetteStage::state() const {
            std::to_string(training_wanted_);
   }
   if (!paused_.empty()) return paused_;
-  return model_ ? "masking" : "no background model";
+  if (!model_) return "no background model";
+  if (!clip_note_.empty()) return "masking; " + clip_note_;
+  return clip_.empty() ? "masking" : "masking inside the clip polygon";
 }
 
 }  // namespace syncap::edge

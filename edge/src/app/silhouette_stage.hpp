@@ -28,13 +28,19 @@ class SilhouetteStage {
   // sensor position of image(0, 0), in a sensor of `sensor_size` (empty: the image's).
   std::vector<silhouette_part_t> process(const cv::Mat& image, int camera_id, int64_t frame_number,
                                          cv::Point origin = {}, cv::Size sensor_size = {});
+  // The host's clip polygon (clip_polygon_t): sensor pixels of a sensor of `sensor_size`; pixels
+  // outside it are background from the next frame on. Empty: no clip. A polygon for another
+  // sensor size is not applied (state() says so).
+  void set_clip_polygon(std::vector<cv::Point> sensor_polygon, cv::Size sensor_size);
   // "no background model", "training background 12/60", "waiting for frame 40 to train",
-  // "masking" or why masking is paused.
+  // "masking" or why masking is paused, with the clip's state.
   std::string state() const;
 
  private:
   bool in_training_range(int64_t frame_number) const;
   void finish_training();
+  // Hands the clip polygon to the model, shifted into the frame's window.
+  void apply_clip(cv::Point origin, cv::Size sensor_size);
 
   double tolerance_px_;
   MediPictureOptions options_;
@@ -42,7 +48,12 @@ class SilhouetteStage {
   int64_t training_from_ = -1;
   std::vector<cv::Mat> training_;
   std::optional<MediPicture> model_;
-  std::string paused_;  // why the last frame was not masked
+  std::string paused_;           // why the last frame was not masked
+  std::vector<cv::Point> clip_;  // sensor pixels
+  cv::Size clip_sensor_;         // the sensor size the clip refers to
+  bool clip_pending_ = false;    // not yet given to the model (new clip, new model or window)
+  cv::Point clip_origin_;        // the window origin the model's clip was shifted by
+  std::string clip_note_;        // why the clip is not applied
 };
 
 }  // namespace syncap::edge

@@ -483,12 +483,16 @@ MediPicture::MediPicture(const MediPictureModel& model, MediPictureOptions optio
   // Deep copies: cv::Mat copies share pixels, and the slow update must not change the caller's.
   model_ = {model.median.clone(), model.sigma.clone(), model.minimum.clone(), model.maximum.clone(),
             model.max_difference.clone()};
-  if (!options_.clip_polygon.empty()) {
-    clip_ = cv::Mat::zeros(model_.median.size(), CV_8UC1);
-    cv::fillPoly(clip_, std::vector<std::vector<cv::Point>>{options_.clip_polygon},
-                 cv::Scalar(255));
-  }
+  set_clip_polygon(options_.clip_polygon);
   derive_thresholds();
+}
+
+void MediPicture::set_clip_polygon(std::vector<cv::Point> polygon) {
+  options_.clip_polygon = std::move(polygon);
+  clip_.release();
+  if (options_.clip_polygon.empty()) return;
+  clip_ = cv::Mat::zeros(model_.median.size(), CV_8UC1);
+  cv::fillPoly(clip_, std::vector<std::vector<cv::Point>>{options_.clip_polygon}, cv::Scalar(255));
 }
 
 void MediPicture::derive_thresholds() {

@@ -84,6 +84,9 @@ class MediPicture {
   // call when the caller no longer holds it.
   cv::Mat apply(const cv::Mat& frame);
 
+  // Replaces the clip polygon (pixels of the model's image; empty: no clip).
+  void set_clip_polygon(std::vector<cv::Point> polygon);
+
   const MediPictureModel& model() const { return model_; }
   const MediPictureOptions& options() const { return options_; }
 
