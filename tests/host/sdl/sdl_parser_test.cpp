@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "sdl/sdl.hpp"
@@ -289,6 +292,32 @@ TEST(SdlParser, AnUnreadableFileIsAParseErrorNamingIt) {
               std::string::npos)
         << error.what();
   }
+}
+
+}  // namespace
+}  // namespace syncap::sdl
+
+namespace syncap::sdl {
+namespace {
+
+// docs/sdl.md's first example (its first fenced block without a language) is a valid scene.
+TEST(SdlParser, TheDocumentationsFirstSceneParses) {
+  std::ifstream doc(std::filesystem::path(SYNCAP_SOURCE_DIR) / "docs/sdl.md");
+  std::stringstream text;
+  text << doc.rdbuf();
+  const std::string markdown = text.str();
+  const size_t start = markdown.find("\n```\n");
+  ASSERT_NE(start, std::string::npos);
+  const size_t end = markdown.find("\n```\n", start + 5);
+  ASSERT_NE(end, std::string::npos);
+  const scene::Network n = parse_string(markdown.substr(start + 5, end - start - 4), "sdl.md");
+  EXPECT_EQ(n.models.size(), 1u);
+  EXPECT_EQ(n.stations.size(), 1u);
+  EXPECT_EQ(n.points.size(), 3u);
+  EXPECT_EQ(n.measurements.size(), 2u);
+  EXPECT_EQ(n.measurements[1].frame_number, 17);
+  EXPECT_EQ(n.distances.size(), 1u);
+  EXPECT_EQ(n.residual_test.critical_snooping, 4.9);
 }
 
 }  // namespace
