@@ -10,14 +10,19 @@
 namespace syncap::compare {
 
 cv::Mat silhouette_mask(const std::vector<Outline>& outlines, const ImageSize& image) {
+  // Even-odd: every outline toggles the pixels it encloses, so nesting (a piece of foreground
+  // inside a hole inside a body) needs no order. A hole's outline runs through the foreground
+  // pixels around it, so those are set again afterwards.
   cv::Mat mask = cv::Mat::zeros(image.height_px, image.width_px, CV_8UC1);
-  std::vector<std::vector<cv::Point>> outer, holes;
-  for (const Outline& o : outlines) (o.hole ? holes : outer).push_back(o.points);
-  if (!outer.empty()) cv::fillPoly(mask, outer, cv::Scalar(255));
-  if (!holes.empty()) {
-    cv::fillPoly(mask, holes, cv::Scalar(0));
-    cv::polylines(mask, holes, true, cv::Scalar(255));
+  cv::Mat one(mask.size(), CV_8UC1);
+  std::vector<std::vector<cv::Point>> holes;
+  for (const Outline& o : outlines) {
+    one.setTo(0);
+    cv::fillPoly(one, std::vector<std::vector<cv::Point>>{o.points}, cv::Scalar(255));
+    cv::bitwise_xor(mask, one, mask);
+    if (o.hole) holes.push_back(o.points);
   }
+  if (!holes.empty()) cv::polylines(mask, holes, true, cv::Scalar(255));
   return mask;
 }
 

@@ -42,6 +42,17 @@ TEST(SilhouetteMask, FillsTracedOutlinesBackIntoTheSameMask) {
   EXPECT_EQ(cv::countNonZero(filled != mask), 0);
 }
 
+TEST(SilhouetteMask, ForegroundInsideAHoleSurvivesInAnyOrder) {
+  cv::Mat mask = person_mask();
+  cv::circle(mask, cv::Point(300, 200), 6, 255, cv::FILLED);  // an island in the hole
+  std::vector<Outline> outlines = outlines_of(mask);
+  for (int turn = 0; turn < 2; ++turn) {
+    const cv::Mat filled = silhouette_mask(outlines, {640, 480});
+    EXPECT_EQ(cv::countNonZero(filled != mask), 0) << "order " << turn;
+    std::reverse(outlines.begin(), outlines.end());
+  }
+}
+
 TEST(SilhouetteMask, OutlinesSimplifiedToOnePixelStayClose) {
   const cv::Mat mask = person_mask();
   const auto iou =
