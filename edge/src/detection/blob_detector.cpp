@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <opencv2/core/hal/intrin.hpp>
+
 #include "detection/run_labeller.hpp"
 
 namespace syncap::edge {
@@ -39,6 +41,109 @@ int BlobDetector::threshold_for(const cv::Mat& image) const {
   return std::clamp(static_cast<int>(std::ceil(median + above)), 1, 255);
 }
 
+namespace {
+
+// The local background around the centroid window `cw` (inside `window`): the interquartile
+// mean (the mean of the middle half once sorted, from index n/4 to n - n/4) of the pixels below
+// `threshold` of the one-pixel ring just outside cw that lie inside window. Counted in `count`
+// (all zero, and left so) over the values' range: the sum a sort would give, in linear time.
+double ring_background(const cv::Mat& image, cv::Rect cw, cv::Rect window, int threshold,
+                       std::array<int, 256>& count) {
+  size_t n = 0;
+  int low = 255, high = 0;
+  const auto take = [&](int v) {
+    if (v >= threshold) return;  // a blob's pixel
+    ++count[static_cast<size_t>(v)];
+    ++n;
+    low = std::min(low, v);
+    high = std::max(high, v);
+  };
+  const int xa = std::max(cw.x - 1, window.x);
+  const int xb = std::min(cw.x + cw.width, window.x + window.width - 1);
+  for (const int y : {cw.y - 1, cw.y + cw.height}) {
+    if (y < window.y || y >= window.y + window.height) continue;
+    const uint8_t* row = image.ptr<uint8_t>(y);
+    for (int x = xa; x <= xb; ++x) take(row[x]);
+  }
+  for (const int x : {cw.x - 1, cw.x + cw.width}) {
+    if (x < window.x || x >= window.x + window.width) continue;
+    for (int y = cw.y; y < cw.y + cw.height; ++y) take(image.ptr<uint8_t>(y)[x]);
+  }
+  if (n == 0) return 0;
+  const size_t lo = n / 4, hi = std::max(n - n / 4, lo + 1);
+  int64_t sum = 0;
+  size_t seen = 0;
+  for (int v = low; v <= high; ++v) {
+    const auto c = static_cast<size_t>(count[static_cast<size_t>(v)]);
+    count[static_cast<size_t>(v)] = 0;
+    const size_t from = std::max(seen, lo), to = std::min(seen + c, hi);
+    if (to > from) sum += static_cast<int64_t>(v) * static_cast<int64_t>(to - from);
+    seen += c;
+  }
+  return static_cast<double>(sum) / static_cast<double>(hi - lo);
+}
+
+// Over the pixels of `cw`: the sums of intensity v, v * x and v * y, and how many are >= the
+// threshold (all of them the blob's when that equals its area).
+struct WindowSums {
+  int64_t si = 0, six = 0, siy = 0;
+  int bright = 0;
+};
+
+// kMaxFastWidth bounds the row sums: 255 * 2048^2 / 2 fits in int32.
+WindowSums window_sums(const cv::Mat& image, cv::Rect cw, int threshold) {
+  WindowSums s;
+  for (int y = cw.y; y < cw.y + cw.height; ++y) {
+    const uint8_t* row = image.ptr<uint8_t>(y) + cw.x;
+    int32_t ri = 0, rik = 0, bright = 0;  // rik: v * (x - cw.x)
+    int k = 0;
+#if CV_SIMD128
+    // 16 pixels a vector: v * 1 and v * k summed in pairs (pmaddwd); the last vector reads
+    // past the window (inside the image) with the lanes beyond it cleared.
+    static constexpr uint8_t kLanes[32] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
+                                           0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+    const cv::v_uint8x16 vt = cv::v_setall_u8(static_cast<uint8_t>(std::clamp(threshold, 0, 255)));
+    const cv::v_int16x8 ones = cv::v_setall_s16(1), eight = cv::v_setall_s16(8);
+    cv::v_int16x8 k_lo(0, 1, 2, 3, 4, 5, 6, 7), k_hi = k_lo + eight;
+    cv::v_int32x4 sum_v = cv::v_setzero_s32(), sum_vk = cv::v_setzero_s32();
+    cv::v_uint8x16 count = cv::v_setzero_u8();
+    for (; k < cw.width && (k + 16 <= cw.width || row + k + 16 <= image.dataend); k += 16) {
+      const cv::v_uint8x16 lanes = cv::v_load(kLanes + 16 - std::min(cw.width - k, 16));
+      const cv::v_uint8x16 p = cv::v_load(row + k) & lanes;
+      cv::v_uint16x8 lo, hi;
+      cv::v_expand(p, lo, hi);
+      const cv::v_int16x8 slo = cv::v_reinterpret_as_s16(lo), shi = cv::v_reinterpret_as_s16(hi);
+      sum_v += cv::v_dotprod(slo, ones) + cv::v_dotprod(shi, ones);
+      sum_vk += cv::v_dotprod(slo, k_lo) + cv::v_dotprod(shi, k_hi);
+      count = cv::v_sub_wrap(count, (p >= vt) & lanes);  // 0xFF is -1
+      k_lo += eight + eight;
+      k_hi += eight + eight;
+    }
+    cv::v_uint16x8 count_lo, count_hi;
+    cv::v_expand(count, count_lo, count_hi);
+    ri = cv::v_reduce_sum(sum_v);
+    rik = cv::v_reduce_sum(sum_vk);
+    bright = static_cast<int32_t>(cv::v_reduce_sum(count_lo + count_hi));
+#endif
+    for (; k < cw.width; ++k) {
+      const int32_t v = row[k];
+      ri += v;
+      rik += v * k;
+      bright += v >= threshold;
+    }
+    s.si += ri;
+    s.six += static_cast<int64_t>(ri) * cw.x + rik;
+    s.siy += static_cast<int64_t>(ri) * y;
+    s.bright += bright;
+  }
+  return s;
+}
+constexpr int kMaxFastWidth = 2048;
+
+int64_t sum_of_range(int64_t a, int64_t b) { return (a + b) * (b - a + 1) / 2; }  // a + ... + b
+
+}  // namespace
+
 void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshold,
                              int8_t extra_flags, std::vector<blob_t>& out,
                              std::vector<BlobShape>* shapes) {
@@ -56,62 +161,52 @@ void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshol
 
     // Local background: a robust (interquartile) mean of the ring just outside the centroid
     // window, inside the search window, leaving out pixels of blobs.
-    ring_.clear();
-    const auto take = [&](int x, int y) {
-      if (window.contains({x, y})) {
-        const uint8_t v = image.at<uint8_t>(y, x);
-        if (v < threshold) ring_.push_back(v);
-      }
-    };
-    for (int x = cw.x - 1; x <= cw.x + cw.width; ++x) {
-      take(x, cw.y - 1);
-      take(x, cw.y + cw.height);
-    }
-    for (int y = cw.y; y < cw.y + cw.height; ++y) {
-      take(cw.x - 1, y);
-      take(cw.x + cw.width, y);
-    }
-    double background = 0;
-    if (!ring_.empty()) {
-      std::sort(ring_.begin(), ring_.end());
-      const size_t lo = ring_.size() / 4, hi = std::max(ring_.size() - ring_.size() / 4, lo + 1);
-      int64_t sum = 0;
-      for (size_t i = lo; i < hi; ++i) sum += ring_[i];
-      background = static_cast<double>(sum) / static_cast<double>(hi - lo);
-    }
+    const double background = ring_background(image, cw, window, threshold, ring_count_);
 
     // Centroid: every pixel of the window weighs its intensity above the background (signed,
-    // so noise averages out); pixels >= threshold that are not this blob's are skipped.
+    // so noise averages out); pixels >= threshold that are not this blob's are skipped. When
+    // the window holds no other bright pixel (the usual case), its plain sums are those.
     int64_t si = 0, six = 0, siy = 0, n = 0, sx = 0, sy = 0;
-    int r = c.first_run;
-    for (int y = cw.y; y < cw.y + cw.height; ++y) {
-      while (r >= 0 && runs[static_cast<size_t>(r)].y < y) r = labeller_.next_run(r);
-      int own = r;
-      const uint8_t* row = image.ptr<uint8_t>(y);
-      int64_t ri = 0, rix = 0, rn = 0, rx = 0;
-      for (int x = cw.x; x < cw.x + cw.width; ++x) {
-        const int v = row[x];
-        if (v >= threshold) {
-          while (own >= 0 && runs[static_cast<size_t>(own)].y == y &&
-                 runs[static_cast<size_t>(own)].x1 <= x) {
-            own = labeller_.next_run(own);
+    const WindowSums plain =
+        cw.width <= kMaxFastWidth ? window_sums(image, cw, threshold) : WindowSums{0, 0, 0, -1};
+    if (plain.bright == c.area) {
+      si = plain.si;
+      six = plain.six;
+      siy = plain.siy;
+      n = static_cast<int64_t>(cw.area());
+      sx = cw.height * sum_of_range(cw.x, cw.x + cw.width - 1);
+      sy = cw.width * sum_of_range(cw.y, cw.y + cw.height - 1);
+    } else {
+      int r = c.first_run;
+      for (int y = cw.y; y < cw.y + cw.height; ++y) {
+        while (r >= 0 && runs[static_cast<size_t>(r)].y < y) r = labeller_.next_run(r);
+        int own = r;
+        const uint8_t* row = image.ptr<uint8_t>(y);
+        int64_t ri = 0, rix = 0, rn = 0, rx = 0;
+        for (int x = cw.x; x < cw.x + cw.width; ++x) {
+          const int v = row[x];
+          if (v >= threshold) {
+            while (own >= 0 && runs[static_cast<size_t>(own)].y == y &&
+                   runs[static_cast<size_t>(own)].x1 <= x) {
+              own = labeller_.next_run(own);
+            }
+            if (own < 0 || runs[static_cast<size_t>(own)].y != y ||
+                runs[static_cast<size_t>(own)].x0 > x) {
+              continue;
+            }
           }
-          if (own < 0 || runs[static_cast<size_t>(own)].y != y ||
-              runs[static_cast<size_t>(own)].x0 > x) {
-            continue;
-          }
+          ri += v;
+          rix += v * x;
+          ++rn;
+          rx += x;
         }
-        ri += v;
-        rix += v * x;
-        ++rn;
-        rx += x;
+        si += ri;
+        six += rix;
+        siy += ri * y;
+        n += rn;
+        sx += rx;
+        sy += rn * y;
       }
-      si += ri;
-      six += rix;
-      siy += ri * y;
-      n += rn;
-      sx += rx;
-      sy += rn * y;
     }
     const double weight = static_cast<double>(si) - background * static_cast<double>(n);
 
@@ -154,7 +249,8 @@ void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshol
     shape.myy = wyy / w2 - my * my + 1.0 / 12;
     shape.mxy = wxy / w2 - mx * my;
     const double half_trace = 0.5 * (shape.mxx + shape.myy);
-    const double root = std::hypot(0.5 * (shape.mxx - shape.myy), shape.mxy);
+    const double half_difference = 0.5 * (shape.mxx - shape.myy);
+    const double root = std::sqrt(half_difference * half_difference + shape.mxy * shape.mxy);
     shape.roundness = half_trace > root ? (half_trace - root) / (half_trace + root) : 0.0;
     const bool not_round = shape.roundness < config_.min_roundness;
     if (not_round && config_.drop_not_round) continue;

@@ -5,6 +5,7 @@
 // mode that follows blobs from frame to frame is detection/blob_tracker.hpp.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -61,7 +62,7 @@ class BlobDetector {
   RunLabeller labeller_;
   std::vector<blob_t> blobs_;
   std::vector<BlobShape> shapes_;
-  std::vector<uint8_t> ring_;
+  std::array<int, 256> ring_count_{};  // histogram of a background ring, zero between uses
   std::vector<int> order_;
 };
 

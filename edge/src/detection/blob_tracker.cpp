@@ -10,6 +10,8 @@ namespace syncap::edge {
 BlobTracker::BlobTracker(const BlobTrackerConfig& config)
     : config_(config), detector_(config.detector) {
   config_.full_scan_every = std::max(config_.full_scan_every, 1);
+  config_.search_margin = std::max(config_.search_margin, 0);
+  config_.min_search_margin = std::clamp(config_.min_search_margin, 0, config_.search_margin);
 }
 
 void BlobTracker::reset() {
@@ -24,18 +26,26 @@ bool BlobTracker::needs_full_scan() const {
   return tracks_.empty() || frames_since_full_ + 1 >= config_.full_scan_every;
 }
 
+// Twice the recent prediction error covers a track that moves as it did; a new track, whose
+// velocity is not known yet, gets the whole search_margin.
+int BlobTracker::margin_of(const Track& t) const {
+  if (t.age == 0) return config_.search_margin;
+  const int m = static_cast<int>(std::ceil(2.0f * t.error)) + config_.min_search_margin;
+  return std::clamp(m, config_.min_search_margin, config_.search_margin);
+}
+
 cv::Rect BlobTracker::window_of(const Track& t) const {
   const cv::Point2f p = predicted(t);
-  const int grow = config_.search_margin + config_.detector.window_margin + 1;
+  const int grow = margin_of(t) + config_.detector.window_margin + 1;
   const int hw = t.box.width / 2 + grow, hh = t.box.height / 2 + grow;
   const cv::Rect w(static_cast<int>(std::lround(p.x)) - hw, static_cast<int>(std::lround(p.y)) - hh,
                    2 * hw + 1, 2 * hh + 1);
   return w & cv::Rect({0, 0}, size_);
 }
 
-std::vector<cv::Rect> BlobTracker::next_windows() const {
-  std::vector<cv::Rect> windows;
-  if (needs_full_scan()) return windows;
+void BlobTracker::windows_into(std::vector<cv::Rect>& windows) const {
+  windows.clear();
+  if (needs_full_scan()) return;
   for (const Track& t : tracks_) {
     const cv::Rect w = window_of(t);
     if (!w.empty()) windows.push_back(w);
@@ -52,6 +62,11 @@ std::vector<cv::Rect> BlobTracker::next_windows() const {
       }
     }
   }
+}
+
+std::vector<cv::Rect> BlobTracker::next_windows() const {
+  std::vector<cv::Rect> windows;
+  windows_into(windows);
   return windows;
 }
 
@@ -61,78 +76,107 @@ cv::Rect BlobTracker::next_roi() const {
   return roi;
 }
 
-// Greedy nearest-neighbour association of tracks to blobs within max_jump of the prediction.
-// Returns per track the blob index or -1.
-static std::vector<int> associate(const std::vector<cv::Point2f>& predictions,
-                                  const std::vector<blob_t>& blobs, float max_jump) {
-  std::vector<int> match(predictions.size(), -1);
-  std::vector<bool> taken(blobs.size(), false);
-  for (size_t t = 0; t < predictions.size(); ++t) {
-    double best = static_cast<double>(max_jump) * max_jump;
+void BlobTracker::associate(const std::vector<blob_t>& blobs) {
+  predictions_.clear();
+  for (const Track& t : tracks_) predictions_.push_back(predicted(t));
+  match_.assign(predictions_.size(), -1);
+  taken_.assign(blobs.size(), 0);
+  for (size_t t = 0; t < predictions_.size(); ++t) {
+    double best = static_cast<double>(config_.max_jump) * config_.max_jump;
     for (size_t b = 0; b < blobs.size(); ++b) {
-      if (taken[b]) continue;
-      const double dx = blobs[b].x - predictions[t].x, dy = blobs[b].y - predictions[t].y;
+      if (taken_[b]) continue;
+      const double dx = blobs[b].x - predictions_[t].x, dy = blobs[b].y - predictions_[t].y;
       if (dx * dx + dy * dy <= best) {
         best = dx * dx + dy * dy;
-        match[t] = static_cast<int>(b);
+        match_[t] = static_cast<int>(b);
       }
     }
-    if (match[t] >= 0) taken[static_cast<size_t>(match[t])] = true;
+    if (match_[t] >= 0) taken_[static_cast<size_t>(match_[t])] = 1;
   }
-  return match;
 }
 
+// Uses match_ from associate(found).
 void BlobTracker::update_tracks(const std::vector<blob_t>& found, bool keep_unmatched_tracks) {
-  std::vector<cv::Point2f> predictions;
-  for (const Track& t : tracks_) predictions.push_back(predicted(t));
-  const std::vector<int> match = associate(predictions, found, config_.max_jump);
-  std::vector<Track> next;
-  std::vector<bool> used(found.size(), false);
+  next_tracks_.clear();
   for (size_t t = 0; t < tracks_.size(); ++t) {
-    if (match[t] < 0) {
-      if (keep_unmatched_tracks) next.push_back(tracks_[t]);
+    if (match_[t] < 0) {
+      if (keep_unmatched_tracks) next_tracks_.push_back(tracks_[t]);
       continue;
     }
-    const blob_t& b = found[static_cast<size_t>(match[t])];
-    used[static_cast<size_t>(match[t])] = true;
+    const blob_t& b = found[static_cast<size_t>(match_[t])];
     Track track = tracks_[t];
     const cv::Point2f position(b.x, b.y);
+    const cv::Point2f miss = position - predicted(track);
+    track.error = std::max(std::sqrt(miss.dot(miss)), 0.5f * track.error);
     track.velocity = position - track.position;
     track.position = position;
     track.box = {b.bbox_w, b.bbox_h};
     ++track.age;
-    next.push_back(track);
+    next_tracks_.push_back(track);
   }
   for (size_t b = 0; b < found.size(); ++b) {
-    if (used[b]) continue;
-    next.push_back({{found[b].x, found[b].y}, {0, 0}, {found[b].bbox_w, found[b].bbox_h}, 0});
+    if (taken_[b]) continue;
+    const float unknown = static_cast<float>(config_.search_margin);
+    next_tracks_.push_back(
+        {{found[b].x, found[b].y}, {0, 0}, {found[b].bbox_w, found[b].bbox_h}, 0, unknown});
   }
-  tracks_ = std::move(next);
+  std::swap(tracks_, next_tracks_);
 }
 
 void BlobTracker::full_scan(const cv::Mat& image) {
   windows_.clear();
   threshold_ = detector_.threshold_for(image);
   blobs_ = detector_.detect(image);
+  associate(blobs_);
   update_tracks(blobs_, false);
   frames_since_full_ = 0;
   full_scan_ = true;
 }
 
-bool BlobTracker::windowed_scan(const cv::Mat& image) {
-  windows_ = next_windows();
-  std::vector<blob_t> found;
-  for (const cv::Rect& w : windows_) {
-    detector_.detect_in(image, w, threshold_, blob_t::FLAG_WINDOWED, found);
+// The blob's centroid window and the background ring around it must lie inside its search
+// window wherever the image does not clip them; else it was measured on part of its pixels.
+bool BlobTracker::clipped_by_window(const blob_t& b, const cv::Rect& window) const {
+  const int m = config_.detector.window_margin + 1;
+  const cv::Rect needed = cv::Rect(b.bbox_x - m, b.bbox_y - m, b.bbox_w + 2 * m, b.bbox_h + 2 * m) &
+                          cv::Rect({0, 0}, size_);
+  return (needed & window) != needed;
+}
+
+// Asks for every cache line of the windows before any is read. A window's rows lie a whole
+// image row apart, so each is a cache line of its own that the hardware prefetcher does not see
+// coming: read one after the other, their memory latencies add up, fetched together they overlap.
+static void prefetch_windows(const cv::Mat& image, const std::vector<cv::Rect>& windows) {
+  for (const cv::Rect& w : windows) {
+    for (int y = w.y; y < w.y + w.height; ++y) {
+      const uint8_t* row = image.ptr<uint8_t>(y);
+      for (int x = w.x; x < w.x + w.width; x += 64) __builtin_prefetch(row + x);
+      __builtin_prefetch(row + w.x + w.width - 1);
+    }
   }
-  std::vector<cv::Point2f> predictions;
-  for (const Track& t : tracks_) predictions.push_back(predicted(t));
-  const std::vector<int> match = associate(predictions, found, config_.max_jump);
-  if (std::find(match.begin(), match.end(), -1) != match.end()) return false;  // one is lost
-  update_tracks(found, true);
-  blobs_ = std::move(found);
-  std::stable_sort(blobs_.begin(), blobs_.end(),
-                   [](const blob_t& a, const blob_t& b) { return a.area > b.area; });
+}
+
+bool BlobTracker::windowed_scan(const cv::Mat& image) {
+  windows_into(windows_);
+  prefetch_windows(image, windows_);
+  found_.clear();
+  for (const cv::Rect& w : windows_) {
+    const size_t first = found_.size();
+    detector_.detect_in(image, w, threshold_, blob_t::FLAG_WINDOWED, found_);
+    for (size_t i = first; i < found_.size(); ++i) {
+      if (clipped_by_window(found_[i], w)) return false;  // searched too narrowly
+    }
+  }
+  associate(found_);
+  if (std::find(match_.begin(), match_.end(), -1) != match_.end()) return false;  // one is lost
+  update_tracks(found_, true);
+  // By descending area, ties in the order found (an insertion sort: a few blobs, no buffer).
+  blobs_ = found_;
+  for (size_t i = 1; i < blobs_.size(); ++i) {
+    const blob_t b = blobs_[i];
+    size_t j = i;
+    for (; j > 0 && blobs_[j - 1].area < b.area; --j) blobs_[j] = blobs_[j - 1];
+    blobs_[j] = b;
+  }
   ++frames_since_full_;
   full_scan_ = false;
   return true;

@@ -2,8 +2,14 @@
 // only in a window around the prediction; a full-frame scan finds new blobs every N frames, when
 // nothing is tracked, or in the frame a tracked blob is lost. The union of the next frame's
 // windows is the rectangle a camera's sensor ROI could follow.
+//
+// The window's margin follows how well the track is predicted: search_margin while its velocity
+// is unknown, then twice its recent prediction error plus min_search_margin. A blob that reaches
+// the rim of its window (its centroid window clipped by the window, not by the image) was
+// searched too narrowly: the frame is scanned in full, so no clipped blob is ever reported.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -15,9 +21,10 @@ namespace syncap::edge {
 
 struct BlobTrackerConfig {
   BlobDetectorConfig detector;
-  int full_scan_every = 30;  // frames between full-frame scans for new blobs (>= 1)
-  int search_margin = 8;     // pixels around the predicted box searched, per side
-  float max_jump = 8.0f;     // a detection this far from the prediction (px) is another blob
+  int full_scan_every = 30;   // frames between full-frame scans for new blobs (>= 1)
+  int search_margin = 8;      // pixels around the predicted box searched, per side (at most)
+  int min_search_margin = 2;  // ... at least, once the track's prediction error is known
+  float max_jump = 8.0f;      // a detection this far from the prediction (px) is another blob
 };
 
 class BlobTracker {
@@ -43,12 +50,18 @@ class BlobTracker {
     cv::Point2f position, velocity;
     cv::Size box;
     int age = 0;
+    float error = 0;  // recent prediction error, px: the largest, halved every frame
   };
   cv::Point2f predicted(const Track& t) const { return t.position + t.velocity; }
+  int margin_of(const Track& t) const;
   cv::Rect window_of(const Track& t) const;
   bool needs_full_scan() const;
   void full_scan(const cv::Mat& image);
   bool windowed_scan(const cv::Mat& image);
+  bool clipped_by_window(const blob_t& b, const cv::Rect& window) const;
+  void windows_into(std::vector<cv::Rect>& windows) const;
+  // Per prediction the index of the nearest blob within max_jump, or -1 (greedy, in order).
+  void associate(const std::vector<blob_t>& blobs);
   void update_tracks(const std::vector<blob_t>& found, bool keep_unmatched_tracks);
 
   BlobTrackerConfig config_;
@@ -57,6 +70,12 @@ class BlobTracker {
   std::vector<Track> tracks_;
   std::vector<blob_t> blobs_;
   std::vector<cv::Rect> windows_;
+  // Per-frame buffers, kept to spare allocations.
+  std::vector<blob_t> found_;
+  std::vector<cv::Point2f> predictions_;
+  std::vector<int> match_;
+  std::vector<uint8_t> taken_;
+  std::vector<Track> next_tracks_;
   int threshold_ = 128;  // of the last full scan, used by the windows until the next
   int frames_since_full_ = 0;
   bool full_scan_ = false;

@@ -9,46 +9,52 @@
 namespace syncap::edge {
 namespace {
 
-// The first x in [x, end) with row[x] >= t, or end. Skips dark stretches a vector at a time.
-int skip_below(const uint8_t* row, int x, int end, uint8_t t) {
-#if CV_SIMD
-  const cv::v_uint8 vt = cv::vx_setall_u8(t);
-  constexpr int n = cv::v_uint8::nlanes;
-  for (; x + 4 * n <= end; x += 4 * n) {
-    const cv::v_uint8 m =
-        cv::v_max(cv::v_max(cv::vx_load(row + x), cv::vx_load(row + x + n)),
-                  cv::v_max(cv::vx_load(row + x + 2 * n), cv::vx_load(row + x + 3 * n)));
+// Bit i set when p[i] >= t, for i < n <= 64. `overread`: the 64 bytes from p may be read.
+// A vector compare per 16 pixels: no branch per pixel, so none to mispredict at a run's ends.
+[[gnu::always_inline]] inline uint64_t bright_mask(const uint8_t* p, int n, uint8_t t,
+                                                   bool overread) {
+#if CV_SIMD128
+  if (n == 64 || overread) {
+    const cv::v_uint8x16 vt = cv::v_setall_u8(t);
+    const cv::v_uint8x16 a = cv::v_load(p), b = cv::v_load(p + 16), c = cv::v_load(p + 32),
+                         d = cv::v_load(p + 48);
+    if (!cv::v_check_any(cv::v_max(cv::v_max(a, b), cv::v_max(c, d)) >= vt)) return 0;
+    const uint64_t m = static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(a >= vt))) |
+                       static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(b >= vt))) << 16 |
+                       static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(c >= vt))) << 32 |
+                       static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(d >= vt))) << 48;
+    return n == 64 ? m : m & ((uint64_t{1} << n) - 1);
+  }
+#else
+  (void)overread;
+#endif
+  uint64_t m = 0;
+  for (int i = 0; i < n; ++i) m |= static_cast<uint64_t>(p[i] >= t) << i;
+  return m;
+}
+
+// The first x of [x, end) where a 64-pixel stretch holds a pixel >= t, or where fewer than 64
+// remain: dark stretches are skipped 64 pixels at a time, in the frame scan's tight loop.
+int skip_dark(const uint8_t* row, int x, int end, uint8_t t) {
+#if CV_SIMD128
+  const cv::v_uint8x16 vt = cv::v_setall_u8(t);
+  for (; x + 64 <= end; x += 64) {
+    const cv::v_uint8x16 m =
+        cv::v_max(cv::v_max(cv::v_load(row + x), cv::v_load(row + x + 16)),
+                  cv::v_max(cv::v_load(row + x + 32), cv::v_load(row + x + 48)));
     if (cv::v_check_any(m >= vt)) break;
   }
-  for (; x + n <= end; x += n) {
-    if (cv::v_check_any(cv::vx_load(row + x) >= vt)) break;
-  }
+#else
+  (void)row;
+  (void)end;
+  (void)t;
 #endif
-  while (x < end && row[x] < t) ++x;
   return x;
 }
 
-int64_t sum_of_squares(int64_t k) { return k * (k + 1) * (2 * k + 1) / 6; }  // 0^2 + ... + k^2
+int trailing_zeros(uint64_t m) { return m == 0 ? 64 : __builtin_ctzll(m); }
 
-void merge_into(Component& to, const Component& from) {
-  to.area += from.area;
-  to.x0 = std::min(to.x0, from.x0);
-  to.y0 = std::min(to.y0, from.y0);
-  to.x1 = std::max(to.x1, from.x1);
-  to.y1 = std::max(to.y1, from.y1);
-  to.peak = std::max(to.peak, from.peak);
-  to.sum_x += from.sum_x;
-  to.sum_y += from.sum_y;
-  to.sum_xx += from.sum_xx;
-  to.sum_yy += from.sum_yy;
-  to.sum_xy += from.sum_xy;
-  to.sum_i += from.sum_i;
-  to.sum_ix += from.sum_ix;
-  to.sum_iy += from.sum_iy;
-  to.sum_ixx += from.sum_ixx;
-  to.sum_iyy += from.sum_iyy;
-  to.sum_ixy += from.sum_ixy;
-}
+int64_t sum_of_squares(int64_t k) { return k * (k + 1) * (2 * k + 1) / 6; }  // 0^2 + ... + k^2
 
 }  // namespace
 
@@ -71,36 +77,48 @@ int RunLabeller::find(int a) {
 }
 
 void RunLabeller::add_run(const uint8_t* row, int y, int x0, int x1) {
-  Component s;
-  s.area = x1 - x0;
-  s.x0 = x0;
-  s.x1 = x1 - 1;
-  s.y0 = s.y1 = y;
-  int64_t si = 0, six = 0, sixx = 0;
-  int peak = 0;
+  RunSums s;
+  int32_t si = 0, peak = 0;
+  int64_t six = 0, sixx = 0;
   for (int x = x0; x < x1; ++x) {
-    const int64_t v = row[x];
+    const int32_t v = row[x], vx = v * x;
     si += v;
-    six += v * x;
-    sixx += v * x * x;
-    peak = std::max(peak, static_cast<int>(v));
+    six += vx;
+    sixx += static_cast<int64_t>(vx) * x;
+    peak = std::max(peak, v);
   }
-  s.peak = peak;
-  s.sum_x = static_cast<int64_t>(s.area) * (x0 + x1 - 1) / 2;
-  s.sum_xx = sum_of_squares(x1 - 1) - (x0 > 0 ? sum_of_squares(x0 - 1) : 0);
-  s.sum_y = static_cast<int64_t>(s.area) * y;
-  s.sum_yy = s.sum_y * y;
-  s.sum_xy = s.sum_x * y;
   s.sum_i = si;
   s.sum_ix = six;
   s.sum_ixx = sixx;
-  s.sum_iy = si * y;
-  s.sum_iyy = si * y * y;
-  s.sum_ixy = six * y;
-  const int index = static_cast<int>(runs_.size());
+  s.peak = peak;
   runs_.push_back({y, x0, x1, -1});
-  parent_.push_back(index);
+  parent_.push_back(static_cast<int>(parent_.size()));
   run_sums_.push_back(s);
+}
+
+// Adds run r's pixels to c (whose box is already set from its first run).
+void RunLabeller::add_to(Component& c, size_t r) const {
+  const Run& run = runs_[r];
+  const RunSums& s = run_sums_[r];
+  const int64_t area = run.x1 - run.x0, y = run.y;
+  const int64_t sum_x = area * (run.x0 + run.x1 - 1) / 2;
+  c.area += static_cast<int>(area);
+  c.x0 = std::min(c.x0, run.x0);
+  c.x1 = std::max(c.x1, run.x1 - 1);
+  c.y0 = std::min(c.y0, run.y);
+  c.y1 = std::max(c.y1, run.y);
+  c.peak = std::max(c.peak, s.peak);
+  c.sum_x += sum_x;
+  c.sum_xx += sum_of_squares(run.x1 - 1) - (run.x0 > 0 ? sum_of_squares(run.x0 - 1) : 0);
+  c.sum_y += area * y;
+  c.sum_yy += area * y * y;
+  c.sum_xy += sum_x * y;
+  c.sum_i += s.sum_i;
+  c.sum_ix += s.sum_ix;
+  c.sum_ixx += s.sum_ixx;
+  c.sum_iy += s.sum_i * y;
+  c.sum_iyy += s.sum_i * y * y;
+  c.sum_ixy += s.sum_ix * y;
 }
 
 void RunLabeller::label(const cv::Mat& image, cv::Rect roi, int threshold) {
@@ -112,18 +130,80 @@ void RunLabeller::label(const cv::Mat& image, cv::Rect roi, int threshold) {
   roi &= cv::Rect(0, 0, image.cols, image.rows);
   if (roi.empty() || threshold > 255) return;
   const auto t = static_cast<uint8_t>(std::max(threshold, 0));
+  if (roi.width <= 64 && label_one_blob(image, roi, t)) return;
+  label_rows(image, roi, t);
+  gather();
+}
+
+// A window up to 64 px wide is one bit mask a row. When its bright pixels are one run a row, in
+// rows that follow each other and touch (a tracked blob's window, usually), they are one
+// component: no union-find needed. Returns false, having labelled nothing, otherwise.
+bool RunLabeller::label_one_blob(const cv::Mat& image, cv::Rect roi, uint8_t t) {
+  masks_.resize(static_cast<size_t>(roi.height));
+  int first = -1, last = -1;
+  uint64_t prev = 0;
+  for (int i = 0; i < roi.height; ++i) {
+    const uint8_t* p = image.ptr<uint8_t>(roi.y + i) + roi.x;
+    const uint64_t m = bright_mask(p, roi.width, t, p + 64 <= image.dataend);
+    masks_[static_cast<size_t>(i)] = m;
+    if (m == 0) continue;
+    if (last >= 0 && last != i - 1) return false;       // a second group of rows
+    if (((m + (m & (~m + 1))) & m) != 0) return false;  // more than one run in the row
+    if (last >= 0 && ((prev | prev << 1 | prev >> 1) & m) == 0) return false;  // apart
+    if (first < 0) first = i;
+    last = i;
+    prev = m;
+  }
+  if (first < 0) return true;
+  next_run_.clear();
+  for (int i = first; i <= last; ++i) {
+    const uint64_t m = masks_[static_cast<size_t>(i)];
+    const int start = trailing_zeros(m), end = start + trailing_zeros(~(m >> start));
+    add_run(image.ptr<uint8_t>(roi.y + i), roi.y + i, roi.x + start, roi.x + end);
+    next_run_.push_back(i < last ? static_cast<int>(runs_.size()) : -1);
+  }
+  Component& c = components_.emplace_back();
+  c.x0 = c.x1 = runs_[0].x0;
+  c.y0 = c.y1 = runs_[0].y;
+  c.first_run = 0;
+  for (size_t r = 0; r < runs_.size(); ++r) {
+    add_to(c, r);
+    runs_[r].component = 0;
+  }
+  return true;
+}
+
+void RunLabeller::label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t) {
   const int x_end = roi.x + roi.width;
   size_t prev_begin = 0, prev_end = 0;
   for (int y = roi.y; y < roi.y + roi.height; ++y) {
     const uint8_t* row = image.ptr<uint8_t>(y);
     const size_t cur_begin = runs_.size();
-    for (int x = roi.x;;) {
-      x = skip_below(row, x, x_end, t);
-      if (x >= x_end) break;
-      const int start = x;
-      while (x < x_end && row[x] >= t) ++x;
-      add_run(row, y, start, x);
+    // 64 pixels at a time as a bit mask; a run that reaches a chunk's end stays open.
+    int open = -1;  // start of a run still going on at the chunk's end
+    for (int x = roi.x; x < x_end; x += 64) {
+      if (open < 0 && (x = skip_dark(row, x, x_end, t)) >= x_end) break;
+      const int n = std::min(64, x_end - x);
+      uint64_t m = bright_mask(row + x, n, t, row + x + 64 <= image.dataend);
+      if (open >= 0) {
+        const int ones = trailing_zeros(~m);
+        if (ones == 64) continue;  // bright to the chunk's end
+        add_run(row, y, open, x + ones);
+        open = -1;
+        m &= ~((uint64_t{1} << ones) - 1);
+      }
+      while (m != 0) {
+        const int start = trailing_zeros(m);
+        const int end = start + trailing_zeros(~(m >> start));
+        if (end == 64) {
+          open = x + start;
+          break;
+        }
+        add_run(row, y, x + start, x + end);
+        m &= ~((uint64_t{1} << end) - 1);
+      }
     }
+    if (open >= 0) add_run(row, y, open, x_end);
     // Runs of the previous row that touch a run of this one, at least diagonally: pixels
     // [c, d) and [a, b) are 8-connected when c <= b and a <= d.
     size_t p = prev_begin;
@@ -138,6 +218,9 @@ void RunLabeller::label(const cv::Mat& image, cv::Rect roi, int threshold) {
     prev_begin = cur_begin;
     prev_end = runs_.size();
   }
+}
+
+void RunLabeller::gather() {
   // Gather: each run adds its sums to its root's component; components in raster order of
   // their first pixel, runs linked in row order.
   root_component_.assign(runs_.size(), -1);
@@ -151,14 +234,15 @@ void RunLabeller::label(const cv::Mat& image, cv::Rect roi, int threshold) {
     int& comp = root_component_[root];
     if (comp < 0) {
       comp = static_cast<int>(components_.size());
-      components_.push_back(run_sums_[r]);
-      components_.back().first_run = static_cast<int>(r);
-      tail[static_cast<size_t>(comp)] = static_cast<int>(r);
+      Component& c = components_.emplace_back();
+      c.x0 = c.x1 = runs_[r].x0;
+      c.y0 = c.y1 = runs_[r].y;
+      c.first_run = static_cast<int>(r);
     } else {
-      merge_into(components_[static_cast<size_t>(comp)], run_sums_[r]);
       next_run_[static_cast<size_t>(tail[static_cast<size_t>(comp)])] = static_cast<int>(r);
-      tail[static_cast<size_t>(comp)] = static_cast<int>(r);
     }
+    tail[static_cast<size_t>(comp)] = static_cast<int>(r);
+    add_to(components_[static_cast<size_t>(comp)], r);
     runs_[r].component = comp;
   }
 }

@@ -42,16 +42,27 @@ class RunLabeller {
   int next_run(int r) const { return next_run_[static_cast<size_t>(r)]; }
 
  private:
+  // The intensity sums of one run, taken while its pixels are in cache; the unweighted sums
+  // follow from its ends.
+  struct RunSums {
+    int64_t sum_ix = 0, sum_ixx = 0;
+    int32_t sum_i = 0, peak = 0;
+  };
+  bool label_one_blob(const cv::Mat& image, cv::Rect roi, uint8_t t);
+  void label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t);  // runs, joined by union-find
+  void gather();  // components from the joined runs
   int find(int a);
   void add_run(const uint8_t* row, int y, int x0, int x1);
+  void add_to(Component& c, size_t r) const;
 
   std::vector<Run> runs_;
   std::vector<int> parent_;  // union-find over runs
   std::vector<int> next_run_;
-  std::vector<Component> run_sums_;  // per run, merged into the root's entry
+  std::vector<RunSums> run_sums_;  // per run, added to its component's
   std::vector<Component> components_;
   std::vector<int> root_component_;
   std::vector<int> roots_;
+  std::vector<uint64_t> masks_;
 };
 
 // Throws std::invalid_argument, naming `who`, unless the image is non-empty 8-bit grey.

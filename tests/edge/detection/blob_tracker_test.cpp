@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "disc_scene.hpp"
 
 namespace syncap::edge {
@@ -114,6 +116,58 @@ TEST(BlobTracker, MergesOverlappingWindowsSoNoBlobIsReportedTwice) {
   EXPECT_FALSE(tracker.last_was_full_scan());
   EXPECT_EQ(tracker.windows().size(), 1u);
   EXPECT_EQ(blobs.size(), 2u);
+}
+
+TEST(BlobTracker, NarrowsItsWindowsOnceTheMotionIsPredicted) {
+  BlobTrackerConfig config;
+  config.full_scan_every = 100;
+  BlobTracker tracker(config);
+  cv::RNG rng(5);
+  std::vector<int> margins;
+  int last_box_width = 0;
+  for (int f = 0; f < 10; ++f) {
+    const Disc d{60.0 + 3.3 * f, 80.0 + 1.7 * f, 4};
+    const auto& blobs = tracker.process(frame({d}, rng));
+    ASSERT_EQ(blobs.size(), 1u) << "frame " << f;
+    EXPECT_NEAR(blobs[0].x, d.cx, 0.1) << "frame " << f;
+    EXPECT_NEAR(blobs[0].y, d.cy, 0.1) << "frame " << f;
+    EXPECT_EQ(tracker.last_was_full_scan(), f == 0) << "frame " << f;
+    // The window around last frame's box: half the box + margin + window_margin 3 + 1 a side.
+    if (f > 0) margins.push_back((tracker.windows().at(0).width - 1) / 2 - last_box_width / 2 - 4);
+    last_box_width = blobs[0].bbox_w;
+  }
+  // search_margin 8 while the velocity is unknown, then min_search_margin 2 plus twice the
+  // prediction error, which halves every frame down to the noise's (well under 0.5 px).
+  EXPECT_EQ(margins.front(), 8);
+  EXPECT_EQ(margins.back(), 3);
+  EXPECT_TRUE(std::is_sorted(margins.rbegin(), margins.rend()));
+}
+
+TEST(BlobTracker, ScansTheFullFrameWhenABlobLeavesItsNarrowWindow) {
+  BlobTrackerConfig config;
+  config.full_scan_every = 100;
+  BlobTracker tracker(config);
+  BlobDetector full;
+  cv::RNG rng(6);
+  for (int f = 0; f < 8; ++f) tracker.process(frame({{100.0 + 2 * f, 100, 4}}, rng));
+  ASSERT_FALSE(tracker.last_was_full_scan());
+  const int narrow = tracker.windows().at(0).width;
+  ASSERT_LE(narrow, 2 * (9 / 2 + 3 + 3 + 1) + 1);  // margin 3 around a box of at most 9 px
+  // 4 px ahead of its prediction: within max_jump, but its centroid window and background ring
+  // would be cut by the search window. It is measured on the full frame instead, in full.
+  const cv::Mat image = frame({{100.0 + 2 * 8 + 4, 100, 4}}, rng);
+  const auto& blobs = tracker.process(image);
+  EXPECT_TRUE(tracker.last_was_full_scan());
+  ASSERT_EQ(blobs.size(), 1u);
+  const auto& expected = full.detect(image);
+  ASSERT_EQ(expected.size(), 1u);
+  EXPECT_EQ(blobs[0].x, expected[0].x);
+  EXPECT_EQ(blobs[0].y, expected[0].y);
+  EXPECT_EQ(blobs[0].flags & blob_t::FLAG_AT_BORDER, 0);
+  // The miss widens the next window: the blob, 6 px past the old prediction, is found in it.
+  tracker.process(frame({{100.0 + 2 * 9 + 4 + 6, 100, 4}}, rng));
+  EXPECT_FALSE(tracker.last_was_full_scan());
+  EXPECT_GT(tracker.windows().at(0).width, narrow + 4);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <opencv2/imgproc.hpp>
 
@@ -87,6 +88,50 @@ TEST(RunLabeller, MatchesOpenCvInsideARegionOfInterest) {
     labeller.label(binary, roi, 128);
     SCOPED_TRACE("trial " + std::to_string(trial));
     expect_same_as_opencv(binary, labeller, roi);
+    if (HasFatalFailure()) return;
+  }
+}
+
+// Windows up to 64 px wide holding one blob take a shortcut (one bit mask a row, no union-find);
+// shapes that are almost one blob (two runs in a row, rows apart, rows touching only at a
+// corner or not at all) must not, and either way the result is the general labelling's.
+TEST(RunLabeller, WindowsOfOneBlobMatchTheGeneralLabelling) {
+  cv::RNG rng(13);
+  RunLabeller narrow, wide;
+  for (int trial = 0; trial < 400; ++trial) {
+    const cv::Size size(rng.uniform(8, 65), rng.uniform(8, 40));
+    cv::Mat shapes(size, CV_8UC1, cv::Scalar(0));
+    for (int k = rng.uniform(1, 3); k > 0; --k) {
+      const cv::Point c(rng.uniform(0, size.width), rng.uniform(0, size.height));
+      const cv::Size axes(rng.uniform(0, 12), rng.uniform(0, 12));
+      cv::ellipse(shapes, c, axes, rng.uniform(0, 180), 0, 360, cv::Scalar(rng.uniform(60, 256)),
+                  rng.uniform(0, 2) ? cv::FILLED : 1, rng.uniform(0, 2) ? cv::LINE_8 : cv::LINE_4);
+    }
+    cv::Mat image(size.height, 128, CV_8UC1, cv::Scalar(0));
+    const cv::Rect roi(0, 0, size.width, size.height);
+    shapes.copyTo(image(roi));
+    narrow.label(image, roi, 50);
+    wide.label(image, {0, 0, image.cols, image.rows}, 50);  // wider than 64: the general path
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    cv::Mat binary = image >= 50;
+    expect_same_as_opencv(binary, narrow, roi);
+    ASSERT_EQ(narrow.components().size(), wide.components().size());
+    for (size_t i = 0; i < narrow.components().size(); ++i) {
+      const Component &a = narrow.components()[i], &b = wide.components()[i];
+      EXPECT_EQ(a.box(), b.box());
+      EXPECT_EQ(a.peak, b.peak);
+      EXPECT_EQ(a.sum_i, b.sum_i);
+      EXPECT_EQ(a.sum_ix, b.sum_ix);
+      EXPECT_EQ(a.sum_iyy, b.sum_iyy);
+      EXPECT_EQ(a.sum_ixy, b.sum_ixy);
+      EXPECT_EQ(a.sum_xx, b.sum_xx);
+      long linked = 0;
+      for (int r = a.first_run; r >= 0; r = narrow.next_run(r)) ++linked;
+      EXPECT_EQ(linked,
+                std::count_if(narrow.runs().begin(), narrow.runs().end(), [&](const edge::Run& r) {
+                  return r.component == static_cast<int>(i);
+                }));
+    }
     if (HasFatalFailure()) return;
   }
 }
