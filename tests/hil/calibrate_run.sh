@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# tests/hil/calibrate_run.sh BUILD OUT SCENARIO WAND_LENGTH_MM PIXEL_SIZE_MM MAX_REPROJECTION_PX
+# The calibration end to end from the edges' blob messages: hil/run records the traffic of a
+# short replay run (OUT/run/traffic.lcmlog), `syncap calibrate` calibrates from that log, and
+# `syncap-hil-compare --cameras` checks the cameras against the truth after a similarity (the
+# true targets reprojected through both camera sets). Exit 77 when hil/run skips.
+set -euo pipefail
+trap 'echo "calibrate_run.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
+[ $# -eq 6 ] || { sed -n '2,6p' "$0" >&2; exit 2; }
+build=$1 out=$2 scenario=$3 wand=$4 pixel=$5 max_px=$6
+root=$(cd "$(dirname "$0")/../.." && pwd)
+mkdir -p "$out"
+status=0
+"$root/hil/run" "$scenario" --short --build "$build" --out "$out/run" > "$out/run.log" 2>&1 || status=$?
+[ "$status" -eq 77 ] && { cat "$out/run.log"; exit 77; }
+tail -n 3 "$out/run.log"
+[ -s "$out/run/traffic.lcmlog" ] || { echo "no traffic.lcmlog (hil/run exit $status)" >&2; cat "$out/run.log" >&2; exit 1; }
+"$build/bin/syncap" calibrate --input "lcmlog:$out/run/traffic.lcmlog" --wand-length "$wand" \
+  --pixel-size "$pixel" --out "$out/calibration" --progress
+"$build/bin/syncap-hil-compare" --truth "$out/run/render" --cameras "$out/calibration/cameras.json" \
+  --max-reprojection-px "$max_px"
