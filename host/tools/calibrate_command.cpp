@@ -40,6 +40,7 @@ struct CalibrateArgs {
   long frames = 0;
   double idle_timeout_s = 5.0;
   bool progress = false;
+  std::optional<calibration::ImageSize> image_size;  // for sources without one (CSV)
   calibration::CalibrationOptions options;
 };
 
@@ -132,6 +133,15 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
       o.critical_snooping = number_arg(arg, value());
     } else if (arg == "--max-frames") {
       o.max_frames = static_cast<int>(number_arg(arg, value()));
+    } else if (arg == "--image-size") {
+      const std::string& v = value();
+      const auto x = v.find('x');
+      const double w = x == std::string::npos ? 0 : number_arg(arg, v.substr(0, x));
+      const double h = x == std::string::npos ? 0 : number_arg(arg, v.substr(x + 1));
+      if (!(w >= 1 && h >= 1 && w == static_cast<int>(w) && h == static_cast<int>(h))) {
+        throw UsageError{"--image-size must be WIDTHxHEIGHT in pixels, got '" + v + "'"};
+      }
+      a.image_size = calibration::ImageSize{static_cast<int>(w), static_cast<int>(h)};
     } else if (arg == "--interior") {
       o.free_interior = interior_list(value());
     } else if (arg == "--cameras") {
@@ -308,6 +318,9 @@ int calibrate_command(std::span<const std::string> args, std::ostream& out, std:
   } catch (const std::exception& e) {
     err << kPrefix << e.what() << '\n';
     return kExitUsage;
+  }
+  if (a.image_size) {
+    for (int id : observations.cameras()) observations.image_sizes.try_emplace(id, *a.image_size);
   }
   try {
     const calibration::CalibrationResult result = calibration::calibrate(observations, a.options);

@@ -26,6 +26,7 @@ inline constexpr const char* kCalibrateUsage =
     "  --wand-ends size|continuity  how a 2-target (or symmetric) wand's ends are told apart\n"
     "                        (default continuity: the upper spot starts as end A)\n"
     "  --pixel-size MM       the sensors' pixel pitch (default 0.005, nominal)\n"
+    "  --image-size WxH      the image size of cameras the source gives none for (csv:)\n"
     "  --fov DEG             typical horizontal field of view for the start value of c (60)\n"
     "  --sigma-px PX         a priori standard deviation of a measured coordinate (0.1)\n"
     "  --wand-sigma MM       standard deviation of a wand distance (0.2)\n"
