@@ -3,7 +3,9 @@
 # The calibration end to end from the edges' blob messages: hil/run records the traffic of a
 # short replay run (OUT/run/traffic.lcmlog), `syncap calibrate` calibrates from that log, and
 # `syncap-hil-compare --cameras` checks the cameras against the truth after a similarity (the
-# true targets reprojected through both camera sets). Exit 77 when hil/run skips.
+# true targets reprojected through both camera sets). Then the live source: lcm-logplayer replays
+# the log in a private namespace while `syncap calibrate --input lcm:URL` listens; its cameras
+# pass the same check (they equal the log's to the last digits). Exit 77 when hil/run skips.
 set -euo pipefail
 trap 'echo "calibrate_run.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 [ $# -eq 6 ] || { sed -n '2,6p' "$0" >&2; exit 2; }
@@ -19,3 +21,16 @@ tail -n 3 "$out/run.log"
   --pixel-size "$pixel" --out "$out/calibration" --progress
 "$build/bin/syncap-hil-compare" --truth "$out/run/render" --cameras "$out/calibration/cameras.json" \
   --max-reprojection-px "$max_px"
+
+# The live source on the same traffic.
+"$root/hil/netns-run" bash -c '
+  url="udpm://239.255.76.67:7667?ttl=0"
+  "$1/bin/syncap" calibrate --input "lcm:$url" --cameras "$2" --wand-length "$3" --pixel-size "$4" \
+    --idle-timeout 3 --out "$5/live" > "$5/live.log" 2>&1 &
+  sleep 1
+  lcm-logplayer --lcm-url="$url" "$5/run/traffic.lcmlog" > /dev/null
+  wait $!' _ "$build" "$(seq -s, 0 $(($(ls -d "$out"/run/render/camera?? | wc -l) - 1)))" \
+  "$wand" "$pixel" "$out" || { cat "$out/live.log" >&2; exit 1; }
+head -n 1 "$out/live.log"
+"$build/bin/syncap-hil-compare" --truth "$out/run/render" --cameras "$out/live/cameras.json" \
+  --max-reprojection-px "$max_px" | tail -n 2
