@@ -134,6 +134,17 @@ estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
       model.priors[static_cast<size_t>(i)] =
           is_free ? scene::ParameterPrior::free() : scene::ParameterPrior::fixed();
     }
+    // One point a frame and no scale leave c and the principal point weakly determined (thesis
+    // Table 4.8): held loosely at their approximations (c within half its value, the principal
+    // point within a tenth of the sensor) so that blunders cannot walk them off to a degenerate
+    // camera (c -> 0) during data snooping.
+    if (options.wand.led) {
+      const double width_mm = model.sensor.width_px * model.sensor.pixel_width_mm;
+      model.priors[sensor::InteriorBlock::kC] =
+          scene::ParameterPrior::observed(0.5 * model.interior.c);
+      model.priors[sensor::InteriorBlock::kXp] = scene::ParameterPrior::observed(0.1 * width_mm);
+      model.priors[sensor::InteriorBlock::kYp] = scene::ParameterPrior::observed(0.1 * width_mm);
+    }
   }
   network.design.max_iterations = kMaxIterations;
   network.design.calculate_covariance = stage.snoop;
