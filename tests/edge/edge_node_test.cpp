@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <map>
+#include <thread>
 #include <vector>
 
 #include "app/edge_options.hpp"
@@ -268,6 +270,7 @@ class EdgeNodeMaskTest : public EdgeNodeTest {
   void SetUp() override {
     options_.mask = true;
     options_.blobs = false;
+    options_.train_in_background = false;  // the model exists right after the last frame
     node_ = std::make_unique<EdgeNode>(
         options_, source_,
         EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
@@ -390,6 +393,47 @@ TEST_F(EdgeNodeMaskTest, AMalformedClipPolygonIsReported) {
   EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
   EXPECT_NE(statuses_.back().message.find("clip polygon 17 refused"), std::string::npos)
       << statuses_.back().message;
+}
+
+// On a board the model is computed beside acquisition. The first model is waited for (the
+// next frame is masked); a retraining lets the old model serve until the new one is ready, and
+// every frame is published meanwhile.
+TEST_F(EdgeNodeMaskTest, RetrainingInTheBackgroundNeverHoldsUpAFrame) {
+  options_.train_in_background = true;
+  options_.train_frames = 8;
+  node_ = std::make_unique<EdgeNode>(
+      options_, source_,
+      EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
+                    [this](const camera_status_t& s) { statuses_.push_back(s); },
+                    [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                    {}});
+  for (int k = 0; k < 8; ++k) source_.images[k] = scene(k, false);
+  for (int k = 0; k < 30; ++k) source_.images[8 + k] = scene(8 + k, true);
+  for (int k = 0; k < 9; ++k) node_->on_trigger(trigger(k));
+  ASSERT_FALSE(silhouettes_.empty()) << "the frame after the first training is masked";
+  // Retrain on frames where the person stands still: once that model serves, it is background.
+  edge_command_t train{};
+  train.camera_id = 4;
+  train.command = edge_command_t::TRAIN_BACKGROUND;
+  train.int_value = 8;
+  node_->on_command(train);
+  for (int k = 9; k < 17; ++k) node_->on_trigger(trigger(k));
+  int64_t k = 17;
+  bool old_model_served = false, new_model_served = false;
+  for (; k < 500 && !new_model_served; ++k) {
+    source_.images[k] = scene(static_cast<int>(k), true);
+    silhouettes_.clear();
+    node_->on_trigger(trigger(k));
+    ASSERT_EQ(frames_.back().frame_number, k) << "every frame is published meanwhile";
+    const bool person =
+        !silhouettes_.empty() && !proto::decode_silhouette(silhouettes_).contours.empty();
+    (person ? old_model_served : new_model_served) = true;
+    if (!new_model_served) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  EXPECT_TRUE(new_model_served) << "the new background model never arrived";
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().message, "masking");
+  (void)old_model_served;  // whether the old one served depends on the thread's speed
 }
 
 TEST_F(EdgeNodeMaskTest, ReportsTrainingProgressAndIgnoresOtherCameras) {

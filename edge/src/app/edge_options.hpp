@@ -21,8 +21,11 @@ struct EdgeOptions {
   bool udp_socket = false;     // aravis: plain UDP socket instead of a packet socket
   bool blobs = true;           // --mode blobs|mask|both
   bool mask = false;
-  int train_frames = 0;               // mask: train on N frames (0: wait for the command) ...
-  int64_t train_from_frame = -1;      // ... numbered from this one (-1: the first N frames)
+  int train_frames = 0;           // mask: train on N frames (0: wait for the command) ...
+  int64_t train_from_frame = -1;  // ... numbered from this one (-1: the first N frames)
+  // The background model is computed on a thread of its own (not an option: tests turn it off to
+  // see the model at once).
+  bool train_in_background = true;
   double contour_tolerance_px = 0.5;  // 1 px costs ~1 % IoU on a 300 px tall person
   cv::Rect roi;                       // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;

@@ -1,5 +1,7 @@
 #include "app/silhouette_stage.hpp"
 
+#include <chrono>
+
 #include "segmentation/silhouette_contours.hpp"
 #include "syncap/proto/contour_codec.hpp"
 
@@ -12,8 +14,14 @@ std::string size_text(cv::Size size) {
 
 }  // namespace
 
-SilhouetteStage::SilhouetteStage(double contour_tolerance_px, MediPictureOptions options)
-    : tolerance_px_(contour_tolerance_px), options_(options) {}
+SilhouetteStage::SilhouetteStage(double contour_tolerance_px, MediPictureOptions options,
+                                 bool train_in_background)
+    : tolerance_px_(contour_tolerance_px),
+      options_(options),
+      train_in_background_(train_in_background) {}
+
+// A training still running finishes before the stage goes (the future's destructor waits).
+SilhouetteStage::~SilhouetteStage() = default;
 
 void SilhouetteStage::start_training(int frames, int64_t from_frame) {
   training_wanted_ = frames;
@@ -27,7 +35,10 @@ bool SilhouetteStage::in_training_range(int64_t frame_number) const {
 }
 
 void SilhouetteStage::finish_training() {
-  if (training_.size() >= 2) {
+  if (training_.size() >= 2 && train_in_background_) {
+    training_result_ = std::async(
+        std::launch::async, [frames = std::move(training_)] { return train_medi_picture(frames); });
+  } else if (training_.size() >= 2) {
     model_.emplace(train_medi_picture(training_), options_);
     paused_.clear();
     clip_pending_ = !clip_.empty();
@@ -40,9 +51,20 @@ void SilhouetteStage::finish_training() {
   training_.clear();
 }
 
+void SilhouetteStage::collect_trained_model() {
+  if (!training_result_.valid()) return;
+  const bool ready =
+      training_result_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  if (!ready && model_) return;
+  model_.emplace(training_result_.get(), options_);
+  paused_.clear();
+  clip_pending_ = !clip_.empty();
+}
+
 std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, int camera_id,
                                                         int64_t frame_number, cv::Point origin,
                                                         cv::Size sensor_size) {
+  collect_trained_model();
   if (training_wanted_ > 0) {
     if (training_from_ >= 0 && frame_number >= training_from_ + training_wanted_) {
       finish_training();  // the range is over; frames of it were lost
@@ -101,6 +123,7 @@ void SilhouetteStage::apply_clip(cv::Point origin, cv::Size sensor_size) {
 }
 
 std::string SilhouetteStage::state() const {
+  if (training_result_.valid()) return "computing the background model";
   if (training_wanted_ > 0) {
     if (training_from_ >= 0 && training_.empty()) {
       return "waiting for frame " + std::to_string(training_from_) + " to train background";

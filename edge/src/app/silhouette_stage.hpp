@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <future>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,7 +17,17 @@ namespace syncap::edge {
 
 class SilhouetteStage {
  public:
-  SilhouetteStage(double contour_tolerance_px, MediPictureOptions options);
+  // With `train_in_background` the model of the training frames is computed on a thread of its
+  // own while frames go on: a previous model serves until the new one is ready, so retraining
+  // never holds up acquisition (six edges training at once on a loaded board stalled for up to
+  // 0.6 s, longer than a camera's stream buffers last). Without a previous model the next frame
+  // waits for the rest of the computation, so that it is masked. Without `train_in_background`
+  // finish_training computes the model at once.
+  SilhouetteStage(double contour_tolerance_px, MediPictureOptions options,
+                  bool train_in_background = true);
+  ~SilhouetteStage();
+  SilhouetteStage(const SilhouetteStage&) = delete;
+  SilhouetteStage& operator=(const SilhouetteStage&) = delete;
 
   // `frames` frames train a new model: the next ones, or with `from_frame` >= 0 those numbered
   // from_frame..from_frame+frames-1 (frames of that range lost on the way are done without).
@@ -39,6 +50,9 @@ class SilhouetteStage {
  private:
   bool in_training_range(int64_t frame_number) const;
   void finish_training();
+  // Takes the model the training thread computed: once it is ready, or at once (waiting for it)
+  // when there is no model to mask with meanwhile.
+  void collect_trained_model();
   // Hands the clip polygon to the model, shifted into the frame's window.
   void apply_clip(cv::Point origin, cv::Size sensor_size);
 
@@ -48,12 +62,14 @@ class SilhouetteStage {
   int64_t training_from_ = -1;
   std::vector<cv::Mat> training_;
   std::optional<MediPicture> model_;
-  std::string paused_;           // why the last frame was not masked
-  std::vector<cv::Point> clip_;  // sensor pixels
-  cv::Size clip_sensor_;         // the sensor size the clip refers to
-  bool clip_pending_ = false;    // not yet given to the model (new clip, new model or window)
-  cv::Point clip_origin_;        // the window origin the model's clip was shifted by
-  std::string clip_note_;        // why the clip is not applied
+  bool train_in_background_;
+  std::future<MediPictureModel> training_result_;  // valid while the thread computes
+  std::string paused_;                             // why the last frame was not masked
+  std::vector<cv::Point> clip_;                    // sensor pixels
+  cv::Size clip_sensor_;                           // the sensor size the clip refers to
+  bool clip_pending_ = false;  // not yet given to the model (new clip, new model or window)
+  cv::Point clip_origin_;      // the window origin the model's clip was shifted by
+  std::string clip_note_;      // why the clip is not applied
 };
 
 }  // namespace syncap::edge
