@@ -1,7 +1,6 @@
 #include "bundle_command.hpp"
 
 #include <algorithm>
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include "sdl/sdl.hpp"
 #include "sensor/camera_model.hpp"
 #include "subcommand.hpp"
+#include "util/printf_string.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -48,14 +48,7 @@ std::optional<std::string> parse_bundle_args(std::span<const std::string> args,
   return std::nullopt;
 }
 
-__attribute__((format(printf, 1, 2))) std::string format(const char* pattern, ...) {
-  char buffer[1024];
-  va_list values;
-  va_start(values, pattern);
-  std::vsnprintf(buffer, sizeof buffer, pattern, values);
-  va_end(values);
-  return buffer;
-}
+using util::printf_string;
 
 template <typename Item>
 std::map<std::string, const Item*> by_name(const std::vector<Item>& items) {
@@ -129,7 +122,8 @@ std::string misclosures_table(const scene::Network& network) {
     if (camera && point != points.end() && point->second->has_approximation) {
       const auto projection = camera->project(xyz_of(*point->second));
       if (projection.ok()) {
-        values = format("%.6f\t%.6f", projection.pixel.x() - m.u, projection.pixel.y() - m.v);
+        values =
+            printf_string("%.6f\t%.6f", projection.pixel.x() - m.u, projection.pixel.y() - m.v);
       }
     }
     table +=
@@ -142,9 +136,9 @@ void add_corrections(std::string& table, const std::string& kind, const std::str
                      const char* const* names, const double* before, const double* after,
                      const double* sigma, size_t count) {
   for (size_t i = 0; i < count; ++i) {
-    table +=
-        kind + "\t" + name + "\t" + names[i] +
-        format("\t%.10g\t%.10g\t%.6g\t%.6g\n", before[i], after[i], after[i] - before[i], sigma[i]);
+    table += kind + "\t" + name + "\t" + names[i] +
+             printf_string("\t%.10g\t%.10g\t%.6g\t%.6g\n", before[i], after[i],
+                           after[i] - before[i], sigma[i]);
   }
 }
 
@@ -183,8 +177,8 @@ std::string residuals_table(const scene::Network& network,
     const auto& m = network.measurements[i];
     const auto& r = result.measurements[i];
     table += m.station + "\t" + m.point + "\t" + std::to_string(m.frame_number) +
-             format("\t%.6f\t%.6f\t%.4f\t%.4f\t%.4f\t%.4f\t", r.residual_u, r.residual_v, r.w_u,
-                    r.w_v, r.redundancy_u, r.redundancy_v) +
+             printf_string("\t%.6f\t%.6f\t%.4f\t%.4f\t%.4f\t%.4f\t", r.residual_u, r.residual_v,
+                           r.w_u, r.w_v, r.redundancy_u, r.redundancy_v) +
              kStatus[static_cast<int>(r.status)] + "\n";
   }
   return table;
@@ -201,20 +195,21 @@ std::string coefficient_matrix_table(const scene::Network& adjusted) {
       "# 2 m + 1 (v) of measurement m, columns below; unweighted, [px / parameter unit]\n";
   for (size_t i = 0; i < models; ++i) {
     model_column[adjusted.models[i].name] = 10 * i;
-    table += format("# columns %zu-%zu: model ", 10 * i, 10 * i + 9) + adjusted.models[i].name +
-             " c xp yp k1 k2 k3 p1 p2 sc sh\n";
+    table += printf_string("# columns %zu-%zu: model ", 10 * i, 10 * i + 9) +
+             adjusted.models[i].name + " c xp yp k1 k2 k3 p1 p2 sc sh\n";
   }
   for (size_t i = 0; i < stations; ++i) {
     const size_t first = 10 * models + 6 * i;
     station_column[adjusted.stations[i].name] = first;
-    table += format("# columns %zu-%zu: station ", first, first + 5) + adjusted.stations[i].name +
-             " X0 Y0 Z0 omega phi kappa\n";
+    table += printf_string("# columns %zu-%zu: station ", first, first + 5) +
+             adjusted.stations[i].name + " X0 Y0 Z0 omega phi kappa\n";
   }
   for (size_t i = 0; i < adjusted.points.size(); ++i) {
     point_column[adjusted.points[i].name] = 10 * models + 6 * stations + 3 * i;
   }
-  table += format("# columns %zu-: points X Y Z in the network's order\n# row\tcolumn\tvalue\n",
-                  10 * models + 6 * stations);
+  table +=
+      printf_string("# columns %zu-: points X Y Z in the network's order\n# row\tcolumn\tvalue\n",
+                    10 * models + 6 * stations);
   const auto points = by_name(adjusted.points);
   for (size_t m = 0; m < adjusted.measurements.size(); ++m) {
     const auto& meas = adjusted.measurements[m];
@@ -229,7 +224,7 @@ std::string coefficient_matrix_table(const scene::Network& adjusted) {
         })->model;
     for (int row = 0; row < 2; ++row) {
       const auto add = [&](size_t column, double value) {
-        if (value != 0.0) table += format("%zu\t%zu\t%.10g\n", 2 * m + row, column, value);
+        if (value != 0.0) table += printf_string("%zu\t%zu\t%.10g\n", 2 * m + row, column, value);
       };
       for (int k = 0; k < 10; ++k) add(model_column[model] + k, j.d_interior(row, k));
       for (int k = 0; k < 6; ++k) add(station_column[meas.station] + k, j.d_exterior(row, k));
@@ -241,7 +236,7 @@ std::string coefficient_matrix_table(const scene::Network& adjusted) {
 
 std::string debug_text(const scene::Network& network) {
   const auto& d = network.design;
-  return format(
+  return printf_string(
       "debug: %zu camera models, %zu stations, %zu points, %zu measurements, %zu distances\n"
       "debug: design: simulate %d (seed %u), unified %d, covariance %d, tests %d, force complete "
       "%d, exact iterations %d, max iterations %d, tolerance %g, ignore approximates %d, sort "

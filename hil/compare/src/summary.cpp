@@ -1,6 +1,6 @@
 #include "summary.hpp"
+#include "util/printf_string.hpp"
 
-#include <cstdarg>
 #include <cstdio>
 #include <optional>
 
@@ -9,26 +9,18 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::string printed(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string printed(const char* format, ...) {
-  char text[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(text, sizeof text, format, args);
-  va_end(args);
-  return text;
-}
+using util::printf_string;
 
 // A number right-aligned in `width` columns after a space, or "-" when there is none.
 std::string cell(std::optional<double> value, int width, int decimals, bool sign = false) {
-  if (!value) return printed(" %*s", width, "-");
-  return sign ? printed(" %+*.*f", width, decimals, *value)
-              : printed(" %*.*f", width, decimals, *value);
+  if (!value) return printf_string(" %*s", width, "-");
+  return sign ? printf_string(" %+*.*f", width, decimals, *value)
+              : printf_string(" %*.*f", width, decimals, *value);
 }
 
 std::string percent_cell(std::optional<double> share) {
-  if (!share) return printed(" %7s", "-");
-  return printed(" %6.1f%%", 100.0 * *share);
+  if (!share) return printf_string(" %7s", "-");
+  return printf_string(" %6.1f%%", 100.0 * *share);
 }
 
 // The target columns both tables share; every cell starts with a space, so that wide numbers
@@ -42,35 +34,36 @@ std::string tally_cells(const Tally& t) {
   const auto bias = c.errors.bias();
   const std::string border =
       std::to_string(t.border.matched) + "/" + std::to_string(t.border.targets);
-  return printed(" %7ld %7ld", c.targets, c.matched) + percent_cell(c.rate()) +
-         printed(" %7ld", t.false_blobs) + cell(c.errors.rms(), 8, 4) + cell(c.errors.max(), 8, 4) +
+  return printf_string(" %7ld %7ld", c.targets, c.matched) + percent_cell(c.rate()) +
+         printf_string(" %7ld", t.false_blobs) + cell(c.errors.rms(), 8, 4) +
+         cell(c.errors.max(), 8, 4) +
          cell(bias ? std::optional(bias->x()) : std::nullopt, 8, 4, true) +
          cell(bias ? std::optional(bias->y()) : std::nullopt, 8, 4, true) +
-         printed(" %9s", border.c_str()) + cell(t.border.errors.rms(), 8, 4) +
-         printed(" %6ld", t.hidden);
+         printf_string(" %9s", border.c_str()) + cell(t.border.errors.rms(), 8, 4) +
+         printf_string(" %6ld", t.hidden);
 }
 
 std::string camera_table(const Report& r) {
   std::string out = "per camera (targets: visible, disc wholly inside the image):\n";
-  out +=
-      printed("  %-6s %7s %7s %8s", "camera", "groups", "missing", "proc_us") + kTallyHeader + "\n";
+  out += printf_string("  %-6s %7s %7s %8s", "camera", "groups", "missing", "proc_us") +
+         kTallyHeader + "\n";
   for (const auto& [id, c] : r.cameras) {
-    out += printed("  %-6d %7ld %7ld", id, c.groups_with, c.groups_without) +
+    out += printf_string("  %-6d %7ld %7ld", id, c.groups_with, c.groups_without) +
            cell(c.processing_us.mean(), 8, 1) + tally_cells(c.tally) + "\n";
   }
   return out;
 }
 
 std::string phase_row(const std::string& name, const PhaseReport& p) {
-  return printed("  %-6s %7ld %7ld %8ld", name.c_str(), p.frames.truth, p.frames.at_host,
-                 p.frames.complete) +
+  return printf_string("  %-6s %7ld %7ld %8ld", name.c_str(), p.frames.truth, p.frames.at_host,
+                       p.frames.complete) +
          tally_cells(p.tally) + "\n";
 }
 
 std::string phase_table(const Report& r) {
   std::string out = "per phase type (all cameras):\n";
-  out +=
-      printed("  %-6s %7s %7s %8s", "phase", "frames", "at_host", "complete") + kTallyHeader + "\n";
+  out += printf_string("  %-6s %7s %7s %8s", "phase", "frames", "at_host", "complete") +
+         kTallyHeader + "\n";
   for (const std::string& type : r.phase_types) out += phase_row(type, r.phases.at(type));
   return out + phase_row("all", r.overall);
 }
@@ -79,10 +72,10 @@ std::string phase_table(const Report& r) {
 std::string silhouette_table(const Report& r) {
   if (r.overall.silhouettes.expected == 0) return "";
   std::string out = "silhouettes (frames with a true mask; IoU against it):\n";
-  out += printed("  %-6s %8s %8s %8s %8s %8s\n", "camera", "masks", "received", "iou_mean",
-                 "iou_min", "iou_max");
+  out += printf_string("  %-6s %8s %8s %8s %8s %8s\n", "camera", "masks", "received", "iou_mean",
+                       "iou_min", "iou_max");
   auto row = [](const std::string& name, const SilhouetteTally& s) {
-    return printed("  %-6s %8ld %8ld", name.c_str(), s.expected, s.received) +
+    return printf_string("  %-6s %8ld %8ld", name.c_str(), s.expected, s.received) +
            cell(s.iou.mean(), 8, 4) + cell(s.iou.min(), 8, 4) + cell(s.iou.max(), 8, 4) + "\n";
   };
   for (const auto& [id, c] : r.cameras) out += row(std::to_string(id), c.silhouettes);
@@ -91,16 +84,16 @@ std::string silhouette_table(const Report& r) {
 
 std::string frames_line(const Report& r) {
   const FrameCounts& f = r.overall.frames;
-  return printed("frames: %ld/%ld truth frames at the host, %ld complete (%.1f%%)", f.at_host,
-                 f.truth, f.complete, 100.0 * f.complete_share()) +
+  return printf_string("frames: %ld/%ld truth frames at the host, %ld complete (%.1f%%)", f.at_host,
+                       f.truth, f.complete, 100.0 * f.complete_share()) +
          (r.groups_outside_truth
-              ? printed("; %ld groups for frames outside the truth", r.groups_outside_truth)
+              ? printf_string("; %ld groups for frames outside the truth", r.groups_outside_truth)
               : std::string()) +
          "\n";
 }
 
 std::string thresholds_line(const Thresholds& t) {
-  return printed(
+  return printf_string(
       "limits: RMS <= %.3f px and detection >= %.1f%% per camera, complete frames >= %.1f%%, "
       "match radius %.2f px, silhouette IoU >= %.3f%s\n",
       t.max_rms_px, 100.0 * t.min_detection, 100.0 * t.min_frames, t.match_radius_px, t.min_iou,

@@ -1,21 +1,14 @@
 #include "study_report.hpp"
+#include "util/printf_string.hpp"
 
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <sstream>
 
 namespace syncap::study {
 namespace {
 
-__attribute__((format(printf, 1, 2))) std::string printf_string(const char* format, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof buffer, format, args);
-  va_end(args);
-  return buffer;
-}
+using util::printf_string;
 
 std::string percent(double share) { return printf_string("%.1f %%", 100.0 * share); }
 

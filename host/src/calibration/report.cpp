@@ -1,23 +1,15 @@
 #include "calibration/report.hpp"
+#include "util/printf_string.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <numeric>
 
 namespace syncap::calibration {
 namespace {
 
-std::string printed(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string printed(const char* format, ...) {
-  char text[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(text, sizeof text, format, args);
-  va_end(args);
-  return text;
-}
+using util::printf_string;
 
 std::string escaped(const std::string& text) {
   std::string out;
@@ -61,32 +53,34 @@ MeanSd mean_sd(const std::vector<double>& values) {
 std::string text_summary(const CalibrationReport& r) {
   std::string out = r.title + "\n" + std::string(r.title.size(), '=') + "\n";
   if (!r.input.empty()) out += "input: " + r.input + "\n";
-  out += printed("observations %ld, unknowns %ld, redundancy %ld\n", r.observations, r.unknowns,
-                 r.redundancy);
-  out += printed("sigma0 %.4f, iterations %d (%s), outliers removed %ld\n", r.sigma0, r.iterations,
-                 r.converged ? "converged" : "NOT converged", r.outliers_removed);
+  out += printf_string("observations %ld, unknowns %ld, redundancy %ld\n", r.observations,
+                       r.unknowns, r.redundancy);
+  out +=
+      printf_string("sigma0 %.4f, iterations %d (%s), outliers removed %ld\n", r.sigma0,
+                    r.iterations, r.converged ? "converged" : "NOT converged", r.outliers_removed);
   if (r.wand_length_mm > 0 && !r.wand_lengths_mm.empty()) {
     const MeanSd w = mean_sd(r.wand_lengths_mm);
-    out += printed("wand length: nominal %.3f mm, adjusted mean %.4f mm, sd %.4f mm (%zu frames)\n",
-                   r.wand_length_mm, w.mean, w.sd, r.wand_lengths_mm.size());
+    out += printf_string(
+        "wand length: nominal %.3f mm, adjusted mean %.4f mm, sd %.4f mm (%zu frames)\n",
+        r.wand_length_mm, w.mean, w.sd, r.wand_lengths_mm.size());
   }
   return out;
 }
 
 std::string text_camera(const ReportCamera& c) {
-  std::string out = printed("\ncamera %d: %ld observations, %ld rejected, RMS %.4f px\n",
-                            c.camera.id, c.observations, c.rejected, c.rms_px);
+  std::string out = printf_string("\ncamera %d: %ld observations, %ld rejected, RMS %.4f px\n",
+                                  c.camera.id, c.observations, c.rejected, c.rms_px);
   for (const ReportParameter& p : c.parameters) {
-    out += printed("  %-6s %+.10e  +- %.3e %-6s %s\n", p.name.c_str(), p.value, p.sigma,
-                   p.unit.c_str(), p.mode.c_str());
+    out += printf_string("  %-6s %+.10e  +- %.3e %-6s %s\n", p.name.c_str(), p.value, p.sigma,
+                         p.unit.c_str(), p.mode.c_str());
   }
   if (c.correlation.rows() > 0) {
     out += "  correlations:\n        ";
-    for (const std::string& n : c.correlation_names) out += printed(" %6s", n.c_str());
+    for (const std::string& n : c.correlation_names) out += printf_string(" %6s", n.c_str());
     out += "\n";
     for (Eigen::Index i = 0; i < c.correlation.rows(); ++i) {
-      out += printed("  %-6s", c.correlation_names[static_cast<std::size_t>(i)].c_str());
-      for (Eigen::Index j = 0; j <= i; ++j) out += printed(" %+6.2f", c.correlation(i, j));
+      out += printf_string("  %-6s", c.correlation_names[static_cast<std::size_t>(i)].c_str());
+      for (Eigen::Index j = 0; j <= i; ++j) out += printf_string(" %+6.2f", c.correlation(i, j));
       out += "\n";
     }
   }
@@ -96,8 +90,8 @@ std::string text_camera(const ReportCamera& c) {
 std::string text_tests(const CalibrationReport& r) {
   std::string out = "\ntests:\n";
   for (const ReportTest& t : r.tests) {
-    out += printed("  %-48s %s  statistic %.4f in [%.4f, %.4f]\n", t.name.c_str(),
-                   t.passed ? "pass" : "FAIL", t.statistic, t.lower, t.upper);
+    out += printf_string("  %-48s %s  statistic %.4f in [%.4f, %.4f]\n", t.name.c_str(),
+                         t.passed ? "pass" : "FAIL", t.statistic, t.lower, t.upper);
     if (!t.detail.empty()) out += "    " + t.detail + "\n";
   }
   return out;
@@ -119,28 +113,30 @@ std::string html_summary(const CalibrationReport& r) {
   };
   if (!r.input.empty()) row("input", escaped(r.input));
   row("observations / unknowns / redundancy",
-      printed("%ld / %ld / %ld", r.observations, r.unknowns, r.redundancy));
-  row("sigma0 (a posteriori)", printed("%.4f", r.sigma0));
-  row("iterations", printed("%d, %s", r.iterations, r.converged ? "converged" : "NOT converged"));
+      printf_string("%ld / %ld / %ld", r.observations, r.unknowns, r.redundancy));
+  row("sigma0 (a posteriori)", printf_string("%.4f", r.sigma0));
+  row("iterations",
+      printf_string("%d, %s", r.iterations, r.converged ? "converged" : "NOT converged"));
   row("outliers removed", std::to_string(r.outliers_removed));
   if (r.wand_length_mm > 0 && !r.wand_lengths_mm.empty()) {
     const MeanSd w = mean_sd(r.wand_lengths_mm);
     row("wand length mean / sd",
-        printed("%.4f mm / %.4f mm (nominal %.3f mm)", w.mean, w.sd, r.wand_length_mm));
+        printf_string("%.4f mm / %.4f mm (nominal %.3f mm)", w.mean, w.sd, r.wand_length_mm));
   }
   for (const std::string& m : r.messages) row("note", escaped(m));
   return out + "</table>";
 }
 
 std::string html_parameters(const ReportCamera& c) {
-  std::string out = printed("<h3>camera %d</h3><p>%ld observations, %ld rejected, RMS %.4f px</p>",
-                            c.camera.id, c.observations, c.rejected, c.rms_px);
+  std::string out =
+      printf_string("<h3>camera %d</h3><p>%ld observations, %ld rejected, RMS %.4f px</p>",
+                    c.camera.id, c.observations, c.rejected, c.rms_px);
   out +=
       "<table><tr><th>parameter</th><th>value</th><th>std. dev.</th><th>unit</th>"
       "<th>mode</th></tr>";
   for (const ReportParameter& p : c.parameters) {
-    out += printed("<tr><td>%s</td><td>%.8g</td><td>%.3g</td><td>%s</td><td>%s</td></tr>",
-                   p.name.c_str(), p.value, p.sigma, p.unit.c_str(), p.mode.c_str());
+    out += printf_string("<tr><td>%s</td><td>%.8g</td><td>%.3g</td><td>%s</td><td>%s</td></tr>",
+                         p.name.c_str(), p.value, p.sigma, p.unit.c_str(), p.mode.c_str());
   }
   return out + "</table>";
 }
@@ -156,8 +152,9 @@ std::string html_correlation(const ReportCamera& c) {
     for (Eigen::Index j = 0; j < c.correlation.cols(); ++j) {
       const double r = c.correlation(i, j);
       const int fade = static_cast<int>(255 - 155 * std::min(1.0, std::abs(r)));
-      out += r >= 0 ? printed("<td style='background:rgb(255,%d,%d)'>%.2f</td>", fade, fade, r)
-                    : printed("<td style='background:rgb(%d,%d,255)'>%.2f</td>", fade, fade, r);
+      out += r >= 0
+                 ? printf_string("<td style='background:rgb(255,%d,%d)'>%.2f</td>", fade, fade, r)
+                 : printf_string("<td style='background:rgb(%d,%d,255)'>%.2f</td>", fade, fade, r);
     }
     out += "</tr>";
   }
@@ -180,14 +177,14 @@ std::string svg_histogram(const CalibrationReport& r) {
   std::string out = "<svg width='420' height='220' viewBox='0 0 420 220'>";
   for (int b = 0; b < kBins; ++b) {
     const double h = 180.0 * bins[static_cast<std::size_t>(b)] / peak;
-    out += printed("<rect x='%d' y='%.1f' width='18' height='%.1f' fill='#69c'/>", 10 + 20 * b,
-                   190 - h, h);
+    out += printf_string("<rect x='%d' y='%.1f' width='18' height='%.1f' fill='#69c'/>",
+                         10 + 20 * b, 190 - h, h);
   }
   std::string curve;
   for (int i = 0; i <= 100; ++i) {
     const double w = -5.0 + i * 0.1;
     const double expected = n * 0.5 * std::exp(-0.5 * w * w) / std::sqrt(2 * M_PI);
-    curve += printed("%.1f,%.1f ", 10 + (w + 5.0) * 40, 190 - 180.0 * expected / peak);
+    curve += printf_string("%.1f,%.1f ", 10 + (w + 5.0) * 40, 190 - 180.0 * expected / peak);
   }
   out += "<polyline fill='none' stroke='#c33' points='" + curve + "'/>";
   out +=
@@ -203,19 +200,20 @@ std::string svg_image(const ReportCamera& c, const std::vector<ReportResidual>& 
                       double scale, const char* caption) {
   const double w = c.camera.sensor.width_px, h = c.camera.sensor.height_px;
   const double k = 300.0 / std::max(1.0, w);
-  std::string out = printed("<svg width='%.0f' height='%.0f'>", w * k, h * k);
+  std::string out = printf_string("<svg width='%.0f' height='%.0f'>", w * k, h * k);
   for (const ReportResidual& r : residuals) {
     if (r.camera != c.camera.id) continue;
     const char* colour = r.rejected ? "#c00" : "#369";
     if (scale <= 0) {
-      out += printed("<circle cx='%.1f' cy='%.1f' r='1' fill='%s'/>", r.u * k, r.v * k, colour);
+      out +=
+          printf_string("<circle cx='%.1f' cy='%.1f' r='1' fill='%s'/>", r.u * k, r.v * k, colour);
     } else {
-      out += printed("<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='%s'/>", r.u * k,
-                     r.v * k, (r.u + scale * r.vu) * k, (r.v + scale * r.vv) * k, colour);
+      out += printf_string("<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='%s'/>", r.u * k,
+                           r.v * k, (r.u + scale * r.vu) * k, (r.v + scale * r.vv) * k, colour);
     }
   }
-  return "<figure>" + out + "</svg><figcaption>" + printed("camera %d: %s", c.camera.id, caption) +
-         "</figcaption></figure>";
+  return "<figure>" + out + "</svg><figcaption>" +
+         printf_string("camera %d: %s", c.camera.id, caption) + "</figcaption></figure>";
 }
 
 // Plan (X, Y) or elevation (X, Z) of the cameras (triangles pointing along the viewing
@@ -235,14 +233,14 @@ std::string svg_network(const CalibrationReport& r, int vertical_axis, const cha
   std::string out = "<svg width='400' height='400'>";
   const std::size_t step = std::max<std::size_t>(1, r.points.size() / 3000);
   for (std::size_t i = 0; i < r.points.size(); i += step) {
-    out +=
-        printed("<circle cx='%.1f' cy='%.1f' r='1' fill='#999'/>", x(r.points[i]), y(r.points[i]));
+    out += printf_string("<circle cx='%.1f' cy='%.1f' r='1' fill='#999'/>", x(r.points[i]),
+                         y(r.points[i]));
   }
   for (const ReportCamera& c : r.cameras) {
     const Eigen::Vector3d o = c.camera.projection_centre();
     // the camera looks along -z' of its sensor axes (docs/camera-model.md)
     const Eigen::Vector3d view = -c.camera.rotation().col(2) * (0.08 * span);
-    out += printed(
+    out += printf_string(
         "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#c33' "
         "stroke-width='2'/><circle cx='%.1f' cy='%.1f' r='4' fill='#c33'/>"
         "<text x='%.1f' y='%.1f' font-size='11'>%d</text>",
@@ -258,8 +256,8 @@ std::string html_tests(const CalibrationReport& r) {
   for (const ReportTest& t : r.tests) {
     out += "<tr><td>" + escaped(t.name) + "</td><td class='" + (t.passed ? "pass" : "fail") + "'>" +
            (t.passed ? "pass" : "FAIL") + "</td>" +
-           printed("<td>%.4f</td><td>[%.4f, %.4f]</td>", t.statistic, t.lower, t.upper) + "<td>" +
-           escaped(t.detail) + "</td></tr>";
+           printf_string("<td>%.4f</td><td>[%.4f, %.4f]</td>", t.statistic, t.lower, t.upper) +
+           "<td>" + escaped(t.detail) + "</td></tr>";
   }
   return out + "</table>";
 }
@@ -301,7 +299,7 @@ std::string format_report_html(const CalibrationReport& report) {
   out += "<h2>Residual vectors</h2>";
   for (const ReportCamera& c : report.cameras) {
     out += svg_image(c, report.residuals, scale,
-                     printed("residuals x %.0f (red: rejected)", scale).c_str());
+                     printf_string("residuals x %.0f (red: rejected)", scale).c_str());
   }
   out += "<h2>Coverage</h2>";
   for (const ReportCamera& c : report.cameras) {

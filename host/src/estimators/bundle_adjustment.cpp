@@ -5,7 +5,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -17,6 +16,7 @@
 #include "estimators/covariance.hpp"
 #include "sensor/camera_model.hpp"
 #include "sensor/rotation.hpp"
+#include "util/printf_string.hpp"
 
 namespace syncap::estimators {
 namespace {
@@ -915,15 +915,7 @@ BundleAdjustmentResult Adjuster::run() {
   return std::move(result_);
 }
 
-std::string printf_string(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string printf_string(const char* format, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof buffer, format, args);
-  va_end(args);
-  return buffer;
-}
+using util::printf_string;
 
 }  // namespace
 
