@@ -1,5 +1,8 @@
 #include "calibration/calibrate.hpp"
+#include "sensor/rotation.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -113,6 +116,66 @@ scene::Network triangulated_part(const scene::Network& network) {
     if (kept.count(d.point_a) && kept.count(d.point_b)) part.distances.push_back(d);
   }
   return part;
+}
+
+// The room's vertical as the cameras show it. Cameras hang without roll, so their image-right
+// axes are horizontal, whatever their pitch: the vertical is the direction most nearly at right
+// angles to all of them (the smallest eigenvector of their scatter), turned to agree with the
+// mean image-up axis. When the right axes are (nearly) parallel that direction is not defined,
+// and the mean image-up axis itself serves (biased by the cameras' common pitch).
+Eigen::Vector3d vertical_of(const std::vector<scene::Station>& stations) {
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d mean_up = Eigen::Vector3d::Zero();
+  for (const scene::Station& s : stations) {
+    const Eigen::Matrix3d r =
+        sensor::rotation_matrix(s.exterior.omega, s.exterior.phi, s.exterior.kappa);
+    scatter += r.col(0) * r.col(0).transpose();
+    mean_up += r.col(1);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  const Eigen::Vector3d values = solver.eigenvalues();  // increasing
+  if (values[1] < 0.05 * values[2]) return mean_up;     // right axes all alike
+  Eigen::Vector3d vertical = solver.eigenvectors().col(0);
+  return vertical.dot(mean_up) < 0 ? Eigen::Vector3d(-vertical) : vertical;
+}
+
+// Moves the network (stations and points, rigidly) into the levelled frame documented in
+// calibrate.hpp: origin at the centroid of the points, Z along the cameras' mean image-up axis,
+// Y horizontal from the first camera towards the origin. The last adjustment then stays in this
+// frame: its free-network datum holds the first station where it is put here.
+void level_network(scene::Network& network) {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  int points = 0;
+  for (const scene::ObjectPoint& p : network.points) {
+    if (!p.has_approximation) continue;
+    origin += Eigen::Vector3d(p.xyz[0], p.xyz[1], p.xyz[2]);
+    ++points;
+  }
+  if (points == 0 || network.stations.empty()) return;
+  origin /= points;
+  const Eigen::Vector3d up = vertical_of(network.stations);
+  const auto& first = network.stations.front().exterior;
+  const Eigen::Vector3d towards = origin - Eigen::Vector3d(first.X0, first.Y0, first.Z0);
+  if (up.norm() < 1e-9) return;  // cameras all around a sphere: no common up
+  const Eigen::Vector3d z = up.normalized();
+  Eigen::Vector3d y = towards - towards.dot(z) * z;
+  if (y.norm() < 1e-9) return;  // the first camera right above the points
+  y.normalize();
+  Eigen::Matrix3d axes;  // the new axes in the old frame, as columns
+  axes << y.cross(z), y, z;
+  for (scene::Station& s : network.stations) {
+    auto& e = s.exterior;
+    const Eigen::Vector3d centre = axes.transpose() * (Eigen::Vector3d(e.X0, e.Y0, e.Z0) - origin);
+    const sensor::RotationAngles a = sensor::angles_from_rotation(
+        axes.transpose() * sensor::rotation_matrix(e.omega, e.phi, e.kappa));
+    e = {centre.x(), centre.y(), centre.z(), a.omega, a.phi, a.kappa};
+  }
+  for (scene::ObjectPoint& p : network.points) {
+    if (!p.has_approximation) continue;
+    const Eigen::Vector3d q =
+        axes.transpose() * (Eigen::Vector3d(p.xyz[0], p.xyz[1], p.xyz[2]) - origin);
+    p.xyz = {q.x(), q.y(), q.z()};
+  }
 }
 
 struct Stage {
@@ -415,6 +478,7 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
   say(options, "adjustment 1/2 (c, xp, yp, exterior): " + std::to_string(first.iterations) +
                    " iterations, sigma0 " + std::to_string(first.sigma0));
   take_adjusted_values(first_network, first, network);
+  level_network(network);
   out.adjustment = adjust_stage(network, options, {true, true});
   say(options, "adjustment 2/2 (all interior values, data snooping): " +
                    std::to_string(out.adjustment.adjustments) + " adjustments, " +

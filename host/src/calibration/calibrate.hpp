@@ -11,7 +11,17 @@
 //      and the exterior orientations with the lens distortion held at zero and no snooping (the
 //      start's camera constants can be 20-30 % off, a free distortion model would swallow part of
 //      that error), then every interior value free, with data snooping;
+//      Between the stages the network is levelled (below);
 //   5. the cameras with their standard deviations, the quality figures and the report.
+//
+// The levelled frame: with nothing surveyed, the result's frame is chosen from what a capture
+// set-up has: the origin at the centroid of the wand positions (the middle of the capture
+// volume), Z up at right angles to the cameras' image-right axes (cameras hang without roll, so
+// those are horizontal whatever their pitch; the mean image-up axis when they are all alike), Y
+// horizontal from the first camera towards
+// the origin, X = Y x Z. Scale from the wand (mm); an LED gives no scale. The frame is set on
+// the approximations before the last adjustment, whose free-network datum then shifts it by a
+// few centimetres at most (the simulated 3-camera test: 46 mm).
 //
 // Start interiors from the image size alone: the principal point at the centre, no distortion,
 // and c from a typical horizontal field of view (`field_of_view_deg`, 60 deg: between a 6 mm lens

@@ -69,12 +69,25 @@ VolumeOutline volume_outline(const CameraModel& camera, const Eigen::AlignedBox3
   }
   VolumeOutline outline;
   std::vector<cv::Point2f> pixels;
+  // Far outside the image, where the lens model's correction folds, a point has no pixel: it is
+  // put far beyond the image border in the direction the distortion-free camera sees it, so the
+  // outline reaches the border there (it errs towards clipping less).
+  CameraModel pinhole = camera;
+  pinhole.interior = {camera.interior.c, camera.interior.xp, camera.interior.yp};
+  const Eigen::Vector2d centre = camera.pixel_from_image({camera.interior.xp, camera.interior.yp});
+  const double far = 4.0 * std::hypot(camera.sensor.width_px, camera.sensor.height_px);
   for (const Eigen::Vector3d& p : face_samples(volume, options.samples_per_edge)) {
-    const Projection projection = camera.project(p);
+    Projection projection = camera.project(p);
+    if (projection.status == ProjectionStatus::kDistortionNotInvertible) {
+      const Projection straight = pinhole.project(p);
+      if (straight.ok() && (straight.pixel - centre).norm() > 0) {
+        projection.status = ProjectionStatus::kOk;
+        projection.pixel = centre + far * (straight.pixel - centre).normalized();
+      }
+    }
     if (!projection.ok()) {
       outline.whole_image = true;
-      outline.note = "the volume reaches behind camera " + std::to_string(camera.id) +
-                     " or where its distortion folds: no clip";
+      outline.note = "the volume reaches behind camera " + std::to_string(camera.id) + ": no clip";
       return outline;
     }
     pixels.emplace_back(static_cast<float>(projection.pixel.x()),

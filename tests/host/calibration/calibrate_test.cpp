@@ -123,6 +123,25 @@ TEST(Calibrate, WandAmongReflectionsFindsTheTruthFromTheImageSizeAlone) {
     const double truth = (s.truth[i].projection_centre() - s.truth[j].projection_centre()).norm();
     EXPECT_NEAR(estimated / truth, 1.0, 0.003);
   }
+  // The levelled frame: the wand positions centred on the origin, the cameras upright (their
+  // image-up axes along +Z on average), the first camera on -Y looking towards the origin.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), up = Eigen::Vector3d::Zero();
+  int points = 0;
+  for (size_t p = 0; p < r.adjustment.points.size(); ++p) {
+    if (!r.adjustment.points[p].adjusted) continue;
+    centroid += Eigen::Vector3d(r.adjustment.points[p].xyz.data());
+    ++points;
+  }
+  ASSERT_GT(points, 0);
+  EXPECT_LT((centroid / points).norm(), 100.0)
+      << "mm: the last adjustment shifts the frame a little";
+  // The truth's vertical, carried into the result's frame by each camera's rotation.
+  for (size_t i = 0; i < r.cameras.size(); ++i) {
+    up += r.cameras[i].rotation() * s.truth[i].rotation().transpose() * Eigen::Vector3d::UnitZ();
+  }
+  EXPECT_GT(up.normalized().z(), 0.9995) << "the result's Z is the truth's vertical";
+  EXPECT_NEAR(r.cameras[0].projection_centre().x(), 0.0, 50.0);
+  EXPECT_LT(r.cameras[0].projection_centre().y(), -1000.0);
   // The report carries what the files need.
   EXPECT_EQ(r.report.cameras.size(), 3u);
   EXPECT_EQ(r.report.residuals.size(), r.network.measurements.size());
