@@ -8,7 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include "estimators/bundle_adjustment.hpp"
-#include "estimators/bundle_adjustment_simulation.hpp"
+#include "six_camera_wand_network.hpp"
 
 namespace {
 
@@ -17,11 +17,7 @@ using syncap::estimators::BundleAdjustmentResult;
 
 const syncap::scene::Network& six_camera_network() {
   static const syncap::scene::Network network = [] {
-    syncap::estimators::WandSimulation sim;
-    sim.cameras = 6;
-    sim.arc_deg = 360.0;
-    sim.frames = 1000;
-    syncap::scene::Network n = syncap::estimators::simulate_wand_network(sim).network;
+    syncap::scene::Network n = syncap::bench::six_camera_wand_network();
     n.residual_test.iterative_rejection = false;
     return n;
   }();

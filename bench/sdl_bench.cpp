@@ -7,18 +7,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "estimators/bundle_adjustment_simulation.hpp"
 #include "sdl/sdl.hpp"
+#include "six_camera_wand_network.hpp"
 
 namespace {
 
 const syncap::scene::Network& six_camera_network() {
   static const syncap::scene::Network network = [] {
-    syncap::estimators::WandSimulation sim;
-    sim.cameras = 6;
-    sim.arc_deg = 360.0;
-    sim.frames = 1000;
-    syncap::scene::Network n = syncap::estimators::simulate_wand_network(sim).network;
+    syncap::scene::Network n = syncap::bench::six_camera_wand_network();
     for (auto& point : n.points) point.has_approximation = true;  // as after the adjustment
     return n;
   }();

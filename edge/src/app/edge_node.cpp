@@ -157,9 +157,8 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
 void EdgeNode::on_clip(const clip_polygon_t& clip) {
   if (clip.camera_id != options_.camera_id) return;
   const auto points = static_cast<std::size_t>(std::max<int16_t>(clip.num_points, 0));
-  if (clip.num_points < 0 || clip.num_points == 1 || clip.num_points == 2 ||
-      clip.x.size() != points || clip.y.size() != points || clip.image_width <= 0 ||
-      clip.image_height <= 0) {
+  if ((clip.num_points != 0 && clip.num_points < 3) || clip.x.size() != points ||
+      clip.y.size() != points || clip.image_width <= 0 || clip.image_height <= 0) {
     note_error("clip polygon " + std::to_string(clip.sequence) +
                " refused: " + std::to_string(clip.num_points) + " points for a " +
                std::to_string(clip.image_width) + "x" + std::to_string(clip.image_height) +

@@ -1,4 +1,5 @@
 #include "segmentation/medi_picture.hpp"
+#include "bare_medi_picture_options.hpp"
 
 #include <gtest/gtest.h>
 
@@ -33,13 +34,7 @@ cv::Mat texture(cv::Size size) {
   return image;
 }
 
-MediPictureOptions bare_options() {
-  MediPictureOptions options;
-  options.remove_shadows = false;
-  options.closing_diameter = 0;
-  options.min_component_area = 0;
-  return options;
-}
+using testing::bare_options;
 
 TEST(MediPicture, TrainingFollowsEq55OnAKnownSequence) {
   // One pixel over five frames; 200 is a passing object, not the empty scene.

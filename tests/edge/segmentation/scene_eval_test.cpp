@@ -1,4 +1,5 @@
 #include "segmentation/scene_eval.hpp"
+#include "bare_medi_picture_options.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,13 +52,7 @@ std::filesystem::path write_scene(const std::string& name) {
   return dir;
 }
 
-MediPictureOptions bare_options() {
-  MediPictureOptions options;
-  options.remove_shadows = false;
-  options.closing_diameter = 0;
-  options.min_component_area = 0;
-  return options;
-}
+using testing::bare_options;
 
 TEST(SceneEval, ScoresEachPersonFrameAgainstItsTrueMask) {
   const auto dir = write_scene("scores");
