@@ -7,6 +7,8 @@
 
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "detection/lone_blob.hpp"
+#include "detection/ring_background.hpp"
 #include "detection/run_labeller.hpp"
 
 namespace syncap::edge {
@@ -42,46 +44,6 @@ int BlobDetector::threshold_for(const cv::Mat& image) const {
 }
 
 namespace {
-
-// The local background around the centroid window `cw` (inside `window`): the interquartile
-// mean (the mean of the middle half once sorted, from index n/4 to n - n/4) of the pixels below
-// `threshold` of the one-pixel ring just outside cw that lie inside window. Counted in `count`
-// (all zero, and left so) over the values' range: the sum a sort would give, in linear time.
-double ring_background(const cv::Mat& image, cv::Rect cw, cv::Rect window, int threshold,
-                       std::array<int, 256>& count) {
-  size_t n = 0;
-  int low = 255, high = 0;
-  const auto take = [&](int v) {
-    if (v >= threshold) return;  // a blob's pixel
-    ++count[static_cast<size_t>(v)];
-    ++n;
-    low = std::min(low, v);
-    high = std::max(high, v);
-  };
-  const int xa = std::max(cw.x - 1, window.x);
-  const int xb = std::min(cw.x + cw.width, window.x + window.width - 1);
-  for (const int y : {cw.y - 1, cw.y + cw.height}) {
-    if (y < window.y || y >= window.y + window.height) continue;
-    const uint8_t* row = image.ptr<uint8_t>(y);
-    for (int x = xa; x <= xb; ++x) take(row[x]);
-  }
-  for (const int x : {cw.x - 1, cw.x + cw.width}) {
-    if (x < window.x || x >= window.x + window.width) continue;
-    for (int y = cw.y; y < cw.y + cw.height; ++y) take(image.ptr<uint8_t>(y)[x]);
-  }
-  if (n == 0) return 0;
-  const size_t lo = n / 4, hi = std::max(n - n / 4, lo + 1);
-  int64_t sum = 0;
-  size_t seen = 0;
-  for (int v = low; v <= high; ++v) {
-    const auto c = static_cast<size_t>(count[static_cast<size_t>(v)]);
-    count[static_cast<size_t>(v)] = 0;
-    const size_t from = std::max(seen, lo), to = std::min(seen + c, hi);
-    if (to > from) sum += static_cast<int64_t>(v) * static_cast<int64_t>(to - from);
-    seen += c;
-  }
-  return static_cast<double>(sum) / static_cast<double>(hi - lo);
-}
 
 // Over the pixels of `cw`: the sums of intensity v, v * x and v * y, and how many are >= the
 // threshold (all of them the blob's when that equals its area).
@@ -142,132 +104,177 @@ constexpr int kMaxFastWidth = 2048;
 
 int64_t sum_of_range(int64_t a, int64_t b) { return (a + b) * (b - a + 1) / 2; }  // a + ... + b
 
+// Second moments of the thresholded pixels weighted by intensity above the background, plus
+// 1/12 px^2 for each pixel's own extent; unweighted when the blob is no brighter than that.
+BlobShape shape_of(const Component& c, double background) {
+  BlobShape shape;
+  shape.background = background;
+  double w2 = static_cast<double>(c.sum_i) - background * c.area;
+  double wx = static_cast<double>(c.sum_ix) - background * static_cast<double>(c.sum_x);
+  double wy = static_cast<double>(c.sum_iy) - background * static_cast<double>(c.sum_y);
+  double wxx = static_cast<double>(c.sum_ixx) - background * static_cast<double>(c.sum_xx);
+  double wyy = static_cast<double>(c.sum_iyy) - background * static_cast<double>(c.sum_yy);
+  double wxy = static_cast<double>(c.sum_ixy) - background * static_cast<double>(c.sum_xy);
+  if (w2 <= 0) {
+    w2 = c.area;
+    wx = static_cast<double>(c.sum_x);
+    wy = static_cast<double>(c.sum_y);
+    wxx = static_cast<double>(c.sum_xx);
+    wyy = static_cast<double>(c.sum_yy);
+    wxy = static_cast<double>(c.sum_xy);
+  }
+  const double mx = wx / w2, my = wy / w2;
+  shape.mxx = wxx / w2 - mx * mx + 1.0 / 12;
+  shape.myy = wyy / w2 - my * my + 1.0 / 12;
+  shape.mxy = wxy / w2 - mx * my;
+  const double half_trace = 0.5 * (shape.mxx + shape.myy);
+  const double half_difference = 0.5 * (shape.mxx - shape.myy);
+  const double root = std::sqrt(half_difference * half_difference + shape.mxy * shape.mxy);
+  shape.roundness = half_trace > root ? (half_trace - root) / (half_trace + root) : 0.0;
+  return shape;
+}
+
+// The sums over a centroid window's pixels that its blob's centroid weighs: v, v * x, v * y,
+// and the count, x and y of those pixels (all of the window, or without other blobs' pixels).
+struct CentroidSums {
+  int64_t si = 0, six = 0, siy = 0, n = 0, sx = 0, sy = 0;
+};
+
+CentroidSums whole_window(cv::Rect cw, int64_t si, int64_t six, int64_t siy) {
+  return {si,
+          six,
+          siy,
+          static_cast<int64_t>(cw.area()),
+          cw.height * sum_of_range(cw.x, cw.x + cw.width - 1),
+          cw.width * sum_of_range(cw.y, cw.y + cw.height - 1)};
+}
+
+// Pixels of `cw` that are the component's or below the threshold, walked with its runs: the
+// centroid window holds another blob's bright pixels.
+CentroidSums sums_without_others(const cv::Mat& image, const RunLabeller& labeller,
+                                 const Component& c, cv::Rect cw, int threshold) {
+  const auto& runs = labeller.runs();
+  CentroidSums s;
+  int r = c.first_run;
+  for (int y = cw.y; y < cw.y + cw.height; ++y) {
+    while (r >= 0 && runs[static_cast<size_t>(r)].y < y) r = labeller.next_run(r);
+    int own = r;
+    const uint8_t* row = image.ptr<uint8_t>(y);
+    int64_t ri = 0, rix = 0, rn = 0, rx = 0;
+    for (int x = cw.x; x < cw.x + cw.width; ++x) {
+      const int v = row[x];
+      if (v >= threshold) {
+        while (own >= 0 && runs[static_cast<size_t>(own)].y == y &&
+               runs[static_cast<size_t>(own)].x1 <= x) {
+          own = labeller.next_run(own);
+        }
+        if (own < 0 || runs[static_cast<size_t>(own)].y != y ||
+            runs[static_cast<size_t>(own)].x0 > x) {
+          continue;
+        }
+      }
+      ri += v;
+      rix += v * x;
+      ++rn;
+      rx += x;
+    }
+    s.si += ri;
+    s.six += rix;
+    s.siy += ri * y;
+    s.n += rn;
+    s.sx += rx;
+    s.sy += rn * y;
+  }
+  return s;
+}
+
+// Centroid: every pixel of the centroid window weighs its intensity above the background
+// (signed, so noise averages out); pixels >= threshold that are not this blob's are left out of
+// `sums`. Then the shape, the filters and the flags.
+void add_blob(const BlobDetectorConfig& config, const Component& c, cv::Rect cw,
+              const CentroidSums& sums, double background, int8_t extra_flags,
+              std::vector<blob_t>& out, std::vector<BlobShape>* shapes) {
+  if (c.area < config.min_area || c.area > config.max_area) return;
+  const bool saturated = c.peak >= config.saturation;
+  if (saturated && config.drop_saturated) return;
+  const cv::Rect box = c.box();
+  const int m = config.window_margin;
+  const cv::Rect grown(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m);
+  const double weight = static_cast<double>(sums.si) - background * static_cast<double>(sums.n);
+  double x = -1, y = -1;
+  if (weight > 0) {
+    x = (static_cast<double>(sums.six) - background * static_cast<double>(sums.sx)) / weight;
+    y = (static_cast<double>(sums.siy) - background * static_cast<double>(sums.sy)) / weight;
+  }
+  // Fainter than its surroundings, or pulled out of its window by an uneven background:
+  // fall back to the thresholded pixels above the background.
+  if (!(x >= cw.x && x <= cw.x + cw.width - 1 && y >= cw.y && y <= cw.y + cw.height - 1)) {
+    const double w = std::max(static_cast<double>(c.sum_i) - background * c.area, 1e-9);
+    x = (static_cast<double>(c.sum_ix) - background * static_cast<double>(c.sum_x)) / w;
+    y = (static_cast<double>(c.sum_iy) - background * static_cast<double>(c.sum_y)) / w;
+  }
+  blob_t b{};
+  b.x = static_cast<float>(x);
+  b.y = static_cast<float>(y);
+  const BlobShape shape = shape_of(c, background);
+  const bool not_round = shape.roundness < config.min_roundness;
+  if (not_round && config.drop_not_round) return;
+
+  b.area = static_cast<float>(c.area);
+  b.peak = static_cast<int16_t>(c.peak);
+  b.bbox_x = static_cast<int16_t>(box.x);
+  b.bbox_y = static_cast<int16_t>(box.y);
+  b.bbox_w = static_cast<int16_t>(box.width);
+  b.bbox_h = static_cast<int16_t>(box.height);
+  int flags = extra_flags;
+  if (saturated) flags |= blob_t::FLAG_SATURATED;
+  if (cw != grown) flags |= blob_t::FLAG_AT_BORDER;
+  if (not_round) flags |= blob_t::FLAG_NOT_ROUND;
+  b.flags = static_cast<int8_t>(flags);
+  out.push_back(b);
+  if (shapes) shapes->push_back(shape);
+}
+
 }  // namespace
 
 void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshold,
                              int8_t extra_flags, std::vector<blob_t>& out,
                              std::vector<BlobShape>* shapes) {
   window &= cv::Rect(0, 0, image.cols, image.rows);
-  labeller_.label(image, window, threshold);
-  const auto& runs = labeller_.runs();
   const int m = config_.window_margin;
+  // A tracked blob's window: one blob, measured without labelling (detection/lone_blob.hpp).
+  if (window.width <= 64 && threshold >= 0 && threshold <= 255) {
+    Component c;
+    cv::Rect cw;
+    CentroidWindowSums plain;
+    const LoneBlob lone =
+        measure_lone_blob(image, window, static_cast<uint8_t>(threshold), m, c, cw, plain);
+    if (lone == LoneBlob::kNone) return;
+    if (lone == LoneBlob::kOne) {
+      const double background = ring_background_(image, cw, window, threshold);
+      add_blob(config_, c, cw, whole_window(cw, plain.si, plain.six, plain.siy), background,
+               extra_flags, out, shapes);
+      return;
+    }
+  }
+  labeller_.label(image, window, threshold);
   for (const Component& c : labeller_.components()) {
+    // add_blob filters again; here it spares the background of a blob it would drop.
     if (c.area < config_.min_area || c.area > config_.max_area) continue;
-    const bool saturated = c.peak >= config_.saturation;
-    if (saturated && config_.drop_saturated) continue;
+    if (c.peak >= config_.saturation && config_.drop_saturated) continue;
     const cv::Rect box = c.box();
-    const cv::Rect grown(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m);
-    const cv::Rect cw = grown & window;
-
+    const cv::Rect cw =
+        cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) & window;
     // Local background: a robust (interquartile) mean of the ring just outside the centroid
     // window, inside the search window, leaving out pixels of blobs.
-    const double background = ring_background(image, cw, window, threshold, ring_count_);
-
-    // Centroid: every pixel of the window weighs its intensity above the background (signed,
-    // so noise averages out); pixels >= threshold that are not this blob's are skipped. When
-    // the window holds no other bright pixel (the usual case), its plain sums are those.
-    int64_t si = 0, six = 0, siy = 0, n = 0, sx = 0, sy = 0;
+    const double background = ring_background_(image, cw, window, threshold);
+    // When the window holds no other bright pixel (the usual case), its plain sums are those.
     const WindowSums plain =
         cw.width <= kMaxFastWidth ? window_sums(image, cw, threshold) : WindowSums{0, 0, 0, -1};
-    if (plain.bright == c.area) {
-      si = plain.si;
-      six = plain.six;
-      siy = plain.siy;
-      n = static_cast<int64_t>(cw.area());
-      sx = cw.height * sum_of_range(cw.x, cw.x + cw.width - 1);
-      sy = cw.width * sum_of_range(cw.y, cw.y + cw.height - 1);
-    } else {
-      int r = c.first_run;
-      for (int y = cw.y; y < cw.y + cw.height; ++y) {
-        while (r >= 0 && runs[static_cast<size_t>(r)].y < y) r = labeller_.next_run(r);
-        int own = r;
-        const uint8_t* row = image.ptr<uint8_t>(y);
-        int64_t ri = 0, rix = 0, rn = 0, rx = 0;
-        for (int x = cw.x; x < cw.x + cw.width; ++x) {
-          const int v = row[x];
-          if (v >= threshold) {
-            while (own >= 0 && runs[static_cast<size_t>(own)].y == y &&
-                   runs[static_cast<size_t>(own)].x1 <= x) {
-              own = labeller_.next_run(own);
-            }
-            if (own < 0 || runs[static_cast<size_t>(own)].y != y ||
-                runs[static_cast<size_t>(own)].x0 > x) {
-              continue;
-            }
-          }
-          ri += v;
-          rix += v * x;
-          ++rn;
-          rx += x;
-        }
-        si += ri;
-        six += rix;
-        siy += ri * y;
-        n += rn;
-        sx += rx;
-        sy += rn * y;
-      }
-    }
-    const double weight = static_cast<double>(si) - background * static_cast<double>(n);
-
-    blob_t b{};
-    double x = -1, y = -1;
-    if (weight > 0) {
-      x = (static_cast<double>(six) - background * static_cast<double>(sx)) / weight;
-      y = (static_cast<double>(siy) - background * static_cast<double>(sy)) / weight;
-    }
-    // Fainter than its surroundings, or pulled out of its window by an uneven background:
-    // fall back to the thresholded pixels above the background.
-    if (!(x >= cw.x && x <= cw.x + cw.width - 1 && y >= cw.y && y <= cw.y + cw.height - 1)) {
-      const double w = std::max(static_cast<double>(c.sum_i) - background * c.area, 1e-9);
-      x = (static_cast<double>(c.sum_ix) - background * static_cast<double>(c.sum_x)) / w;
-      y = (static_cast<double>(c.sum_iy) - background * static_cast<double>(c.sum_y)) / w;
-    }
-    b.x = static_cast<float>(x);
-    b.y = static_cast<float>(y);
-
-    // Shape: second moments of the thresholded pixels weighted by intensity above the
-    // background, plus 1/12 px^2 for each pixel's own extent.
-    BlobShape shape;
-    shape.background = background;
-    double w2 = static_cast<double>(c.sum_i) - background * c.area;
-    double wx = static_cast<double>(c.sum_ix) - background * static_cast<double>(c.sum_x);
-    double wy = static_cast<double>(c.sum_iy) - background * static_cast<double>(c.sum_y);
-    double wxx = static_cast<double>(c.sum_ixx) - background * static_cast<double>(c.sum_xx);
-    double wyy = static_cast<double>(c.sum_iyy) - background * static_cast<double>(c.sum_yy);
-    double wxy = static_cast<double>(c.sum_ixy) - background * static_cast<double>(c.sum_xy);
-    if (w2 <= 0) {
-      w2 = c.area;
-      wx = static_cast<double>(c.sum_x);
-      wy = static_cast<double>(c.sum_y);
-      wxx = static_cast<double>(c.sum_xx);
-      wyy = static_cast<double>(c.sum_yy);
-      wxy = static_cast<double>(c.sum_xy);
-    }
-    const double mx = wx / w2, my = wy / w2;
-    shape.mxx = wxx / w2 - mx * mx + 1.0 / 12;
-    shape.myy = wyy / w2 - my * my + 1.0 / 12;
-    shape.mxy = wxy / w2 - mx * my;
-    const double half_trace = 0.5 * (shape.mxx + shape.myy);
-    const double half_difference = 0.5 * (shape.mxx - shape.myy);
-    const double root = std::sqrt(half_difference * half_difference + shape.mxy * shape.mxy);
-    shape.roundness = half_trace > root ? (half_trace - root) / (half_trace + root) : 0.0;
-    const bool not_round = shape.roundness < config_.min_roundness;
-    if (not_round && config_.drop_not_round) continue;
-
-    b.area = static_cast<float>(c.area);
-    b.peak = static_cast<int16_t>(c.peak);
-    b.bbox_x = static_cast<int16_t>(box.x);
-    b.bbox_y = static_cast<int16_t>(box.y);
-    b.bbox_w = static_cast<int16_t>(box.width);
-    b.bbox_h = static_cast<int16_t>(box.height);
-    int flags = extra_flags;
-    if (saturated) flags |= blob_t::FLAG_SATURATED;
-    if (cw != grown) flags |= blob_t::FLAG_AT_BORDER;
-    if (not_round) flags |= blob_t::FLAG_NOT_ROUND;
-    b.flags = static_cast<int8_t>(flags);
-    out.push_back(b);
-    if (shapes) shapes->push_back(shape);
+    const CentroidSums sums = plain.bright == c.area
+                                  ? whole_window(cw, plain.si, plain.six, plain.siy)
+                                  : sums_without_others(image, labeller_, c, cw, threshold);
+    add_blob(config_, c, cw, sums, background, extra_flags, out, shapes);
   }
 }
 

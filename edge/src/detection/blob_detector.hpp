@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "detection/ring_background.hpp"
 #include "detection/run_labeller.hpp"
 #include "syncap/blob_t.hpp"
 
@@ -62,7 +63,8 @@ class BlobDetector {
   RunLabeller labeller_;
   std::vector<blob_t> blobs_;
   std::vector<BlobShape> shapes_;
-  std::array<int, 256> ring_count_{};  // histogram of a background ring, zero between uses
+  RingBackground ring_background_;
+  std::vector<uint64_t> lone_masks_;  // row masks of the lone-blob fast path
   std::vector<int> order_;
 };
 

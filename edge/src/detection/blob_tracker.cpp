@@ -43,21 +43,41 @@ cv::Rect BlobTracker::window_of(const Track& t) const {
   return w & cv::Rect({0, 0}, size_);
 }
 
-void BlobTracker::windows_into(std::vector<cv::Rect>& windows) const {
+void BlobTracker::windows_into(std::vector<cv::Rect>& windows, std::vector<int>* owner) const {
   windows.clear();
+  if (owner) owner->clear();
   if (needs_full_scan()) return;
   for (const Track& t : tracks_) {
     const cv::Rect w = window_of(t);
-    if (!w.empty()) windows.push_back(w);
+    if (w.empty()) continue;
+    if (owner) owner->push_back(static_cast<int>(windows.size()));
+    windows.push_back(w);
   }
-  // Overlapping windows become one, so that no blob is found twice.
+  // Overlapping windows become one, so that no blob is found twice; a track's window is then
+  // the merged one. Usually none overlap: checking pairs in order of x stops at the first
+  // window that starts right of the current one's end.
   for (bool merged = true; merged;) {
     merged = false;
-    for (size_t i = 0; i < windows.size() && !merged; ++i) {
-      for (size_t j = i + 1; j < windows.size() && !merged; ++j) {
+    by_x_.resize(windows.size());
+    for (size_t i = 0; i < by_x_.size(); ++i) by_x_[i] = static_cast<int>(i);
+    std::sort(by_x_.begin(), by_x_.end(), [&](int a, int b) {
+      return windows[static_cast<size_t>(a)].x < windows[static_cast<size_t>(b)].x;
+    });
+    for (size_t a = 0; a < by_x_.size() && !merged; ++a) {
+      const auto i = static_cast<size_t>(by_x_[a]);
+      for (size_t b = a + 1; b < by_x_.size() && !merged; ++b) {
+        const auto j = static_cast<size_t>(by_x_[b]);
+        if (windows[j].x >= windows[i].x + windows[i].width) break;
         if ((windows[i] & windows[j]).empty()) continue;
-        windows[i] |= windows[j];
-        windows.erase(windows.begin() + static_cast<long>(j));
+        const size_t keep = std::min(i, j), gone = std::max(i, j);
+        windows[keep] |= windows[gone];
+        windows.erase(windows.begin() + static_cast<long>(gone));
+        if (owner) {
+          for (int& o : *owner) {
+            if (o == static_cast<int>(gone)) o = static_cast<int>(keep);
+            if (o > static_cast<int>(gone)) --o;
+          }
+        }
         merged = true;
       }
     }
@@ -66,7 +86,7 @@ void BlobTracker::windows_into(std::vector<cv::Rect>& windows) const {
 
 std::vector<cv::Rect> BlobTracker::next_windows() const {
   std::vector<cv::Rect> windows;
-  windows_into(windows);
+  windows_into(windows, nullptr);
   return windows;
 }
 
@@ -155,18 +175,43 @@ static void prefetch_windows(const cv::Mat& image, const std::vector<cv::Rect>& 
   }
 }
 
+// Per track the nearest blob within max_jump of its prediction among those its own window
+// found (greedy, tracks in order): a track can only have moved to where its window looked.
+void BlobTracker::associate_in_windows() {
+  match_.assign(tracks_.size(), -1);
+  taken_.assign(found_.size(), 0);
+  const float max_jump2 = config_.max_jump * config_.max_jump;
+  for (size_t t = 0; t < tracks_.size(); ++t) {
+    const auto w = static_cast<size_t>(window_owner_[t]);
+    const cv::Point2f p = predicted(tracks_[t]);
+    float best = max_jump2;
+    for (size_t b = window_found_[w]; b < window_found_[w + 1]; ++b) {
+      if (taken_[b]) continue;
+      const float dx = found_[b].x - p.x, dy = found_[b].y - p.y;
+      if (dx * dx + dy * dy <= best) {
+        best = dx * dx + dy * dy;
+        match_[t] = static_cast<int>(b);
+      }
+    }
+    if (match_[t] >= 0) taken_[static_cast<size_t>(match_[t])] = 1;
+  }
+}
+
 bool BlobTracker::windowed_scan(const cv::Mat& image) {
-  windows_into(windows_);
+  windows_into(windows_, &window_owner_);
+  if (window_owner_.size() != tracks_.size()) return false;  // a track left the image
   prefetch_windows(image, windows_);
   found_.clear();
+  window_found_.assign(1, 0);
   for (const cv::Rect& w : windows_) {
     const size_t first = found_.size();
     detector_.detect_in(image, w, threshold_, blob_t::FLAG_WINDOWED, found_);
     for (size_t i = first; i < found_.size(); ++i) {
       if (clipped_by_window(found_[i], w)) return false;  // searched too narrowly
     }
+    window_found_.push_back(found_.size());
   }
-  associate(found_);
+  associate_in_windows();
   if (std::find(match_.begin(), match_.end(), -1) != match_.end()) return false;  // one is lost
   update_tracks(found_, true);
   // By descending area, ties in the order found (an insertion sort: a few blobs, no buffer).

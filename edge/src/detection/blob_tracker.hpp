@@ -59,9 +59,13 @@ class BlobTracker {
   void full_scan(const cv::Mat& image);
   bool windowed_scan(const cv::Mat& image);
   bool clipped_by_window(const blob_t& b, const cv::Rect& window) const;
-  void windows_into(std::vector<cv::Rect>& windows) const;
+  // The windows around the tracks' predictions, overlapping ones merged; `owner` (if given)
+  // gets each track's window index.
+  void windows_into(std::vector<cv::Rect>& windows, std::vector<int>* owner) const;
   // Per prediction the index of the nearest blob within max_jump, or -1 (greedy, in order).
   void associate(const std::vector<blob_t>& blobs);
+  // The same for a windowed scan, each track among the blobs of its own window.
+  void associate_in_windows();
   void update_tracks(const std::vector<blob_t>& found, bool keep_unmatched_tracks);
 
   BlobTrackerConfig config_;
@@ -76,7 +80,10 @@ class BlobTracker {
   std::vector<int> match_;
   std::vector<uint8_t> taken_;
   std::vector<Track> next_tracks_;
-  int threshold_ = 128;  // of the last full scan, used by the windows until the next
+  std::vector<int> window_owner_;     // per track, its window in windows_
+  std::vector<size_t> window_found_;  // window w's blobs are found_[window_found_[w], [w + 1])
+  mutable std::vector<int> by_x_;     // windows in order of x, for the overlap check
+  int threshold_ = 128;               // of the last full scan, used by the windows until the next
   int frames_since_full_ = 0;
   bool full_scan_ = false;
 };

@@ -1,5 +1,7 @@
 #include "detection/run_labeller.hpp"
 
+#include "detection/bright_mask.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -9,29 +11,9 @@
 namespace syncap::edge {
 namespace {
 
-// Bit i set when p[i] >= t, for i < n <= 64. `overread`: the 64 bytes from p may be read.
-// A vector compare per 16 pixels: no branch per pixel, so none to mispredict at a run's ends.
-[[gnu::always_inline]] inline uint64_t bright_mask(const uint8_t* p, int n, uint8_t t,
-                                                   bool overread) {
-#if CV_SIMD128
-  if (n == 64 || overread) {
-    const cv::v_uint8x16 vt = cv::v_setall_u8(t);
-    const cv::v_uint8x16 a = cv::v_load(p), b = cv::v_load(p + 16), c = cv::v_load(p + 32),
-                         d = cv::v_load(p + 48);
-    if (!cv::v_check_any(cv::v_max(cv::v_max(a, b), cv::v_max(c, d)) >= vt)) return 0;
-    const uint64_t m = static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(a >= vt))) |
-                       static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(b >= vt))) << 16 |
-                       static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(c >= vt))) << 32 |
-                       static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(d >= vt))) << 48;
-    return n == 64 ? m : m & ((uint64_t{1} << n) - 1);
-  }
-#else
-  (void)overread;
-#endif
-  uint64_t m = 0;
-  for (int i = 0; i < n; ++i) m |= static_cast<uint64_t>(p[i] >= t) << i;
-  return m;
-}
+using detail::bright_mask;
+using detail::sum_of_squares;
+using detail::trailing_zeros;
 
 // The first x of [x, end) where a 64-pixel stretch holds a pixel >= t, or where fewer than 64
 // remain: dark stretches are skipped 64 pixels at a time, in the frame scan's tight loop.
@@ -51,10 +33,6 @@ int skip_dark(const uint8_t* row, int x, int end, uint8_t t) {
 #endif
   return x;
 }
-
-int trailing_zeros(uint64_t m) { return m == 0 ? 64 : __builtin_ctzll(m); }
-
-int64_t sum_of_squares(int64_t k) { return k * (k + 1) * (2 * k + 1) / 6; }  // 0^2 + ... + k^2
 
 }  // namespace
 
@@ -76,21 +54,68 @@ int RunLabeller::find(int a) {
   return a;
 }
 
-void RunLabeller::add_run(const uint8_t* row, int y, int x0, int x1) {
-  RunSums s;
-  int32_t si = 0, peak = 0;
-  int64_t six = 0, sixx = 0;
-  for (int x = x0; x < x1; ++x) {
-    const int32_t v = row[x], vx = v * x;
-    si += v;
-    six += vx;
-    sixx += static_cast<int64_t>(vx) * x;
+// Sums v, v * k and v * k^2 (k = x - x0) and the largest v over pixels x0 .. x1-1 of `row`, at
+// most 64 of them: exact in int32 (64 * 255 * 63^2 < 2^31). `overread`: the 64 bytes from
+// row + x0 may be read. Vectors of 16 pixels, v * k and (v * k) * k paired by pmaddwd.
+[[gnu::always_inline]] static inline void segment_sums(const uint8_t* row, int x0, int x1,
+                                                       bool overread, int32_t& sv, int32_t& svk,
+                                                       int32_t& svkk, int32_t& peak) {
+  const int n = x1 - x0;
+  int k = 0;
+  sv = svk = svkk = peak = 0;
+#if CV_SIMD128
+  static constexpr uint8_t kLanes[32] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
+                                         0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+  if (overread) {
+    const cv::v_int16x8 ones = cv::v_setall_s16(1), sixteen = cv::v_setall_s16(16);
+    cv::v_int16x8 k_lo(0, 1, 2, 3, 4, 5, 6, 7), k_hi(8, 9, 10, 11, 12, 13, 14, 15);
+    cv::v_int32x4 v_sum = cv::v_setzero_s32(), vk_sum = cv::v_setzero_s32();
+    cv::v_int32x4 vkk_sum = cv::v_setzero_s32();
+    cv::v_uint8x16 top = cv::v_setzero_u8();
+    for (; k < n; k += 16) {
+      const cv::v_uint8x16 p =
+          cv::v_load(row + x0 + k) & cv::v_load(kLanes + 16 - std::min(n - k, 16));
+      cv::v_uint16x8 lo, hi;
+      cv::v_expand(p, lo, hi);
+      const cv::v_int16x8 slo = cv::v_reinterpret_as_s16(lo), shi = cv::v_reinterpret_as_s16(hi);
+      const cv::v_int16x8 vk_lo = slo * k_lo, vk_hi = shi * k_hi;  // <= 255 * 63
+      v_sum += cv::v_dotprod(slo, ones) + cv::v_dotprod(shi, ones);
+      vk_sum += cv::v_dotprod(slo, k_lo) + cv::v_dotprod(shi, k_hi);
+      vkk_sum += cv::v_dotprod(vk_lo, k_lo) + cv::v_dotprod(vk_hi, k_hi);
+      top = cv::v_max(top, p);
+      k_lo += sixteen;
+      k_hi += sixteen;
+    }
+    sv = cv::v_reduce_sum(v_sum);
+    svk = cv::v_reduce_sum(vk_sum);
+    svkk = cv::v_reduce_sum(vkk_sum);
+    peak = cv::v_reduce_max(top);
+    return;
+  }
+#else
+  (void)overread;
+#endif
+  for (; k < n; ++k) {
+    const int32_t v = row[x0 + k];
+    sv += v;
+    svk += v * k;
+    svkk += v * k * k;
     peak = std::max(peak, v);
   }
-  s.sum_i = si;
-  s.sum_ix = six;
-  s.sum_ixx = sixx;
-  s.peak = peak;
+}
+
+void RunLabeller::add_run(const uint8_t* row, int y, int x0, int x1, const uint8_t* dataend) {
+  RunSums s;
+  for (int base = x0; base < x1; base += 64) {  // segments of 64 keep the sums in int32
+    const int end = std::min(base + 64, x1);
+    int32_t sv, svk, svkk, peak;
+    segment_sums(row, base, end, row + base + 64 <= dataend, sv, svk, svkk, peak);
+    const int64_t b = base;
+    s.sum_i += sv;
+    s.sum_ix += b * sv + svk;
+    s.sum_ixx += b * b * sv + 2 * b * svk + svkk;
+    s.peak = std::max(s.peak, peak);
+  }
   runs_.push_back({y, x0, x1, -1});
   parent_.push_back(static_cast<int>(parent_.size()));
   run_sums_.push_back(s);
@@ -147,8 +172,8 @@ bool RunLabeller::label_one_blob(const cv::Mat& image, cv::Rect roi, uint8_t t) 
     const uint64_t m = bright_mask(p, roi.width, t, p + 64 <= image.dataend);
     masks_[static_cast<size_t>(i)] = m;
     if (m == 0) continue;
-    if (last >= 0 && last != i - 1) return false;       // a second group of rows
-    if (((m + (m & (~m + 1))) & m) != 0) return false;  // more than one run in the row
+    if (last >= 0 && last != i - 1) return false;  // a second group of rows
+    if (!detail::one_run(m)) return false;         // more than one run in the row
     if (last >= 0 && ((prev | prev << 1 | prev >> 1) & m) == 0) return false;  // apart
     if (first < 0) first = i;
     last = i;
@@ -159,7 +184,7 @@ bool RunLabeller::label_one_blob(const cv::Mat& image, cv::Rect roi, uint8_t t) 
   for (int i = first; i <= last; ++i) {
     const uint64_t m = masks_[static_cast<size_t>(i)];
     const int start = trailing_zeros(m), end = start + trailing_zeros(~(m >> start));
-    add_run(image.ptr<uint8_t>(roi.y + i), roi.y + i, roi.x + start, roi.x + end);
+    add_run(image.ptr<uint8_t>(roi.y + i), roi.y + i, roi.x + start, roi.x + end, image.dataend);
     next_run_.push_back(i < last ? static_cast<int>(runs_.size()) : -1);
   }
   Component& c = components_.emplace_back();
@@ -188,7 +213,7 @@ void RunLabeller::label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t) {
       if (open >= 0) {
         const int ones = trailing_zeros(~m);
         if (ones == 64) continue;  // bright to the chunk's end
-        add_run(row, y, open, x + ones);
+        add_run(row, y, open, x + ones, image.dataend);
         open = -1;
         m &= ~((uint64_t{1} << ones) - 1);
       }
@@ -199,11 +224,11 @@ void RunLabeller::label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t) {
           open = x + start;
           break;
         }
-        add_run(row, y, x + start, x + end);
+        add_run(row, y, x + start, x + end, image.dataend);
         m &= ~((uint64_t{1} << end) - 1);
       }
     }
-    if (open >= 0) add_run(row, y, open, x_end);
+    if (open >= 0) add_run(row, y, open, x_end, image.dataend);
     // Runs of the previous row that touch a run of this one, at least diagonally: pixels
     // [c, d) and [a, b) are 8-connected when c <= b and a <= d.
     size_t p = prev_begin;

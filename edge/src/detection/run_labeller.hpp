@@ -52,7 +52,7 @@ class RunLabeller {
   void label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t);  // runs, joined by union-find
   void gather();  // components from the joined runs
   int find(int a);
-  void add_run(const uint8_t* row, int y, int x0, int x1);
+  void add_run(const uint8_t* row, int y, int x0, int x1, const uint8_t* dataend);
   void add_to(Component& c, size_t r) const;
 
   std::vector<Run> runs_;

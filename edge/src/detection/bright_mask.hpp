@@ -1,0 +1,41 @@
+// Row bit masks of the pixels at or above a threshold, shared by the run labeller and the lone
+// blob fast path. Internal to detection/.
+#pragma once
+
+#include <cstdint>
+
+#include <opencv2/core/hal/intrin.hpp>
+
+namespace syncap::edge::detail {
+
+// Bit i set when p[i] >= t, for i < n <= 64. `overread`: the whole 16-pixel vectors that cover
+// the n pixels may be read. A vector compare per 16 pixels and only as many vectors as n needs:
+// no branch per pixel, so none to mispredict at a run's ends.
+[[gnu::always_inline]] inline uint64_t bright_mask(const uint8_t* p, int n, uint8_t t,
+                                                   bool overread) {
+#if CV_SIMD128
+  if (overread) {
+    const cv::v_uint8x16 vt = cv::v_setall_u8(t);
+    uint64_t m = 0;
+    for (int k = 0; k < n; k += 16) {
+      const auto bits = static_cast<uint16_t>(cv::v_signmask(cv::v_load(p + k) >= vt));
+      m |= static_cast<uint64_t>(bits) << k;
+    }
+    return n == 64 ? m : m & ((uint64_t{1} << n) - 1);
+  }
+#else
+  (void)overread;
+#endif
+  uint64_t m = 0;
+  for (int i = 0; i < n; ++i) m |= static_cast<uint64_t>(p[i] >= t) << i;
+  return m;
+}
+
+// The bits of m form one run (no gap between its lowest and highest set bit); m != 0.
+inline bool one_run(uint64_t m) { return ((m + (m & (~m + 1))) & m) == 0; }
+
+inline int trailing_zeros(uint64_t m) { return m == 0 ? 64 : __builtin_ctzll(m); }
+
+inline int64_t sum_of_squares(int64_t k) { return k * (k + 1) * (2 * k + 1) / 6; }  // 0^2..k^2
+
+}  // namespace syncap::edge::detail
