@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cstdint>
-#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -13,19 +12,15 @@ namespace syncap::edge {
 
 // The interquartile mean (the mean of the middle half once sorted, ranks n/4 .. n - n/4 - 1) of
 // the pixels below `threshold` of the one-pixel ring just outside `cw` that lie inside
-// `window`; 0 when there are none. Keeps its buffers: one per thread, reused blob after blob.
-//
-// A ring holds a few dozen pixels. Counting them into one histogram makes a run of equal values
-// wait on one counter, load after store; four byte counters a bin, used in turn, do not, and
-// the scan over the values' range adds a bin's four in one multiplication.
+// `window`; 0 when there are none. Counted into a histogram over the values' range (a ring holds
+// a few dozen pixels of a narrow range): the sum a sort would give, in linear time. Keeps the
+// histogram between calls (zero then): one per thread, reused blob after blob.
 class RingBackground {
  public:
   double operator()(const cv::Mat& image, cv::Rect cw, cv::Rect window, int threshold);
 
  private:
-  static constexpr size_t kMaxCounted = 252;  // four counters of a bin stay below 64
-  std::vector<uint8_t> ring_;
-  std::array<uint8_t, 4 * 256> counts_{};  // zero between calls
+  std::array<int, 256> count_{};
 };
 
 }  // namespace syncap::edge
