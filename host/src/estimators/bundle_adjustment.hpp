@@ -101,7 +101,7 @@ struct RejectedMeasurement {
   std::string station;
   std::string point;
   int64_t frame_number = -1;
-  double w = 0.0;  // the standardised residual that condemned it
+  double w = 0.0;  // its test statistic (both coordinates) as the 1-D |w| of equal probability
 };
 
 enum class Datum {

@@ -6,9 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <random>
 #include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "calibration/calibrate.hpp"
 #include "syncap_test_data.hpp"
@@ -53,9 +57,21 @@ TEST(CalibrateStrawlab, ThreeCamerasConvergeFromTheImageSizes) {
 
 // 5 % of the used frames get a blunder of 5-20 px in one camera, on points seen by at least
 // three cameras (with two rays a blunder cannot tell which ray is wrong); data snooping must
-// flag them. Measured: every one with seeds 1, 3, 4 and 20100906; 14 of 15 with seed 2 (frame
-// 18, camera 0 stays: its point's geometry controls that ray weakly). The test asserts at most one
-// missed, and prints the missed ones. Parameter: the seed of the blunders.
+// flag them. The seeds of the blunders: 1, 2, 3, 4 and 20100906, or those listed in
+// SYNCAP_BLUNDER_SEEDS (e.g. "5,6,7"). Measured 2026-11-25 (docs/calibration.md): every one of
+// the 75 with the default seeds; 147 of 150 with seeds 5-14. A missed one is a blunder in a
+// weakly controlled ray that made a good ray of its point look worse; the test asserts at most
+// one missed a seed, and prints the missed ones.
+std::vector<unsigned> blunder_seeds() {
+  std::vector<unsigned> seeds;
+  const char* listed = std::getenv("SYNCAP_BLUNDER_SEEDS");
+  std::stringstream in(listed ? listed : "1,2,3,4,20100906");
+  for (std::string item; std::getline(in, item, ',');) {
+    seeds.push_back(static_cast<unsigned>(std::stoul(item)));
+  }
+  return seeds;
+}
+
 class CalibrateStrawlabBlunders : public ::testing::TestWithParam<unsigned> {};
 
 TEST_P(CalibrateStrawlabBlunders, DataSnoopingFlagsEveryInjectedBlunder) {
@@ -110,8 +126,7 @@ TEST_P(CalibrateStrawlabBlunders, DataSnoopingFlagsEveryInjectedBlunder) {
   EXPECT_LE(missed, 1u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, CalibrateStrawlabBlunders,
-                         ::testing::Values(1u, 2u, 3u, 4u, 20100906u));
+INSTANTIATE_TEST_SUITE_P(Seeds, CalibrateStrawlabBlunders, ::testing::ValuesIn(blunder_seeds()));
 
 }  // namespace
 }  // namespace syncap::calibration
