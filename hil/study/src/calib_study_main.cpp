@@ -121,6 +121,10 @@ int main(int argc, char** argv) {
   syncap::study::StudyReport report = study_options(arguments);
   std::fprintf(stderr, "Table 4.3: %d runs per row ...\n", report.table_options.runs);
   report.table_4_3 = syncap::study::run_table_4_3(basler, report.table_options);
+  syncap::study::Table43Options small_noise = report.table_options;
+  small_noise.noise_px = {0.04};
+  small_noise.wands = {10, 40};
+  report.table_4_3_small_noise = syncap::study::run_table_4_3(basler, small_noise);
   std::fprintf(stderr, "six-camera network: %d runs of %d wand positions ...\n",
                report.ring_options.runs, report.ring_options.wands);
   report.ring = syncap::study::run_ring_study(ring, report.ring_options);

@@ -15,6 +15,9 @@ struct StudyReport {
   bool short_mode = false;
   Table43Options table_options;
   std::vector<Table43Row> table_4_3;
+  // The weak rows again with the noise much smaller (diagnostic, no claim): whether their
+  // sigmas fall short because of the noise (the model's curvature) or always.
+  std::vector<Table43Row> table_4_3_small_noise;
   RingOptions ring_options;
   RingStudy ring;
   ClaimLimits limits;
