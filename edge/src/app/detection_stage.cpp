@@ -27,13 +27,16 @@ DetectionStage::DetectionStage(const DetectionStageConfig& config) : config_(con
 }
 
 std::vector<blob_t> DetectionStage::process(const Frame& frame) {
+  ++frames_;
   if (!tracker_) {
     std::vector<blob_t> blobs = detect_blobs(frame.image, config_.detector);
     offset_blobs(blobs, frame.origin);
     return blobs;
   }
   // The tracker already works in sensor pixels on the canvas.
-  return tracker_->process(sensor_canvas(frame));
+  std::vector<blob_t> blobs = tracker_->process(sensor_canvas(frame));
+  if (!tracker_->last_was_full_scan()) ++frames_in_windows_;
+  return blobs;
 }
 
 const cv::Mat& DetectionStage::sensor_canvas(const Frame& frame) {

@@ -45,6 +45,9 @@ class DetectionStage {
   // A new threshold (SET_THRESHOLD): takes effect at the next frame; the tracker rescans.
   void set_threshold(int threshold);
   bool windowed() const { return config_.mode == DetectionMode::kWindowed; }
+  // Frames whose blobs came from the windows alone (windowed mode), and all frames processed.
+  int64_t frames_in_windows() const { return frames_in_windows_; }
+  int64_t frames() const { return frames_; }
 
  private:
   const cv::Mat& sensor_canvas(const Frame& frame);
@@ -54,6 +57,8 @@ class DetectionStage {
   cv::Mat canvas_;      // sensor-sized, for frames that are a window
   cv::Rect last_copy_;  // the canvas area holding the last window's pixels
   cv::Rect last_roi_request_;
+  int64_t frames_in_windows_ = 0;
+  int64_t frames_ = 0;
 };
 
 }  // namespace syncap::edge

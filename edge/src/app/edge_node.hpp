@@ -50,6 +50,7 @@ class EdgeNode {
   bool saw_last_pulse() const { return saw_last_pulse_; }
   int64_t frames_received() const { return frames_received_; }
   int64_t frames_lost() const { return frames_lost_; }
+  const DetectionStage& detection() const { return detection_; }
 
  private:
   void note_error(const std::string& message);

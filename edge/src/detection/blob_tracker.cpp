@@ -34,6 +34,12 @@ int BlobTracker::margin_of(const Track& t) const {
   return std::clamp(m, config_.min_search_margin, config_.search_margin);
 }
 
+// A new track's prediction is where it was: until a second detection gives its velocity, a
+// blob that moves fast is still itself farther off than max_jump.
+float BlobTracker::jump_limit(const Track& t) const {
+  return t.age == 0 ? std::max(config_.max_first_jump, config_.max_jump) : config_.max_jump;
+}
+
 cv::Rect BlobTracker::window_of(const Track& t) const {
   const cv::Point2f p = predicted(t);
   const int grow = margin_of(t) + config_.detector.window_margin + 1;
@@ -102,7 +108,8 @@ void BlobTracker::associate(const std::vector<blob_t>& blobs) {
   match_.assign(predictions_.size(), -1);
   taken_.assign(blobs.size(), 0);
   for (size_t t = 0; t < predictions_.size(); ++t) {
-    double best = static_cast<double>(config_.max_jump) * config_.max_jump;
+    const double jump = jump_limit(tracks_[t]);
+    double best = jump * jump;
     for (size_t b = 0; b < blobs.size(); ++b) {
       if (taken_[b]) continue;
       const double dx = blobs[b].x - predictions_[t].x, dy = blobs[b].y - predictions_[t].y;
@@ -180,11 +187,11 @@ static void prefetch_windows(const cv::Mat& image, const std::vector<cv::Rect>& 
 void BlobTracker::associate_in_windows() {
   match_.assign(tracks_.size(), -1);
   taken_.assign(found_.size(), 0);
-  const float max_jump2 = config_.max_jump * config_.max_jump;
   for (size_t t = 0; t < tracks_.size(); ++t) {
     const auto w = static_cast<size_t>(window_owner_[t]);
     const cv::Point2f p = predicted(tracks_[t]);
-    float best = max_jump2;
+    const float jump = jump_limit(tracks_[t]);
+    float best = jump * jump;
     for (size_t b = window_found_[w]; b < window_found_[w + 1]; ++b) {
       if (taken_[b]) continue;
       const float dx = found_[b].x - p.x, dy = found_[b].y - p.y;

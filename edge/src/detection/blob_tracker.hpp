@@ -21,10 +21,12 @@ namespace syncap::edge {
 
 struct BlobTrackerConfig {
   BlobDetectorConfig detector;
-  int full_scan_every = 30;   // frames between full-frame scans for new blobs (>= 1)
-  int search_margin = 8;      // pixels around the predicted box searched, per side (at most)
-  int min_search_margin = 2;  // ... at least, once the track's prediction error is known
-  float max_jump = 8.0f;      // a detection this far from the prediction (px) is another blob
+  int full_scan_every = 30;      // frames between full-frame scans for new blobs (>= 1)
+  int search_margin = 8;         // pixels around the predicted box searched, per side (at most)
+  int min_search_margin = 2;     // ... at least, once the track's prediction error is known
+  float max_jump = 8.0f;         // a detection this far from the prediction (px) is another blob
+  float max_first_jump = 32.0f;  // ... from a new track's position, its velocity not yet known:
+                                 // a wand target moves ~10 px a frame at 24 Hz
 };
 
 class BlobTracker {
@@ -54,6 +56,7 @@ class BlobTracker {
   };
   cv::Point2f predicted(const Track& t) const { return t.position + t.velocity; }
   int margin_of(const Track& t) const;
+  float jump_limit(const Track& t) const;
   cv::Rect window_of(const Track& t) const;
   bool needs_full_scan() const;
   void full_scan(const cv::Mat& image);

@@ -170,5 +170,32 @@ TEST(BlobTracker, ScansTheFullFrameWhenABlobLeavesItsNarrowWindow) {
   EXPECT_GT(tracker.windows().at(0).width, narrow + 4);
 }
 
+// A target crossing the image at 12 px a frame (a wand at 24 Hz): farther than max_jump from
+// where a new track was, so the first full scans take it up at max_first_jump, and from the
+// third frame on its windows hold it.
+TEST(BlobTracker, TakesUpABlobFasterThanMaxJump) {
+  BlobTrackerConfig config;
+  config.full_scan_every = 100;
+  BlobTracker tracker(config);
+  cv::RNG rng(8);
+  int windowed = 0;
+  for (int f = 0; f < 12; ++f) {
+    const Disc d{30.0 + 12.0 * f, 60.0 + 5.0 * f, 3};
+    const auto& blobs = tracker.process(frame({d}, rng));
+    ASSERT_EQ(blobs.size(), 1u) << "frame " << f;
+    EXPECT_NEAR(blobs[0].x, d.cx, 0.1) << "frame " << f;
+    windowed += !tracker.last_was_full_scan();
+    if (f >= 2) {
+      EXPECT_FALSE(tracker.last_was_full_scan()) << "frame " << f;
+    }
+  }
+  EXPECT_EQ(windowed, 10);
+  // Without the wider first jump the track is born anew at every full scan and never windowed.
+  config.max_first_jump = 0.0f;
+  BlobTracker strict(config);
+  for (int f = 0; f < 12; ++f) strict.process(frame({{30.0 + 12.0 * f, 60.0 + 5.0 * f, 3}}, rng));
+  EXPECT_TRUE(strict.last_was_full_scan());
+}
+
 }  // namespace
 }  // namespace syncap::edge
