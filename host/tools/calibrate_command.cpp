@@ -133,6 +133,8 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
       o.critical_snooping = number_arg(arg, value());
     } else if (arg == "--max-frames") {
       o.max_frames = static_cast<int>(number_arg(arg, value()));
+    } else if (arg == "--bootstrap") {
+      o.bootstrap_samples = static_cast<int>(number_arg(arg, value()));
     } else if (arg == "--image-size") {
       const std::string& v = value();
       const auto x = v.find('x');

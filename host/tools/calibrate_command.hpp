@@ -32,6 +32,8 @@ inline constexpr const char* kCalibrateUsage =
     "  --wand-sigma MM       standard deviation of a wand distance (0.2)\n"
     "  --critical-w W        data snooping's critical value (3.29)\n"
     "  --max-frames N        use at most N frames, evenly spread (default all)\n"
+    "  --bootstrap N         also the interior sigmas of N re-adjustments of simulated\n"
+    "                        measurements (a parametric bootstrap: honest in weak networks)\n"
     "  --cameras LIST        camera ids to wait for in each frame group (lcm:, lcmlog:; for a\n"
     "                        log default: every camera in it)\n"
     "  --frames N            lcm: stop after N frame groups\n"

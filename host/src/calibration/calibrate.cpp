@@ -1,4 +1,5 @@
 #include "calibration/calibrate.hpp"
+#include "estimators/bootstrap.hpp"
 #include "sensor/rotation.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -264,6 +265,26 @@ std::vector<double> adjusted_wand_lengths(const scene::Network& network,
   return lengths;
 }
 
+// The parametric bootstrap's interior sigmas beside the linearised ones in the report.
+void add_bootstrap(CalibrationResult& out, const CalibrationOptions& options) {
+  say(options, "bootstrap: " + std::to_string(options.bootstrap_samples) + " re-adjustments ...");
+  estimators::BootstrapOptions bootstrap;
+  bootstrap.samples = options.bootstrap_samples;
+  const estimators::BootstrapResult b =
+      estimators::bootstrap_precision(out.network, out.adjustment, bootstrap);
+  out.report.bootstrap_samples = b.samples;
+  for (size_t s = 0; s < out.report.cameras.size() && s < b.interior_sigma.size(); ++s) {
+    auto& parameters = out.report.cameras[s].parameters;
+    for (int i = 0; i < sensor::InteriorBlock::kSize && i < static_cast<int>(parameters.size());
+         ++i) {
+      parameters[static_cast<size_t>(i)].bootstrap_sigma =
+          b.interior_sigma[s][static_cast<size_t>(i)];
+    }
+  }
+  say(options, "bootstrap: " + std::to_string(b.samples) + " converged, " +
+                   std::to_string(b.failed) + " did not");
+}
+
 void fill_report(CalibrationResult& out, const Observations& observations,
                  const CalibrationOptions& options, const std::vector<int64_t>& frames) {
   const auto& r = out.adjustment;
@@ -359,6 +380,10 @@ void check_options(const CalibrationOptions& options) {
   }
   if (!(options.field_of_view_deg > 5 && options.field_of_view_deg < 170)) {
     throw CalibrationError("calibrate: the field of view must lie in (5, 170) degrees");
+  }
+  if (options.bootstrap_samples < 0 || options.bootstrap_samples == 1) {
+    throw CalibrationError("calibrate: --bootstrap needs at least 2 re-adjustments, not " +
+                           std::to_string(options.bootstrap_samples));
   }
   if (!(options.sigma_px > 0)) throw CalibrationError("calibrate: sigma_px must be > 0");
 }
@@ -505,6 +530,7 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
     out.measurements_of_point[out.network.measurements[m].point].push_back(m);
   }
   fill_report(out, observations, options, frames);
+  if (options.bootstrap_samples > 1 && out.adjustment.converged) add_bootstrap(out, options);
   out.quality = quality_of(out, options);
   return out;
 }

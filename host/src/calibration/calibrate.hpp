@@ -64,6 +64,9 @@ struct CalibrationOptions {
   // p1, p2, for an LED (weaker: one point a frame, no scale) the same without k3.
   std::vector<int> free_interior;
   int max_frames = 0;  // use at most this many frames, evenly spread (0: all)
+  // > 1: also the interior sigmas of this many re-adjustments of measurements simulated from the
+  // result (estimators/bootstrap.hpp), in the report beside the linearised ones.
+  int bootstrap_samples = 0;
   NetworkStartOptions start;
   // Called with one line per step ("identified 3 cameras: ...", "start values: ..."); the CLI
   // prints them on a terminal.

@@ -71,8 +71,10 @@ std::string text_camera(const ReportCamera& c) {
   std::string out = printf_string("\ncamera %d: %ld observations, %ld rejected, RMS %.4f px\n",
                                   c.camera.id, c.observations, c.rejected, c.rms_px);
   for (const ReportParameter& p : c.parameters) {
-    out += printf_string("  %-6s %+.10e  +- %.3e %-6s %s\n", p.name.c_str(), p.value, p.sigma,
+    out += printf_string("  %-6s %+.10e  +- %.3e %-6s %s", p.name.c_str(), p.value, p.sigma,
                          p.unit.c_str(), p.mode.c_str());
+    if (p.bootstrap_sigma > 0) out += printf_string("  (bootstrap +- %.3e)", p.bootstrap_sigma);
+    out += "\n";
   }
   if (c.correlation.rows() > 0) {
     out += "  correlations:\n        ";
@@ -132,11 +134,14 @@ std::string html_parameters(const ReportCamera& c) {
       printf_string("<h3>camera %d</h3><p>%ld observations, %ld rejected, RMS %.4f px</p>",
                     c.camera.id, c.observations, c.rejected, c.rms_px);
   out +=
-      "<table><tr><th>parameter</th><th>value</th><th>std. dev.</th><th>unit</th>"
-      "<th>mode</th></tr>";
+      "<table><tr><th>parameter</th><th>value</th><th>std. dev.</th><th>bootstrap std. "
+      "dev.</th><th>unit</th><th>mode</th></tr>";
   for (const ReportParameter& p : c.parameters) {
-    out += printf_string("<tr><td>%s</td><td>%.8g</td><td>%.3g</td><td>%s</td><td>%s</td></tr>",
-                         p.name.c_str(), p.value, p.sigma, p.unit.c_str(), p.mode.c_str());
+    const std::string bootstrap =
+        p.bootstrap_sigma > 0 ? printf_string("%.3g", p.bootstrap_sigma) : std::string("-");
+    out += printf_string(
+        "<tr><td>%s</td><td>%.8g</td><td>%.3g</td><td>%s</td><td>%s</td><td>%s</td></tr>",
+        p.name.c_str(), p.value, p.sigma, bootstrap.c_str(), p.unit.c_str(), p.mode.c_str());
   }
   return out + "</table>";
 }

@@ -21,9 +21,10 @@ namespace syncap::calibration {
 struct ReportParameter {
   std::string name;  // "c", "xp", ..., "X0", ..., "kappa"
   double value = 0;
-  double sigma = 0;  // a posteriori standard deviation; 0 when not estimated
-  std::string unit;  // "mm", "rad", "mm^-2", "1"
-  std::string mode;  // "free", "fixed", "observed"
+  double sigma = 0;            // a posteriori standard deviation; 0 when not estimated
+  std::string unit;            // "mm", "rad", "mm^-2", "1"
+  std::string mode;            // "free", "fixed", "observed"
+  double bootstrap_sigma = 0;  // from the parametric bootstrap; 0 when not computed
 };
 
 struct ReportCamera {
@@ -71,6 +72,7 @@ struct CalibrationReport {
   int iterations = 0;
   bool converged = false;
   long outliers_removed = 0;
+  int bootstrap_samples = 0;          // re-adjustments behind ReportParameter::bootstrap_sigma
   std::vector<std::string> messages;  // notes from the run (rejected frames, warnings)
 };
 

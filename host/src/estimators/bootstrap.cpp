@@ -1,5 +1,7 @@
 #include "estimators/bootstrap.hpp"
 
+#include <glog/logging.h>
+
 #include <cmath>
 #include <map>
 #include <random>
@@ -115,17 +117,28 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
   std::vector<std::vector<std::array<double, 10>>> values(models);
   std::mt19937 rng(options.seed);
   BootstrapResult out;
-  for (int s = 0; s < options.samples; ++s) {
-    scene::Network sample = base;
-    simulate_observations(sample, scale, rng);
-    const BundleAdjustmentResult r = adjust(sample, options.bundle);
-    if (!r.converged || r.models.size() != models) {
-      ++out.failed;
-      continue;
+  // Ceres warns on stderr whenever a Levenberg-Marquardt step's dense Cholesky fails; started at
+  // a solution, the samples' first steps do that now and then and the solver recovers by
+  // damping more. Dozens of such lines would bury the progress: errors only, for the samples.
+  struct ErrorsOnly {
+    int level = FLAGS_minloglevel;
+    ErrorsOnly() { FLAGS_minloglevel = google::GLOG_ERROR; }
+    ~ErrorsOnly() { FLAGS_minloglevel = level; }
+  };
+  {
+    const ErrorsOnly quiet;
+    for (int s = 0; s < options.samples; ++s) {
+      scene::Network sample = base;
+      simulate_observations(sample, scale, rng);
+      const BundleAdjustmentResult r = adjust(sample, options.bundle);
+      if (!r.converged || r.models.size() != models) {
+        ++out.failed;
+        continue;
+      }
+      ++out.samples;
+      for (size_t c = 0; c < models; ++c)
+        values[c].push_back(sensor::interior_block(r.models[c].interior));
     }
-    ++out.samples;
-    for (size_t c = 0; c < models; ++c)
-      values[c].push_back(sensor::interior_block(r.models[c].interior));
   }
   out.interior_sigma.assign(models, {});
   out.interior_covariance.assign(models, Eigen::Matrix<double, 10, 10>::Zero());

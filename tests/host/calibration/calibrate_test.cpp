@@ -210,6 +210,36 @@ TEST(Calibrate, ErrorsNameTheCameraOrTheOption) {
   }
   CalibrationOptions no_length;
   EXPECT_THROW(calibrate(obs, no_length), CalibrationError);
+  CalibrationOptions one_sample = wand_options();
+  one_sample.bootstrap_samples = 1;
+  EXPECT_THROW(calibrate(obs, one_sample), CalibrationError);
+}
+
+// --bootstrap: the report carries the bootstrap's interior sigmas beside the linearised ones;
+// in this strong network (120 wand positions) they agree to the bootstrap's sampling error.
+TEST(Calibrate, BootstrapSigmasBesideTheLinearisedOnes) {
+  estimators::WandSimulation sim;
+  sim.frames = 120;
+  const Simulated s = observe(sim, false, 0.0, 0.0);
+  CalibrationOptions options = wand_options();
+  options.bootstrap_samples = 20;
+  std::vector<std::string> progress;
+  options.progress = [&](const std::string& line) { progress.push_back(line); };
+  const CalibrationResult r = calibrate(s.observations, options);
+  ASSERT_TRUE(r.adjustment.converged);
+  EXPECT_EQ(r.report.bootstrap_samples, 20);
+  EXPECT_EQ(progress.back().rfind("bootstrap: 20 converged", 0), 0u) << progress.back();
+  for (const ReportCamera& camera : r.report.cameras) {
+    for (const ReportParameter& p : camera.parameters) {
+      if (p.name == "c" || p.name == "xp" || p.name == "yp") {
+        EXPECT_NEAR(p.bootstrap_sigma / p.sigma, 1.0, 0.5) << p.name;
+      }
+      if (p.mode == "fixed" || p.name == "X0") {
+        EXPECT_EQ(p.bootstrap_sigma, 0.0) << p.name;  // held, or an exterior value
+      }
+    }
+  }
+  EXPECT_NE(format_report_text(r.report).find("(bootstrap +- "), std::string::npos);
 }
 
 }  // namespace
