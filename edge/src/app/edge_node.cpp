@@ -26,7 +26,7 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
       detection_({options.detection, options.detector, options.full_scan_every,
                   options.roi_follows_windows}) {
   if (options_.mask) {
-    silhouettes_.emplace(options_.contour_tolerance_px, person_masking_options(),
+    silhouettes_.emplace(options_.contour_tolerance_px, options_.masking,
                          options_.train_in_background);
     if (options_.train_frames > 0)
       silhouettes_->start_training(options_.train_frames, options_.train_from_frame);

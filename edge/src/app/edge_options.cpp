@@ -56,7 +56,7 @@ cv::Rect parse_roi(const std::string& text) {
 
 bool is_flag(const std::string& option) {
   return option == "--udp-socket" || option == "--exit-after-last" || option == "--quiet" ||
-         option == "--roi-follows-windows";
+         option == "--roi-follows-windows" || option == "--mask-no-shadows";
 }
 
 bool takes_value(const std::string& option) {
@@ -72,6 +72,15 @@ bool takes_value(const std::string& option) {
                                               "--train-frames",
                                               "--train-from-frame",
                                               "--contour-tolerance",
+                                              "--mask-k",
+                                              "--mask-min-difference",
+                                              "--mask-shadow-test",
+                                              "--mask-shadow-sigmas",
+                                              "--mask-ncc",
+                                              "--mask-fill-holes",
+                                              "--mask-closing",
+                                              "--mask-min-area",
+                                              "--mask-update-rate",
                                               "--roi",
                                               "--threshold",
                                               "--min-area",
@@ -86,6 +95,35 @@ bool takes_value(const std::string& option) {
   return kOptions.contains(option);
 }
 
+// One --mask-* option onto the medi-picture options (docs/segmentation.md has what each does).
+bool apply_masking_option(MediPictureOptions& m, const std::string& a, const std::string& v) {
+  if (a == "--mask-k") {
+    m.k = parse_number<float>(v, 0.1f, 100.0f);
+  } else if (a == "--mask-min-difference") {
+    m.min_difference = parse_number<float>(v, 0.0f, 255.0f);
+  } else if (a == "--mask-shadow-test") {
+    if (v != "correlation" && v != "common-ratio") {
+      throw BadValue("'" + v + "': expected correlation or common-ratio");
+    }
+    m.shadow_test = v == "correlation" ? ShadowTest::kCorrelation : ShadowTest::kCommonRatio;
+  } else if (a == "--mask-shadow-sigmas") {
+    m.shadow_ratio_sigmas = parse_number<float>(v, 0.1f, 100.0f);
+  } else if (a == "--mask-ncc") {
+    m.ncc_threshold = parse_number<float>(v, -1.0f, 1.0f);
+  } else if (a == "--mask-fill-holes") {
+    m.max_hole_area = parse_number<int>(v, 0, 1 << 24);
+  } else if (a == "--mask-closing") {
+    m.closing_diameter = parse_number<int>(v, 0, 255);
+  } else if (a == "--mask-min-area") {
+    m.min_component_area = parse_number<int>(v, 0, 1 << 24);
+  } else if (a == "--mask-update-rate") {
+    m.update_rate = parse_number<float>(v, 0.0f, 1.0f);
+  } else {
+    return false;
+  }
+  return true;
+}
+
 // Applies one option. `value` is its argument (nullopt for a flag given on the command line,
 // "true"/"false" for a flag from the config file). Returns false for an unknown option; throws
 // BadValue.
@@ -97,8 +135,10 @@ bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std:
     if (a == "--exit-after-last") o.exit_after_last = on;
     if (a == "--quiet") o.quiet = on;
     if (a == "--roi-follows-windows") o.roi_follows_windows = on;
+    if (a == "--mask-no-shadows") o.masking.remove_shadows = !on;
     return true;
   }
+  if (a.rfind("--mask-", 0) == 0) return apply_masking_option(o.masking, a, value.value());
   const std::string& v = value.value();
   if (a == "--camera-id") {
     o.camera_id = parse_number<int>(v, 0, proto::kMaxCameraId);
@@ -216,6 +256,12 @@ std::string edge_usage() {
          "                      TRAIN_BACKGROUND command) ...\n"
          "  --train-from-frame F  ... numbered F..F+N-1 (default: the first N frames)\n"
          "  --contour-tolerance PX  mask: polygon simplification (default 0.5)\n"
+         "  --mask-k K, --mask-min-difference DN, --mask-shadow-test correlation|common-ratio,\n"
+         "  --mask-shadow-sigmas S, --mask-ncc L, --mask-no-shadows, --mask-fill-holes PX,\n"
+         "  --mask-closing PX, --mask-min-area PX, --mask-update-rate R\n"
+         "                      mask: change the person preset (k 1, min difference 6,\n"
+         "                      common-ratio at 3 sigmas, closing 5, holes to 100 px filled;\n"
+         "                      docs/segmentation.md), as segment-eval --person takes them\n"
          "  --threshold DN      blob threshold 1..255 (default 128)\n"
          "  --min-area PX       smallest blob area (default 2)\n"
          "  --max-area PX       largest blob area (default 20000)\n"

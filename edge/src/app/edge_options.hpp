@@ -9,6 +9,7 @@
 
 #include "app/detection_stage.hpp"
 #include "detection/blob_detector.hpp"
+#include "segmentation/medi_picture.hpp"
 
 namespace syncap::edge {
 
@@ -27,7 +28,9 @@ struct EdgeOptions {
   // see the model at once).
   bool train_in_background = true;
   double contour_tolerance_px = 0.5;  // 1 px costs ~1 % IoU on a 300 px tall person
-  cv::Rect roi;                       // sensor region of interest at start; empty: the whole sensor
+  // mask: the medi-picture classification (--mask-* options change the person preset).
+  MediPictureOptions masking = person_masking_options();
+  cv::Rect roi;  // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;
   BlobDetectorConfig detector;
   DetectionMode detection = DetectionMode::kFull;  // --detection full|windowed
