@@ -96,6 +96,7 @@ syncap::study::StudyReport study_options(const Arguments& a) {
   report.short_mode = a.short_mode;
   if (a.short_mode) {
     report.table_options.runs = 4;
+    report.table_options.bootstrap_samples = 10;
     report.ring_options.runs = 3;
   }
   if (a.runs > 0) {
@@ -123,6 +124,7 @@ int main(int argc, char** argv) {
   report.table_4_3 = syncap::study::run_table_4_3(basler, report.table_options);
   syncap::study::Table43Options small_noise = report.table_options;
   small_noise.noise_px = {0.04};
+  small_noise.bootstrap_samples = 0;
   small_noise.wands = {10, 40};
   report.table_4_3_small_noise = syncap::study::run_table_4_3(basler, small_noise);
   std::fprintf(stderr, "six-camera network: %d runs of %d wand positions ...\n",

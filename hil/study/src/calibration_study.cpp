@@ -9,6 +9,7 @@
 
 #include "calibration/network_start.hpp"
 #include "camera_rig.hpp"
+#include "estimators/bootstrap.hpp"
 #include "estimators/bundle_adjustment.hpp"
 #include "sensor/camera_model.hpp"
 
@@ -276,7 +277,8 @@ WandSimulation simulation_from_scenario(const sim::Scenario& scenario, int frame
   return simulation;
 }
 
-RunResult run_calibration(const WandSimulation& simulation, int wand_check_frames) {
+RunResult run_calibration(const WandSimulation& simulation, int wand_check_frames,
+                          int bootstrap_samples) {
   const auto start_time = std::chrono::steady_clock::now();
   RunResult out;
   const SimulatedWandNetwork simulated = estimators::simulate_wand_network(simulation);
@@ -313,6 +315,13 @@ RunResult run_calibration(const WandSimulation& simulation, int wand_check_frame
       out.interior_error.push_back(error);
       out.interior_sigma.push_back(model.interior_sigma);
     }
+    if (bootstrap_samples > 0) {
+      estimators::BootstrapOptions options;
+      options.samples = bootstrap_samples;
+      options.seed = simulation.seed;
+      out.interior_sigma_bootstrap =
+          estimators::bootstrap_precision(start.network, r, options).interior_sigma;
+    }
     compare_points(r, simulated, out);
     if (wand_check_frames > 0) {
       check_wand_length(simulation, estimated_cameras(r, start.network), wand_check_frames, out);
@@ -341,7 +350,8 @@ Table43Row run_table_4_3_row(const sim::Scenario& basler, const Table43Options& 
   for (int run = 0; run < options.runs; ++run) {
     const uint32_t seed = options.seed + 1000u * static_cast<uint32_t>(wands) + run;
     const RunResult r = run_calibration(
-        simulation_from_scenario(basler, wands, noise_px, options.wand_sigma_mm, seed), 0);
+        simulation_from_scenario(basler, wands, noise_px, options.wand_sigma_mm, seed), 0,
+        options.bootstrap_samples);
     ++row.runs;
     if (!r.ok) {
       ++row.failed;
@@ -356,6 +366,11 @@ Table43Row run_table_4_3_row(const sim::Scenario& basler, const Table43Options& 
         row.interior_3.add(r.interior_error[c][k], r.interior_sigma[c][k]);
         row.interior_2.add(r.interior_error[c][k], r.interior_sigma[c][k]);
         row.per_parameter[p].add(r.interior_error[c][k], r.interior_sigma[c][k]);
+        if (c < r.interior_sigma_bootstrap.size() && r.interior_sigma_bootstrap[c][k] > 0.0) {
+          const double sigma = r.interior_sigma_bootstrap[c][k];
+          row.interior_3_bootstrap.add(r.interior_error[c][k], sigma);
+          row.per_parameter_bootstrap[p].add(r.interior_error[c][k], sigma);
+        }
       }
     }
     for (int k = 0; k < 3; ++k) row.ours[5 + k] += r.mean_point_sigma[k];

@@ -59,6 +59,8 @@ struct RunResult {
   double half_diagonal_mm = 0.0;
   // Per camera, in block order (c, xp, yp, k1, k2, k3, p1, p2, sc, sh): estimate - truth, sigma.
   std::vector<std::array<double, sensor::InteriorBlock::kSize>> interior_error, interior_sigma;
+  // The same sigmas from a parametric bootstrap (estimators/bootstrap.hpp); empty unless asked.
+  std::vector<std::array<double, sensor::InteriorBlock::kSize>> interior_sigma_bootstrap;
   std::array<double, 3> mean_point_sigma{};  // stdX, stdY, stdZ over the adjusted points [mm]
   SigmaCount point_errors_3{3.0};            // coordinates, after the rigid fit onto the truth
   // The wand's end-to-end length on fresh wand positions, triangulated with the estimated cameras.
@@ -77,7 +79,9 @@ estimators::WandSimulation simulation_from_scenario(const sim::Scenario& scenari
 
 // Simulates, starts (network_start), adjusts and compares. `wand_check_frames` fresh wand
 // positions measure the wand length afterwards (0: none).
-RunResult run_calibration(const estimators::WandSimulation& simulation, int wand_check_frames);
+// `bootstrap_samples` > 0 also estimates the interior sigmas by a parametric bootstrap.
+RunResult run_calibration(const estimators::WandSimulation& simulation, int wand_check_frames,
+                          int bootstrap_samples = 0);
 
 // Thesis Table 4.3: one row per image noise and number of wand positions.
 struct Table43Row {
@@ -90,6 +94,9 @@ struct Table43Row {
   std::vector<std::string> failures;
   SigmaCount interior_3{3.0}, interior_2{2.0};  // c, xp, yp, sc, k1 of every camera and run
   std::array<SigmaCount, 5> per_parameter{};    // c, xp, yp, sc, k1 (k = 3)
+  // The same errors against the bootstrap's sigmas (when Table43Options::bootstrap_samples > 0).
+  SigmaCount interior_3_bootstrap{3.0};
+  std::array<SigmaCount, 5> per_parameter_bootstrap{};
   SigmaCount points_3{3.0};
   double mean_sigma0 = 0.0;
   double max_image_radius_mm = 0.0, half_diagonal_mm = 0.0;  // largest over the runs
@@ -104,6 +111,7 @@ struct Table43Options {
   std::vector<double> noise_px{1.0, 0.2};
   double wand_sigma_mm = 1.0;  // thesis: "spatial distances with an uncertainty of 1 mm"
   uint32_t seed = 4301;
+  int bootstrap_samples = 30;  // per run, for the bootstrap's sigmas (0: none)
 };
 
 std::vector<Table43Row> run_table_4_3(const sim::Scenario& basler, const Table43Options& options);
