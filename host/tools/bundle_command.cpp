@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "estimators/bootstrap.hpp"
 #include "estimators/bundle_adjustment.hpp"
 #include "sdl/sdl.hpp"
 #include "sensor/camera_model.hpp"
@@ -83,32 +84,6 @@ void sort_by_name(scene::Network& network) {
   std::stable_sort(network.models.begin(), network.models.end(), by);
   std::stable_sort(network.stations.begin(), network.stations.end(), by);
   std::stable_sort(network.points.begin(), network.points.end(), by);
-}
-
-// The input network with the adjusted values as its approximations, ready to be adjusted again.
-scene::Network adjusted_network(scene::Network network,
-                                const estimators::BundleAdjustmentResult& result) {
-  network.design.simulate = false;
-  for (auto& model : network.models) {
-    for (const auto& r : result.models) {
-      if (r.name == model.name) model.interior = r.interior;
-    }
-  }
-  for (auto& station : network.stations) {
-    for (const auto& r : result.stations) {
-      if (r.name != station.name) continue;
-      station.exterior = r.exterior;
-      station.has_approximation = true;
-    }
-  }
-  for (auto& point : network.points) {
-    for (const auto& r : result.points) {
-      if (r.name != point.name || !r.adjusted) continue;
-      point.xyz = r.xyz;
-      point.has_approximation = true;
-    }
-  }
-  return network;
 }
 
 // OUTPUT MISCLOSURES: approximate projection - measured, before the adjustment.
@@ -277,7 +252,8 @@ int run_bundle(const BundleArgs& args, std::ostream& out, std::ostream& err) {
   estimators::BundleOptions options;
   options.log_iterations = design.output_iterations;  // Ceres prints them, one line each
   const estimators::BundleAdjustmentResult result = estimators::adjust(network, options);
-  const scene::Network adjusted = adjusted_network(network, result);
+  scene::Network adjusted = estimators::with_adjusted_values(network, result);
+  adjusted.design.simulate = false;
 
   if (design.output_messages) {
     for (const std::string& message : result.messages) out << message << '\n';

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -57,44 +58,46 @@ void simulate_observations(scene::Network& network, double scale, std::mt19937& 
 
 }  // namespace
 
-scene::Network with_adjusted_values(const scene::Network& network,
+scene::Network with_adjusted_values(scene::Network network,
                                     const BundleAdjustmentResult& adjusted) {
-  scene::Network out = network;
-  for (auto& model : out.models) {
+  for (auto& model : network.models) {
     for (const auto& r : adjusted.models) {
       if (r.name == model.name) model.interior = r.interior;
     }
   }
-  for (auto& station : out.stations) {
+  for (auto& station : network.stations) {
     for (const auto& r : adjusted.stations) {
       if (r.name != station.name) continue;
       station.exterior = r.exterior;
       station.has_approximation = true;
     }
   }
-  std::map<std::string, bool> kept;
-  out.points.clear();
-  for (const auto& point : network.points) {
+  for (auto& point : network.points) {
     for (const auto& r : adjusted.points) {
       if (r.name != point.name || !r.adjusted) continue;
-      scene::ObjectPoint p = point;
-      p.xyz = r.xyz;
-      p.has_approximation = true;
-      out.points.push_back(p);
-      kept[p.name] = true;
+      point.xyz = r.xyz;
+      point.has_approximation = true;
     }
   }
-  out.measurements.clear();
+  return network;
+}
+
+scene::Network accepted_part(scene::Network network, const BundleAdjustmentResult& adjusted) {
+  std::set<std::string> kept;
+  for (const auto& r : adjusted.points) {
+    if (r.adjusted) kept.insert(r.name);
+  }
+  std::erase_if(network.points, [&](const auto& p) { return !kept.count(p.name); });
+  std::vector<scene::ImageMeasurement> measurements;
   for (size_t m = 0; m < network.measurements.size() && m < adjusted.measurements.size(); ++m) {
     if (adjusted.measurements[m].status != MeasurementStatus::kAccepted) continue;
     if (!kept.count(network.measurements[m].point)) continue;
-    out.measurements.push_back(network.measurements[m]);
+    measurements.push_back(network.measurements[m]);
   }
-  out.distances.clear();
-  for (const auto& d : network.distances) {
-    if (kept.count(d.point_a) && kept.count(d.point_b)) out.distances.push_back(d);
-  }
-  return out;
+  network.measurements = std::move(measurements);
+  std::erase_if(network.distances,
+                [&](const auto& d) { return !kept.count(d.point_a) || !kept.count(d.point_b); });
+  return network;
 }
 
 BootstrapResult bootstrap_precision(const scene::Network& network,
@@ -103,7 +106,7 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
   if (!adjusted.converged || adjusted.models.empty()) {
     throw std::invalid_argument("bootstrap: the adjustment has no converged solution");
   }
-  scene::Network base = with_adjusted_values(network, adjusted);
+  scene::Network base = accepted_part(with_adjusted_values(network, adjusted), adjusted);
   // Each sample is a plain least-squares solution from the adjusted values: no covariance, no
   // tests, no rejections.
   base.design.simulate = false;

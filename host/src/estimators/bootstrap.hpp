@@ -46,9 +46,12 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
                                     const BundleAdjustmentResult& adjusted,
                                     const BootstrapOptions& options);
 
-// The network with the adjusted values as its approximate (and observed) values, keeping only
-// the measurements the adjustment accepted and the points it adjusted.
-scene::Network with_adjusted_values(const scene::Network& network,
-                                    const BundleAdjustmentResult& adjusted);
+// The network with the adjusted values as its approximate (and observed) values, ready to be
+// adjusted again (`syncap bundle` writes it back as SDL).
+scene::Network with_adjusted_values(scene::Network network, const BundleAdjustmentResult& adjusted);
+
+// The part of the network the adjustment used: the points it adjusted, the measurements it
+// accepted and the distances between kept points.
+scene::Network accepted_part(scene::Network network, const BundleAdjustmentResult& adjusted);
 
 }  // namespace syncap::estimators

@@ -70,9 +70,11 @@ TEST(Bootstrap, SimulatesOnlyWhatTheAdjustmentAccepted) {
   const SimulatedWandNetwork s = simulate_wand_network(sim);
   const BundleAdjustmentResult r = adjusted(s.network);
   ASSERT_FALSE(r.rejected.empty());
-  const scene::Network kept = with_adjusted_values(s.network, r);
+  const scene::Network all = with_adjusted_values(s.network, r);
+  EXPECT_EQ(all.measurements.size(), s.network.measurements.size());
+  for (const auto& station : all.stations) EXPECT_TRUE(station.has_approximation);
+  const scene::Network kept = accepted_part(all, r);
   EXPECT_EQ(kept.measurements.size() + r.rejected.size(), s.network.measurements.size());
-  for (const auto& station : kept.stations) EXPECT_TRUE(station.has_approximation);
   BundleAdjustmentResult failed;
   EXPECT_THROW(bootstrap_precision(s.network, failed, {}), std::invalid_argument);
 }
