@@ -201,11 +201,13 @@ estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
     // One point a frame and no scale leave c and the principal point weakly determined (thesis
     // Table 4.8): held loosely at their approximations (c within half its value, the principal
     // point within a tenth of the sensor) so that blunders cannot walk them off to a degenerate
-    // camera (c -> 0) during data snooping.
+    // camera (c -> 0) during data snooping. The first stage, with the blunders still in, holds c
+    // within a tenth: else it can wander along the flat valley of c against depth (one seed of
+    // the strawlab blunder test ended with c 3 to 7 times too long).
     if (options.wand.led) {
       const double width_mm = model.sensor.width_px * model.sensor.pixel_width_mm;
       model.priors[sensor::InteriorBlock::kC] =
-          scene::ParameterPrior::observed(0.5 * model.interior.c);
+          scene::ParameterPrior::observed((stage.snoop ? 0.5 : 0.1) * model.interior.c);
       model.priors[sensor::InteriorBlock::kXp] = scene::ParameterPrior::observed(0.1 * width_mm);
       model.priors[sensor::InteriorBlock::kYp] = scene::ParameterPrior::observed(0.1 * width_mm);
     }
