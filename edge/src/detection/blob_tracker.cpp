@@ -182,7 +182,7 @@ static void prefetch_windows(const cv::Mat& image, const std::vector<cv::Rect>& 
   }
 }
 
-// Per track the nearest blob within max_jump of its prediction among those its own window
+// Per track the nearest blob within jump_limit of its prediction among those its own window
 // found (greedy, tracks in order): a track can only have moved to where its window looked.
 void BlobTracker::associate_in_windows() {
   match_.assign(tracks_.size(), -1);

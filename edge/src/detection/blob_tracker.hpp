@@ -65,7 +65,7 @@ class BlobTracker {
   // The windows around the tracks' predictions, overlapping ones merged; `owner` (if given)
   // gets each track's window index.
   void windows_into(std::vector<cv::Rect>& windows, std::vector<int>* owner) const;
-  // Per prediction the index of the nearest blob within max_jump, or -1 (greedy, in order).
+  // Per prediction the index of the nearest blob within jump_limit, or -1 (greedy, in order).
   void associate(const std::vector<blob_t>& blobs);
   // The same for a windowed scan, each track among the blobs of its own window.
   void associate_in_windows();
