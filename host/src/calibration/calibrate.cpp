@@ -74,49 +74,15 @@ const char* mode_name(scene::ParameterMode mode) {
   return "free";
 }
 
-// Copies the adjusted values of `r` (an adjustment of `adjusted`) into `network` as its new
-// approximations; points are matched by name (`adjusted` may hold fewer).
-void take_adjusted_values(const scene::Network& adjusted,
-                          const estimators::BundleAdjustmentResult& r, scene::Network& network) {
-  for (size_t m = 0; m < network.models.size(); ++m)
-    network.models[m].interior = r.models[m].interior;
-  for (size_t s = 0; s < network.stations.size(); ++s) {
-    network.stations[s].exterior = r.stations[s].exterior;
-    network.stations[s].has_approximation = true;
-  }
-  std::map<std::string, size_t> index;
-  for (size_t p = 0; p < adjusted.points.size() && p < r.points.size(); ++p) {
-    if (r.points[p].adjusted) index[adjusted.points[p].name] = p;
-  }
-  for (scene::ObjectPoint& point : network.points) {
-    const auto it = index.find(point.name);
-    if (it == index.end()) continue;
-    point.xyz = r.points[it->second].xyz;
-    point.has_approximation = true;
-  }
-}
-
 // The network without the points the start could not triangulate (their rays did not meet
 // within NetworkStartOptions::max_ray_error_px with the start's rough interiors), for the first
 // stage; the second stage takes them back, triangulated with the first stage's orientations.
 scene::Network triangulated_part(const scene::Network& network) {
-  scene::Network part = network;
-  std::set<std::string> kept;
-  part.points.clear();
+  std::set<std::string> triangulated;
   for (const scene::ObjectPoint& p : network.points) {
-    if (!p.has_approximation) continue;
-    part.points.push_back(p);
-    kept.insert(p.name);
+    if (p.has_approximation) triangulated.insert(p.name);
   }
-  part.measurements.clear();
-  for (const auto& m : network.measurements) {
-    if (kept.count(m.point)) part.measurements.push_back(m);
-  }
-  part.distances.clear();
-  for (const auto& d : network.distances) {
-    if (kept.count(d.point_a) && kept.count(d.point_b)) part.distances.push_back(d);
-  }
-  return part;
+  return scene::restricted_to_points(network, triangulated);
 }
 
 // The room's vertical as the cameras show it. Cameras hang without roll, so their image-right
@@ -504,7 +470,7 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
   const auto first = adjust_stage(first_network, options, {false, false});
   say(options, "adjustment 1/2 (c, xp, yp, exterior): " + std::to_string(first.iterations) +
                    " iterations, sigma0 " + std::to_string(first.sigma0));
-  take_adjusted_values(first_network, first, network);
+  network = estimators::with_adjusted_values(std::move(network), first);
   level_network(network);
   out.adjustment = adjust_stage(network, options, {true, true});
   say(options, "adjustment 2/2 (all interior values, data snooping): " +

@@ -83,21 +83,18 @@ scene::Network with_adjusted_values(scene::Network network,
 }
 
 scene::Network accepted_part(scene::Network network, const BundleAdjustmentResult& adjusted) {
+  std::vector<scene::ImageMeasurement> accepted;
+  for (size_t m = 0; m < network.measurements.size() && m < adjusted.measurements.size(); ++m) {
+    if (adjusted.measurements[m].status == MeasurementStatus::kAccepted) {
+      accepted.push_back(network.measurements[m]);
+    }
+  }
+  network.measurements = std::move(accepted);
   std::set<std::string> kept;
   for (const auto& r : adjusted.points) {
     if (r.adjusted) kept.insert(r.name);
   }
-  std::erase_if(network.points, [&](const auto& p) { return !kept.count(p.name); });
-  std::vector<scene::ImageMeasurement> measurements;
-  for (size_t m = 0; m < network.measurements.size() && m < adjusted.measurements.size(); ++m) {
-    if (adjusted.measurements[m].status != MeasurementStatus::kAccepted) continue;
-    if (!kept.count(network.measurements[m].point)) continue;
-    measurements.push_back(network.measurements[m]);
-  }
-  network.measurements = std::move(measurements);
-  std::erase_if(network.distances,
-                [&](const auto& d) { return !kept.count(d.point_a) || !kept.count(d.point_b); });
-  return network;
+  return scene::restricted_to_points(std::move(network), kept);
 }
 
 BootstrapResult bootstrap_precision(const scene::Network& network,

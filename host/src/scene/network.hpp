@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -131,5 +132,16 @@ struct Network {
   std::vector<DistanceConstraint> distances;
   ResidualTest residual_test;
 };
+
+// The network restricted to the named points: their measurements and the distances between them.
+inline Network restricted_to_points(Network network, const std::set<std::string>& points) {
+  std::erase_if(network.points, [&](const ObjectPoint& p) { return !points.count(p.name); });
+  std::erase_if(network.measurements,
+                [&](const ImageMeasurement& m) { return !points.count(m.point); });
+  std::erase_if(network.distances, [&](const DistanceConstraint& d) {
+    return !points.count(d.point_a) || !points.count(d.point_b);
+  });
+  return network;
+}
 
 }  // namespace syncap::scene
