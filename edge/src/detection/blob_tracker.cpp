@@ -102,17 +102,25 @@ cv::Rect BlobTracker::next_roi() const {
   return roi;
 }
 
-void BlobTracker::associate(const std::vector<blob_t>& blobs) {
-  predictions_.clear();
-  for (const Track& t : tracks_) predictions_.push_back(predicted(t));
-  match_.assign(predictions_.size(), -1);
+// Greedy, tracks in order: each takes the nearest untaken blob within its jump_limit of its
+// prediction, among all blobs, or (windowed scan) among those its own window found: a track can
+// only have moved to where its window looked.
+void BlobTracker::associate(const std::vector<blob_t>& blobs, bool own_window_only) {
+  match_.assign(tracks_.size(), -1);
   taken_.assign(blobs.size(), 0);
-  for (size_t t = 0; t < predictions_.size(); ++t) {
+  for (size_t t = 0; t < tracks_.size(); ++t) {
+    const cv::Point2f p = predicted(tracks_[t]);
     const double jump = jump_limit(tracks_[t]);
     double best = jump * jump;
-    for (size_t b = 0; b < blobs.size(); ++b) {
+    size_t from = 0, to = blobs.size();
+    if (own_window_only) {
+      const auto w = static_cast<size_t>(window_owner_[t]);
+      from = window_found_[w];
+      to = window_found_[w + 1];
+    }
+    for (size_t b = from; b < to; ++b) {
       if (taken_[b]) continue;
-      const double dx = blobs[b].x - predictions_[t].x, dy = blobs[b].y - predictions_[t].y;
+      const double dx = blobs[b].x - p.x, dy = blobs[b].y - p.y;
       if (dx * dx + dy * dy <= best) {
         best = dx * dx + dy * dy;
         match_[t] = static_cast<int>(b);
@@ -154,7 +162,7 @@ void BlobTracker::full_scan(const cv::Mat& image) {
   windows_.clear();
   threshold_ = detector_.threshold_for(image);
   blobs_ = detector_.detect(image);
-  associate(blobs_);
+  associate(blobs_, false);
   update_tracks(blobs_, false);
   frames_since_full_ = 0;
   full_scan_ = true;
@@ -182,28 +190,6 @@ static void prefetch_windows(const cv::Mat& image, const std::vector<cv::Rect>& 
   }
 }
 
-// Per track the nearest blob within jump_limit of its prediction among those its own window
-// found (greedy, tracks in order): a track can only have moved to where its window looked.
-void BlobTracker::associate_in_windows() {
-  match_.assign(tracks_.size(), -1);
-  taken_.assign(found_.size(), 0);
-  for (size_t t = 0; t < tracks_.size(); ++t) {
-    const auto w = static_cast<size_t>(window_owner_[t]);
-    const cv::Point2f p = predicted(tracks_[t]);
-    const float jump = jump_limit(tracks_[t]);
-    float best = jump * jump;
-    for (size_t b = window_found_[w]; b < window_found_[w + 1]; ++b) {
-      if (taken_[b]) continue;
-      const float dx = found_[b].x - p.x, dy = found_[b].y - p.y;
-      if (dx * dx + dy * dy <= best) {
-        best = dx * dx + dy * dy;
-        match_[t] = static_cast<int>(b);
-      }
-    }
-    if (match_[t] >= 0) taken_[static_cast<size_t>(match_[t])] = 1;
-  }
-}
-
 bool BlobTracker::windowed_scan(const cv::Mat& image) {
   windows_into(windows_, &window_owner_);
   if (window_owner_.size() != tracks_.size()) return false;  // a track left the image
@@ -218,7 +204,7 @@ bool BlobTracker::windowed_scan(const cv::Mat& image) {
     }
     window_found_.push_back(found_.size());
   }
-  associate_in_windows();
+  associate(found_, true);
   if (std::find(match_.begin(), match_.end(), -1) != match_.end()) return false;  // one is lost
   update_tracks(found_, true);
   // By descending area, ties in the order found (an insertion sort: a few blobs, no buffer).

@@ -65,10 +65,9 @@ class BlobTracker {
   // The windows around the tracks' predictions, overlapping ones merged; `owner` (if given)
   // gets each track's window index.
   void windows_into(std::vector<cv::Rect>& windows, std::vector<int>* owner) const;
-  // Per prediction the index of the nearest blob within jump_limit, or -1 (greedy, in order).
-  void associate(const std::vector<blob_t>& blobs);
-  // The same for a windowed scan, each track among the blobs of its own window.
-  void associate_in_windows();
+  // Per track the index of its blob in `blobs`, or -1 (match_), from all blobs or from those
+  // of its own window (window_owner_, window_found_).
+  void associate(const std::vector<blob_t>& blobs, bool own_window_only);
   void update_tracks(const std::vector<blob_t>& found, bool keep_unmatched_tracks);
 
   BlobTrackerConfig config_;
@@ -79,7 +78,6 @@ class BlobTracker {
   std::vector<cv::Rect> windows_;
   // Per-frame buffers, kept to spare allocations.
   std::vector<blob_t> found_;
-  std::vector<cv::Point2f> predictions_;
   std::vector<int> match_;
   std::vector<uint8_t> taken_;
   std::vector<Track> next_tracks_;
