@@ -155,47 +155,8 @@ void RunLabeller::label(const cv::Mat& image, cv::Rect roi, int threshold) {
   roi &= cv::Rect(0, 0, image.cols, image.rows);
   if (roi.empty() || threshold > 255) return;
   const auto t = static_cast<uint8_t>(std::max(threshold, 0));
-  if (roi.width <= 64 && label_one_blob(image, roi, t)) return;
   label_rows(image, roi, t);
   gather();
-}
-
-// A window up to 64 px wide is one bit mask a row. When its bright pixels are one run a row, in
-// rows that follow each other and touch (a tracked blob's window, usually), they are one
-// component: no union-find needed. Returns false, having labelled nothing, otherwise.
-bool RunLabeller::label_one_blob(const cv::Mat& image, cv::Rect roi, uint8_t t) {
-  masks_.resize(static_cast<size_t>(roi.height));
-  int first = -1, last = -1;
-  uint64_t prev = 0;
-  for (int i = 0; i < roi.height; ++i) {
-    const uint8_t* p = image.ptr<uint8_t>(roi.y + i) + roi.x;
-    const uint64_t m = bright_mask(p, roi.width, t, p + 64 <= image.dataend);
-    masks_[static_cast<size_t>(i)] = m;
-    if (m == 0) continue;
-    if (last >= 0 && last != i - 1) return false;  // a second group of rows
-    if (!detail::one_run(m)) return false;         // more than one run in the row
-    if (last >= 0 && ((prev | prev << 1 | prev >> 1) & m) == 0) return false;  // apart
-    if (first < 0) first = i;
-    last = i;
-    prev = m;
-  }
-  if (first < 0) return true;
-  next_run_.clear();
-  for (int i = first; i <= last; ++i) {
-    const uint64_t m = masks_[static_cast<size_t>(i)];
-    const int start = trailing_zeros(m), end = start + trailing_zeros(~(m >> start));
-    add_run(image.ptr<uint8_t>(roi.y + i), roi.y + i, roi.x + start, roi.x + end, image.dataend);
-    next_run_.push_back(i < last ? static_cast<int>(runs_.size()) : -1);
-  }
-  Component& c = components_.emplace_back();
-  c.x0 = c.x1 = runs_[0].x0;
-  c.y0 = c.y1 = runs_[0].y;
-  c.first_run = 0;
-  for (size_t r = 0; r < runs_.size(); ++r) {
-    add_to(c, r);
-    runs_[r].component = 0;
-  }
-  return true;
 }
 
 void RunLabeller::label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t) {

@@ -48,7 +48,6 @@ class RunLabeller {
     int64_t sum_ix = 0, sum_ixx = 0;
     int32_t sum_i = 0, peak = 0;
   };
-  bool label_one_blob(const cv::Mat& image, cv::Rect roi, uint8_t t);
   void label_rows(const cv::Mat& image, cv::Rect roi, uint8_t t);  // runs, joined by union-find
   void gather();  // components from the joined runs
   int find(int a);
@@ -62,7 +61,6 @@ class RunLabeller {
   std::vector<Component> components_;
   std::vector<int> root_component_;
   std::vector<int> roots_;
-  std::vector<uint64_t> masks_;
 };
 
 // Throws std::invalid_argument, naming `who`, unless the image is non-empty 8-bit grey.

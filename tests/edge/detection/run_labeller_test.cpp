@@ -92,9 +92,9 @@ TEST(RunLabeller, MatchesOpenCvInsideARegionOfInterest) {
   }
 }
 
-// Windows up to 64 px wide holding one blob take a shortcut (one bit mask a row, no union-find);
-// shapes that are almost one blob (two runs in a row, rows apart, rows touching only at a
-// corner or not at all) must not, and either way the result is the general labelling's.
+// Windows up to 64 px wide (one bit mask a row) holding one blob or shapes that are almost one
+// blob (two runs in a row, rows apart, rows touching only at a corner or not at all) give what
+// a wider region gives.
 TEST(RunLabeller, WindowsOfOneBlobMatchTheGeneralLabelling) {
   cv::RNG rng(13);
   RunLabeller narrow, wide;
