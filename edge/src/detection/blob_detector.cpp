@@ -7,6 +7,7 @@
 
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "detection/bright_mask.hpp"
 #include "detection/lone_blob.hpp"
 #include "detection/ring_background.hpp"
 #include "detection/run_labeller.hpp"
@@ -62,22 +63,20 @@ WindowSums window_sums(const cv::Mat& image, cv::Rect cw, int threshold) {
 #if CV_SIMD128
     // 16 pixels a vector: v * 1 and v * k summed in pairs (pmaddwd); the last vector reads
     // past the window (inside the image) with the lanes beyond it cleared.
-    static constexpr uint8_t kLanes[32] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
-                                           0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
     const cv::v_uint8x16 vt = cv::v_setall_u8(static_cast<uint8_t>(std::clamp(threshold, 0, 255)));
     const cv::v_int16x8 ones = cv::v_setall_s16(1), eight = cv::v_setall_s16(8);
     cv::v_int16x8 k_lo(0, 1, 2, 3, 4, 5, 6, 7), k_hi = k_lo + eight;
     cv::v_int32x4 sum_v = cv::v_setzero_s32(), sum_vk = cv::v_setzero_s32();
     cv::v_uint8x16 count = cv::v_setzero_u8();
     for (; k < cw.width && (k + 16 <= cw.width || row + k + 16 <= image.dataend); k += 16) {
-      const cv::v_uint8x16 lanes = cv::v_load(kLanes + 16 - std::min(cw.width - k, 16));
+      const cv::v_uint8x16 lanes = detail::first_lanes(std::min(cw.width - k, 16));
       const cv::v_uint8x16 p = cv::v_load(row + k) & lanes;
       cv::v_uint16x8 lo, hi;
       cv::v_expand(p, lo, hi);
       const cv::v_int16x8 slo = cv::v_reinterpret_as_s16(lo), shi = cv::v_reinterpret_as_s16(hi);
       sum_v += cv::v_dotprod(slo, ones) + cv::v_dotprod(shi, ones);
       sum_vk += cv::v_dotprod(slo, k_lo) + cv::v_dotprod(shi, k_hi);
-      count = cv::v_sub_wrap(count, (p >= vt) & lanes);  // 0xFF is -1
+      count = cv::v_sub_wrap(count, detail::bright_lanes(p, vt) & lanes);  // 0xFF is -1
       k_lo += eight + eight;
       k_hi += eight + eight;
     }

@@ -1,5 +1,5 @@
-// Row bit masks of the pixels at or above a threshold, shared by the run labeller and the lone
-// blob fast path. Internal to detection/.
+// Row bit masks and vector lanes of the pixels at or above a threshold, and lane masks, shared
+// by the run labeller, the blob detector and the lone-blob fast path. Internal to detection/.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +7,22 @@
 #include <opencv2/core/hal/intrin.hpp>
 
 namespace syncap::edge::detail {
+
+#if CV_SIMD128
+// 0xFF in the lanes of pixels >= t: t - v saturates to 0 exactly there (two instructions on
+// SSE2, where an unsigned compare takes four).
+[[gnu::always_inline]] inline cv::v_uint8x16 bright_lanes(const cv::v_uint8x16& v,
+                                                          const cv::v_uint8x16& t) {
+  return (t - v) == cv::v_setzero_u8();
+}
+
+// 0xFF in the first n lanes (1 <= n <= 16).
+inline cv::v_uint8x16 first_lanes(int n) {
+  static constexpr uint8_t kLanes[32] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
+                                         0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+  return cv::v_load(kLanes + 16 - n);
+}
+#endif
 
 // Bit i set when p[i] >= t, for i < n <= 64. `overread`: the whole 16-pixel vectors that cover
 // the n pixels may be read. A vector compare per 16 pixels and only as many vectors as n needs:
@@ -18,7 +34,7 @@ namespace syncap::edge::detail {
     const cv::v_uint8x16 vt = cv::v_setall_u8(t);
     uint64_t m = 0;
     for (int k = 0; k < n; k += 16) {
-      const auto bits = static_cast<uint16_t>(cv::v_signmask(cv::v_load(p + k) >= vt));
+      const auto bits = static_cast<uint16_t>(cv::v_signmask(bright_lanes(cv::v_load(p + k), vt)));
       m |= static_cast<uint64_t>(bits) << k;
     }
     return n == 64 ? m : m & ((uint64_t{1} << n) - 1);

@@ -14,19 +14,8 @@ namespace {
 constexpr int kMaxSide = 64;
 
 #if CV_SIMD128
-// 0xFF in the lanes of pixels >= t: t - v saturates to 0 exactly there (two instructions on
-// SSE2, where an unsigned compare takes four).
-[[gnu::always_inline]] inline cv::v_uint8x16 bright_lanes(const cv::v_uint8x16& v,
-                                                          const cv::v_uint8x16& t) {
-  return (t - v) == cv::v_setzero_u8();
-}
-
-// 0xFF in the first n lanes (1 <= n <= 16).
-inline cv::v_uint8x16 first_lanes(int n) {
-  static constexpr uint8_t kLanes[32] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
-                                         0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
-  return cv::v_load(kLanes + 16 - n);
-}
+using detail::bright_lanes;
+using detail::first_lanes;
 
 // Lane indices k = 0..63 as int16, eight a half vector.
 alignas(16) constexpr int16_t kLaneIndex[64] = {

@@ -64,8 +64,6 @@ int RunLabeller::find(int a) {
   int k = 0;
   sv = svk = svkk = peak = 0;
 #if CV_SIMD128
-  static constexpr uint8_t kLanes[32] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
-                                         0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
   if (overread) {
     const cv::v_int16x8 ones = cv::v_setall_s16(1), sixteen = cv::v_setall_s16(16);
     cv::v_int16x8 k_lo(0, 1, 2, 3, 4, 5, 6, 7), k_hi(8, 9, 10, 11, 12, 13, 14, 15);
@@ -73,12 +71,12 @@ int RunLabeller::find(int a) {
     cv::v_int32x4 vkk_sum = cv::v_setzero_s32();
     cv::v_uint8x16 top = cv::v_setzero_u8();
     for (; k < n; k += 16) {
-      const cv::v_uint8x16 p =
-          cv::v_load(row + x0 + k) & cv::v_load(kLanes + 16 - std::min(n - k, 16));
+      const cv::v_uint8x16 p = cv::v_load(row + x0 + k) & detail::first_lanes(std::min(n - k, 16));
       cv::v_uint16x8 lo, hi;
       cv::v_expand(p, lo, hi);
       const cv::v_int16x8 slo = cv::v_reinterpret_as_s16(lo), shi = cv::v_reinterpret_as_s16(hi);
-      const cv::v_int16x8 vk_lo = slo * k_lo, vk_hi = shi * k_hi;  // <= 255 * 63
+      const cv::v_int16x8 vk_lo = cv::v_mul_wrap(slo, k_lo);  // <= 255 * 63: no wrap
+      const cv::v_int16x8 vk_hi = cv::v_mul_wrap(shi, k_hi);
       v_sum += cv::v_dotprod(slo, ones) + cv::v_dotprod(shi, ones);
       vk_sum += cv::v_dotprod(slo, k_lo) + cv::v_dotprod(shi, k_hi);
       vkk_sum += cv::v_dotprod(vk_lo, k_lo) + cv::v_dotprod(vk_hi, k_hi);
