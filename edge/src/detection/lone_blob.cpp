@@ -1,6 +1,7 @@
 #include "detection/lone_blob.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 #include <opencv2/core/hal/intrin.hpp>
 
@@ -197,16 +198,16 @@ Shifted shift(int64_t x0, int64_t y0, int64_t s, int64_t k, int64_t kk, int64_t 
 
 // The component from pass 1's run sums (about the window's corner) and pass 2's intensity
 // sums (about bright_origin), in image coordinates.
-Component component_of(const RunMoments& r, cv::Point window_corner, const WindowMoments& w,
-                       cv::Point bright_origin) {
+Component component_of(const RunMoments& r, cv::Point window_corner, cv::Rect box,
+                       const WindowMoments& w, cv::Point bright_origin) {
   const Shifted u = shift(window_corner.x, window_corner.y, r.n, r.k, r.kk, r.i, r.ii, r.ki);
   const Shifted v = shift(bright_origin.x, bright_origin.y, w.v, w.vk, w.vkk, w.vi, w.vii, w.vki);
   Component c;
   c.area = static_cast<int>(r.n);
-  c.x0 = window_corner.x + detail::trailing_zeros(r.columns);
-  c.x1 = window_corner.x + 63 - __builtin_clzll(r.columns);
-  c.y0 = window_corner.y + r.first;
-  c.y1 = window_corner.y + r.last;
+  c.x0 = box.x;
+  c.x1 = box.x + box.width - 1;
+  c.y0 = box.y;
+  c.y1 = box.y + box.height - 1;
   c.peak = w.peak;
   c.sum_x = u.sx;
   c.sum_y = u.sy;
@@ -221,6 +222,26 @@ Component component_of(const RunMoments& r, cv::Point window_corner, const Windo
   c.sum_ixy = v.sxy;
   c.first_run = -1;
   return c;
+}
+
+// Calls f with std::integral_constant<int, V>, V = vectors (1..4): the passes are unrolled
+// for each width.
+template <class F>
+void with_vectors(int vectors, F&& f) {
+  switch (vectors) {
+    case 1:
+      f(std::integral_constant<int, 1>{});
+      break;
+    case 2:
+      f(std::integral_constant<int, 2>{});
+      break;
+    case 3:
+      f(std::integral_constant<int, 3>{});
+      break;
+    default:
+      f(std::integral_constant<int, 4>{});
+      break;
+  }
 }
 
 // The V whole vectors from each row's start at x, in rows [y, y + rows), may be read.
@@ -242,20 +263,7 @@ LoneBlob measure_lone_blob(const cv::Mat& image, cv::Rect window, uint8_t thresh
   if (!readable(image, window.x, window.y, window.height, vectors)) return LoneBlob::kNotLone;
   RunMoments runs;
   bool lone = false;
-  switch (vectors) {
-    case 1:
-      lone = find_runs<1>(image, window, threshold, runs);
-      break;
-    case 2:
-      lone = find_runs<2>(image, window, threshold, runs);
-      break;
-    case 3:
-      lone = find_runs<3>(image, window, threshold, runs);
-      break;
-    default:
-      lone = find_runs<4>(image, window, threshold, runs);
-      break;
-  }
+  with_vectors(vectors, [&](auto v) { lone = find_runs<v()>(image, window, threshold, runs); });
   if (!lone) return LoneBlob::kNotLone;
   if (runs.n == 0) return LoneBlob::kNone;
   const int box_x = window.x + detail::trailing_zeros(runs.columns);
@@ -269,35 +277,10 @@ LoneBlob measure_lone_blob(const cv::Mat& image, cv::Rect window, uint8_t thresh
     return LoneBlob::kNotLone;
   }
   WindowMoments sums;
-  switch (cw_vectors) {
-    case 1:
-      sum_plain<1>(image, cw, sums);
-      break;
-    case 2:
-      sum_plain<2>(image, cw, sums);
-      break;
-    case 3:
-      sum_plain<3>(image, cw, sums);
-      break;
-    default:
-      sum_plain<4>(image, cw, sums);
-      break;
-  }
-  switch ((box.width + 15) / 16) {
-    case 1:
-      sum_bright<1>(image, box, cw.y, threshold, sums);
-      break;
-    case 2:
-      sum_bright<2>(image, box, cw.y, threshold, sums);
-      break;
-    case 3:
-      sum_bright<3>(image, box, cw.y, threshold, sums);
-      break;
-    default:
-      sum_bright<4>(image, box, cw.y, threshold, sums);
-      break;
-  }
-  blob = component_of(runs, window.tl(), sums, {box.x, cw.y});
+  with_vectors(cw_vectors, [&](auto v) { sum_plain<v()>(image, cw, sums); });
+  with_vectors((box.width + 15) / 16,
+               [&](auto v) { sum_bright<v()>(image, box, cw.y, threshold, sums); });
+  blob = component_of(runs, window.tl(), box, sums, {box.x, cw.y});
   plain.si = sums.all_v;
   plain.six = static_cast<int64_t>(cw.x) * sums.all_v + sums.all_vk;
   plain.siy = static_cast<int64_t>(cw.y) * sums.all_v + sums.all_vi;
