@@ -48,8 +48,7 @@ namespace {
 
 // Over the pixels of `cw`: the sums of intensity v, v * x and v * y, and how many are >= the
 // threshold (all of them the blob's when that equals its area).
-struct WindowSums {
-  int64_t si = 0, six = 0, siy = 0;
+struct WindowSums : CentroidWindowSums {
   int bright = 0;
 };
 
@@ -139,10 +138,10 @@ struct CentroidSums {
   int64_t si = 0, six = 0, siy = 0, n = 0, sx = 0, sy = 0;
 };
 
-CentroidSums whole_window(cv::Rect cw, int64_t si, int64_t six, int64_t siy) {
-  return {si,
-          six,
-          siy,
+CentroidSums whole_window(cv::Rect cw, const CentroidWindowSums& s) {
+  return {s.si,
+          s.six,
+          s.siy,
           static_cast<int64_t>(cw.area()),
           cw.height * sum_of_range(cw.x, cw.x + cw.width - 1),
           cw.width * sum_of_range(cw.y, cw.y + cw.height - 1)};
@@ -251,8 +250,7 @@ void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshol
     if (lone == LoneBlob::kNone) return;
     if (lone == LoneBlob::kOne) {
       const double background = ring_background_(image, cw, window, threshold);
-      add_blob(config_, c, cw, whole_window(cw, plain.si, plain.six, plain.siy), background,
-               extra_flags, out, shapes);
+      add_blob(config_, c, cw, whole_window(cw, plain), background, extra_flags, out, shapes);
       return;
     }
   }
@@ -269,9 +267,9 @@ void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshol
     const double background = ring_background_(image, cw, window, threshold);
     // When the window holds no other bright pixel (the usual case), its plain sums are those.
     const WindowSums plain =
-        cw.width <= kMaxFastWidth ? window_sums(image, cw, threshold) : WindowSums{0, 0, 0, -1};
+        cw.width <= kMaxFastWidth ? window_sums(image, cw, threshold) : WindowSums{{}, -1};
     const CentroidSums sums = plain.bright == c.area
-                                  ? whole_window(cw, plain.si, plain.six, plain.siy)
+                                  ? whole_window(cw, plain)
                                   : sums_without_others(image, labeller_, c, cw, threshold);
     add_blob(config_, c, cw, sums, background, extra_flags, out, shapes);
   }

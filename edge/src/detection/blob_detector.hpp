@@ -5,7 +5,6 @@
 // mode that follows blobs from frame to frame is detection/blob_tracker.hpp.
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include <opencv2/core.hpp>
