@@ -2,45 +2,101 @@
 
 #include <algorithm>
 
+#include <opencv2/core/hal/intrin.hpp>
+
 namespace syncap::edge {
+namespace {
+
+// Copies the ring's pixels into `ring` (grown to hold them and 32 bytes more: the row copies
+// and the padding store whole vectors) and returns how many. Row segments by vectors, when the
+// vector after the segment's end still lies inside the image.
+size_t gather_ring(const cv::Mat& image, cv::Rect cw, cv::Rect window, std::vector<uint8_t>& ring) {
+  const int xa = std::max(cw.x - 1, window.x);
+  const int xb = std::min(cw.x + cw.width, window.x + window.width - 1);
+  const int row_length = xb - xa + 1;
+  const bool top = cw.y - 1 >= window.y, bottom = cw.y + cw.height < window.y + window.height;
+  const bool left = cw.x - 1 >= window.x, right = cw.x + cw.width < window.x + window.width;
+  const size_t most = static_cast<size_t>((top + bottom) * row_length + (left + right) * cw.height);
+  if (ring.size() < most + 32) ring.resize(most + 32);
+  // Through a local pointer: a byte store may alias anything, the vector's own pointer too.
+  uint8_t* out = ring.data();
+  for (const int y : {cw.y - 1, cw.y + cw.height}) {
+    if (y == cw.y - 1 ? !top : !bottom) continue;
+    const uint8_t* row = image.ptr<uint8_t>(y) + xa;
+    int k = 0;
+    for (; k < row_length && row + k + 16 <= image.dataend; k += 16) {
+      cv::v_store(out + k, cv::v_load(row + k));
+    }
+    for (; k < row_length; ++k) out[k] = row[k];
+    out += row_length;
+  }
+  const size_t step = image.step[0];
+  const uint8_t* p = image.ptr<uint8_t>(cw.y) + (cw.x - 1);
+  if (left && right) {
+    const int right_offset = cw.width + 1;
+#pragma GCC unroll 2
+    for (int i = 0; i < cw.height; ++i, p += step) {
+      out[i] = p[0];
+      out[cw.height + i] = p[right_offset];
+    }
+  } else if (left || right) {
+    if (right) p += cw.width + 1;
+    for (int i = 0; i < cw.height; ++i, p += step) out[i] = *p;
+  }
+  return most;
+}
+
+}  // namespace
 
 double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect window,
                                   int threshold) {
-  size_t n = 0;
-  int low = 255, high = 0;
-  int* const count = count_.data();  // a local pointer: the stores may not alias it
-  const auto take = [&](int v) {
-    if (v >= threshold) return;  // a blob's pixel
-    ++count[v];
-    ++n;
-    low = std::min(low, v);
-    high = std::max(high, v);
-  };
-  const int xa = std::max(cw.x - 1, window.x);
-  const int xb = std::min(cw.x + cw.width, window.x + window.width - 1);
-  for (const int y : {cw.y - 1, cw.y + cw.height}) {
-    if (y < window.y || y >= window.y + window.height) continue;
-    const uint8_t* row = image.ptr<uint8_t>(y);
-    for (int x = xa; x <= xb; ++x) take(row[x]);
+  if (threshold <= 0) return 0;  // every pixel is a blob's
+  const size_t total = gather_ring(image, cw, window, ring_);
+  uint8_t* const ring = ring_.data();
+  // The lanes after the last value are 255, as if a blob's (>= threshold <= 255); with
+  // threshold > 255 every pixel counts, the padding too, but it is not counted below.
+  cv::v_store(ring + total, cv::v_setall_u8(255));
+  const size_t vectors = (total + 15) / 16;
+  const cv::v_uint8x16 t = cv::v_setall_u8(static_cast<uint8_t>(std::min(threshold, 255)));
+  const cv::v_uint8x16 blobs_count = threshold > 255 ? cv::v_setzero_u8() : cv::v_setall_u8(255);
+  cv::v_uint8x16 low = cv::v_setall_u8(255), high = cv::v_setzero_u8();
+  size_t blob = 0;
+  for (size_t j = 0; j < vectors;) {
+    cv::v_uint8x16 counters = cv::v_setzero_u8();
+    for (const size_t end = std::min(vectors, j + 255); j < end; ++j) {
+      const cv::v_uint8x16 x = cv::v_load(ring + 16 * j);
+      const cv::v_uint8x16 bright = ((t - x) == cv::v_setzero_u8()) & blobs_count;  // x >= t
+      cv::v_store(ring + 16 * j, x | bright);  // a blob's pixel: 255, never summed below
+      counters = cv::v_sub_wrap(counters, bright);
+      low = cv::v_min(low, x);
+      high = cv::v_max(high, x & ~bright);
+    }
+    blob += cv::v_reduce_sum(counters);
   }
-  const size_t step = image.step[0];
-  for (const int x : {cw.x - 1, cw.x + cw.width}) {
-    if (x < window.x || x >= window.x + window.width) continue;
-    const uint8_t* p = image.ptr<uint8_t>(cw.y) + x;
-    for (int i = 0; i < cw.height; ++i, p += step) take(*p);
-  }
+  const size_t n = std::min(16 * vectors - blob, total);
   if (n == 0) return 0;
-  // The sum a sort would give, in one pass over the values' range, leaving the counts zero.
-  const size_t lo = n / 4, hi = std::max(n - n / 4, lo + 1);
-  int64_t sum = 0;
-  size_t seen = 0;
-  for (int v = low; v <= high; ++v) {
-    const auto c = static_cast<size_t>(count[v]);
+  // A histogram, then the sum a sort would give in one pass over [low, high] that leaves the
+  // counts zero (bin 255 too, where the blobs' pixels went).
+  int* const count = count_.data();  // a local pointer: the stores may not alias it
+#pragma GCC unroll 4
+  for (const uint8_t* p = ring; p != ring + total; ++p) ++count[*p];
+  const int64_t lo = static_cast<int64_t>(n / 4), hi = std::max<int64_t>(n - n / 4, lo + 1);
+  int v = cv::v_reduce_min(low);
+  int64_t seen = 0;
+  for (; seen + count[v] <= lo; ++v) {  // ranks below lo
+    seen += count[v];
     count[v] = 0;
-    const size_t from = std::max(seen, lo), to = std::min(seen + c, hi);
-    if (to > from) sum += static_cast<int64_t>(v) * static_cast<int64_t>(to - from);
-    seen += c;
   }
+  int64_t sum = 0;
+  for (int64_t taken = lo; taken < hi; ++v) {  // taken: ranks lo .. seen, hi at most
+    seen += count[v];
+    count[v] = 0;
+    const int64_t now = std::min(seen, hi);
+    sum += v * (now - taken);
+    taken = now;
+  }
+  for (const int high_value = cv::v_reduce_max(high); v <= high_value; ++v) count[v] = 0;
+  count[255] = 0;
   return static_cast<double>(sum) / static_cast<double>(hi - lo);
 }
 

@@ -61,6 +61,20 @@ TEST(RingBackground, EqualsTheSortedDefinitionOnRandomRings) {
   }
 }
 
+// A ring of more than 255 16-pixel vectors: its byte counters are emptied in parts.
+TEST(RingBackground, EqualsTheSortedDefinitionOnARingOfThousandsOfPixels) {
+  cv::RNG rng(11);
+  cv::Mat image(700, 1700, CV_8UC1);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  RingBackground ring_background;
+  const cv::Rect cw(20, 30, 1650, 640), whole(0, 0, image.cols, image.rows);
+  ASSERT_GT(2 * (cw.width + 2) + 2 * cw.height, 255 * 16);
+  for (const int threshold : {1, 60, 200, 255, 256}) {
+    EXPECT_EQ(ring_background(image, cw, whole, threshold), reference(image, cw, whole, threshold))
+        << "threshold " << threshold;
+  }
+}
+
 TEST(RingBackground, IgnoresBlobPixelsAndOutliersOfTheRing) {
   cv::Mat image(20, 20, CV_8UC1, cv::Scalar(30));
   image(cv::Rect(4, 4, 12, 1)).setTo(250);  // a neighbour crossing the top of the ring
