@@ -6,6 +6,22 @@
 #include "detection/run_labeller.hpp"
 
 namespace syncap::edge {
+namespace {
+
+// std::lround and std::ceil for the values a window is placed by (|x| < 2^31), without libm's
+// calls: x - trunc(x) is exact in float.
+int round_half_away(float x) {
+  const int i = static_cast<int>(x);  // truncated
+  const float fraction = x - static_cast<float>(i);
+  return i + (fraction >= 0.5f) - (fraction <= -0.5f);
+}
+
+int ceil_of(float x) {
+  const int i = static_cast<int>(x);
+  return i + (static_cast<float>(i) < x);
+}
+
+}  // namespace
 
 BlobTracker::BlobTracker(const BlobTrackerConfig& config)
     : config_(config), detector_(config.detector) {
@@ -30,7 +46,7 @@ bool BlobTracker::needs_full_scan() const {
 // velocity is not known yet, gets the whole search_margin.
 int BlobTracker::margin_of(const Track& t) const {
   if (t.age == 0) return config_.search_margin;
-  const int m = static_cast<int>(std::ceil(2.0f * t.error)) + config_.min_search_margin;
+  const int m = ceil_of(2.0f * t.error) + config_.min_search_margin;
   return std::clamp(m, config_.min_search_margin, config_.search_margin);
 }
 
@@ -44,9 +60,11 @@ cv::Rect BlobTracker::window_of(const Track& t) const {
   const cv::Point2f p = predicted(t);
   const int grow = margin_of(t) + config_.detector.window_margin + 1;
   const int hw = t.box.width / 2 + grow, hh = t.box.height / 2 + grow;
-  const cv::Rect w(static_cast<int>(std::lround(p.x)) - hw, static_cast<int>(std::lround(p.y)) - hh,
-                   2 * hw + 1, 2 * hh + 1);
-  return w & cv::Rect({0, 0}, size_);
+  const int cx = round_half_away(p.x), cy = round_half_away(p.y);
+  const int x0 = std::max(cx - hw, 0), x1 = std::min(cx + hw + 1, size_.width);
+  const int y0 = std::max(cy - hh, 0), y1 = std::min(cy + hh + 1, size_.height);
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
 }
 
 void BlobTracker::windows_into(std::vector<cv::Rect>& windows, std::vector<int>* owner) const {
@@ -62,19 +80,31 @@ void BlobTracker::windows_into(std::vector<cv::Rect>& windows, std::vector<int>*
   // Overlapping windows become one, so that no blob is found twice; a track's window is then
   // the merged one. Usually none overlap: checking pairs in order of x stops at the first
   // window that starts right of the current one's end.
+  // The order of x is last frame's order, or nearly: an insertion sort from it.
   for (bool merged = true; merged;) {
     merged = false;
-    by_x_.resize(windows.size());
-    for (size_t i = 0; i < by_x_.size(); ++i) by_x_[i] = static_cast<int>(i);
-    std::sort(by_x_.begin(), by_x_.end(), [&](int a, int b) {
-      return windows[static_cast<size_t>(a)].x < windows[static_cast<size_t>(b)].x;
-    });
+    if (by_x_.size() != windows.size()) {
+      by_x_.resize(windows.size());
+      for (size_t i = 0; i < by_x_.size(); ++i) by_x_[i] = static_cast<int>(i);
+    }
+    for (size_t i = 1; i < by_x_.size(); ++i) {
+      const int w = by_x_[i];
+      const int x = windows[static_cast<size_t>(w)].x;
+      size_t j = i;
+      for (; j > 0 && windows[static_cast<size_t>(by_x_[j - 1])].x > x; --j)
+        by_x_[j] = by_x_[j - 1];
+      by_x_[j] = w;
+    }
     for (size_t a = 0; a < by_x_.size() && !merged; ++a) {
       const auto i = static_cast<size_t>(by_x_[a]);
       for (size_t b = a + 1; b < by_x_.size() && !merged; ++b) {
         const auto j = static_cast<size_t>(by_x_[b]);
         if (windows[j].x >= windows[i].x + windows[i].width) break;
-        if ((windows[i] & windows[j]).empty()) continue;
+        // They overlap in x (j starts inside i): do they in y?
+        if (windows[j].y >= windows[i].y + windows[i].height ||
+            windows[i].y >= windows[j].y + windows[j].height) {
+          continue;
+        }
         const size_t keep = std::min(i, j), gone = std::max(i, j);
         windows[keep] |= windows[gone];
         windows.erase(windows.begin() + static_cast<long>(gone));
@@ -172,9 +202,11 @@ void BlobTracker::full_scan(const cv::Mat& image) {
 // window wherever the image does not clip them; else it was measured on part of its pixels.
 bool BlobTracker::clipped_by_window(const blob_t& b, const cv::Rect& window) const {
   const int m = config_.detector.window_margin + 1;
-  const cv::Rect needed = cv::Rect(b.bbox_x - m, b.bbox_y - m, b.bbox_w + 2 * m, b.bbox_h + 2 * m) &
-                          cv::Rect({0, 0}, size_);
-  return (needed & window) != needed;
+  const int x0 = std::max(b.bbox_x - m, 0), x1 = std::min(b.bbox_x + b.bbox_w + m, size_.width);
+  const int y0 = std::max(b.bbox_y - m, 0), y1 = std::min(b.bbox_y + b.bbox_h + m, size_.height);
+  if (x1 <= x0 || y1 <= y0) return false;  // nothing needed
+  return x0 < window.x || y0 < window.y || x1 > window.x + window.width ||
+         y1 > window.y + window.height;
 }
 
 // Asks for every cache line of the windows before any is read. A window's rows lie a whole
