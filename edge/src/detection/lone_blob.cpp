@@ -26,6 +26,16 @@ alignas(16) constexpr int16_t kLaneIndex[64] = {
 
 inline cv::v_int16x8 lane_index(int half) { return cv::v_load(kLaneIndex + 8 * half); }
 
+// The sums of the lanes of a, b, c and d, four reductions in one transposition. The passes' sums
+// fit in int32 in every lane and in total: each is a sum of terms >= 0 that is at most
+// 255 * 64 * (0^2 + ... + 63^2) < 2^31.
+inline void reduce_sums(const cv::v_int32x4& a, const cv::v_int32x4& b, const cv::v_int32x4& c,
+                        const cv::v_int32x4& d, int32_t sums[4]) {
+  cv::v_int32x4 ta, tb, tc, td;
+  cv::v_transpose4x4(a, b, c, d, ta, tb, tc, td);
+  cv::v_store(sums, (ta + tb) + (tc + td));
+}
+
 // Sums of k and k^2 over k = 0 .. j-1: a run [s, e) adds table[e] - table[s].
 struct PrefixSums {
   int32_t k[kMaxSide + 1], kk[kMaxSide + 1];
@@ -123,11 +133,16 @@ void sum_plain(const cv::Mat& image, cv::Rect cw, WindowMoments& w) {
     }
     by_row += cv::v_dotprod(row, index);
   }
-  for (int h = 0; h < 2 * V; ++h) {
-    w.all_v += cv::v_reduce_sum(cv::v_dotprod(cols[h], one));
-    w.all_vk += cv::v_reduce_sum(cv::v_dotprod(cols[h], lane_index(h)));
+  cv::v_int32x4 v = cv::v_dotprod(cols[0], one), vk = cv::v_dotprod(cols[0], lane_index(0));
+  for (int h = 1; h < 2 * V; ++h) {
+    v += cv::v_dotprod(cols[h], one);
+    vk += cv::v_dotprod(cols[h], lane_index(h));
   }
-  w.all_vi = cv::v_reduce_sum(by_row);
+  int32_t sums[4];
+  reduce_sums(v, vk, by_row, cv::v_setzero_s32(), sums);
+  w.all_v = sums[0];
+  w.all_vk = sums[1];
+  w.all_vi = sums[2];
 }
 
 // Pass 2b over the box's rows, B vectors a row from box.x (lanes beyond the box cleared: every
@@ -170,15 +185,22 @@ void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold,
     square += index + index + one;
     index += one;
   }
+  cv::v_int32x4 v = cv::v_setzero_s32(), vk = v, vkk = v;
   for (int h = 0; h < 2 * B; ++h) {
     const cv::v_int16x8 k = lane_index(h), kk = cv::v_mul_wrap(k, k);  // k^2 <= 63^2
-    w.v += cv::v_reduce_sum(cv::v_dotprod(cols[h], one));
-    w.vk += cv::v_reduce_sum(cv::v_dotprod(cols[h], k));
-    w.vkk += cv::v_reduce_sum(cv::v_dotprod(cols[h], kk));
+    v += cv::v_dotprod(cols[h], one);
+    vk += cv::v_dotprod(cols[h], k);
+    vkk += cv::v_dotprod(cols[h], kk);
   }
-  w.vi = cv::v_reduce_sum(by_i);
-  w.vii = cv::v_reduce_sum(by_ii);
-  w.vki = cv::v_reduce_sum(by_ki);
+  int32_t sums[8];
+  reduce_sums(v, vk, vkk, by_i, sums);
+  reduce_sums(by_ii, by_ki, cv::v_setzero_s32(), cv::v_setzero_s32(), sums + 4);
+  w.v = sums[0];
+  w.vk = sums[1];
+  w.vkk = sums[2];
+  w.vi = sums[3];
+  w.vii = sums[4];
+  w.vki = sums[5];
   w.peak = static_cast<int>(cv::v_reduce_max(top));
 }
 
