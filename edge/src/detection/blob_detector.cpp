@@ -238,7 +238,7 @@ void add_blob(const BlobDetectorConfig& config, const Component& c, cv::Rect cw,
 void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshold,
                              int8_t extra_flags, std::vector<blob_t>& out,
                              std::vector<BlobShape>* shapes) {
-  window &= cv::Rect(0, 0, image.cols, image.rows);
+  window = detail::intersection(window, {0, 0, image.cols, image.rows});
   const int m = config_.window_margin;
   // A tracked blob's window: one blob, measured without labelling (detection/lone_blob.hpp).
   if (window.width <= 64 && threshold >= 0 && threshold <= 255) {
@@ -261,7 +261,7 @@ void BlobDetector::detect_in(const cv::Mat& image, cv::Rect window, int threshol
     if (c.peak >= config_.saturation && config_.drop_saturated) continue;
     const cv::Rect box = c.box();
     const cv::Rect cw =
-        cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) & window;
+        detail::intersection({box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m}, window);
     // Local background: a robust (interquartile) mean of the ring just outside the centroid
     // window, inside the search window, leaving out pixels of blobs.
     const double background = ring_background_(image, cw, window, threshold);

@@ -1,9 +1,12 @@
 // Row bit masks and vector lanes of the pixels at or above a threshold, and lane masks, shared
-// by the run labeller, the blob detector and the lone-blob fast path. Internal to detection/.
+// by the run labeller, the blob detector and the lone-blob fast path; and the intersection of
+// rectangles they clip windows with. Internal to detection/.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
+#include <opencv2/core.hpp>
 #include <opencv2/core/hal/intrin.hpp>
 
 namespace syncap::edge::detail {
@@ -51,6 +54,15 @@ inline cv::v_uint8x16 first_lanes(int n) {
 inline bool one_run(uint64_t m) { return ((m + (m & (~m + 1))) & m) == 0; }
 
 inline int trailing_zeros(uint64_t m) { return m == 0 ? 64 : __builtin_ctzll(m); }
+
+// a & b as cv::Rect's operator& gives it for rectangles of width and height >= 0 (Rect() when
+// they do not overlap), by four compares: it clips every window, once or twice a blob.
+inline cv::Rect intersection(const cv::Rect& a, const cv::Rect& b) {
+  const int x0 = std::max(a.x, b.x), x1 = std::min(a.x + a.width, b.x + b.width);
+  const int y0 = std::max(a.y, b.y), y1 = std::min(a.y + a.height, b.y + b.height);
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
+}
 
 inline int64_t sum_of_squares(int64_t k) { return k * (k + 1) * (2 * k + 1) / 6; }  // 0^2..k^2
 

@@ -277,8 +277,8 @@ bool readable(const cv::Mat& image, int x, int y, int rows, int vectors) {
 LoneBlob measure_lone_blob(const cv::Mat& image, cv::Rect window, uint8_t threshold, int margin,
                            Component& blob, cv::Rect& cw, CentroidWindowSums& plain) {
 #if CV_SIMD128
-  window &= cv::Rect(0, 0, image.cols, image.rows);
-  if (window.empty() || window.width > kMaxSide || window.height > kMaxSide) {
+  window = detail::intersection(window, {0, 0, image.cols, image.rows});
+  if (window.width == 0 || window.width > kMaxSide || window.height > kMaxSide) {
     return LoneBlob::kNotLone;
   }
   const int vectors = (window.width + 15) / 16;
@@ -291,8 +291,8 @@ LoneBlob measure_lone_blob(const cv::Mat& image, cv::Rect window, uint8_t thresh
   const int box_x = window.x + detail::trailing_zeros(runs.columns);
   const int box_width = 64 - __builtin_clzll(runs.columns) - detail::trailing_zeros(runs.columns);
   const cv::Rect box(box_x, window.y + runs.first, box_width, runs.last - runs.first + 1);
-  cw = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin) &
-       window;
+  cw = detail::intersection(
+      {box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin}, window);
   const int cw_vectors = (cw.width + 15) / 16;
   if (!readable(image, cw.x, cw.y, cw.height, cw_vectors) ||
       !readable(image, box.x, box.y, box.height, (box.width + 15) / 16)) {
