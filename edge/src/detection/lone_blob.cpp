@@ -67,17 +67,36 @@ struct WindowMoments {
 
 // Pass 1 over the window's rows, V vectors a row: each row's bit mask of bright pixels, its run
 // and the run's unweighted sums. False unless the bright pixels are one run a row in consecutive
-// rows that touch. No bright pixel: true with n == 0.
+// rows that touch. No bright pixel: true with n == 0. The rows above the blob are only tested for
+// a bright pixel (the lanes' maximum against the threshold: one compare a row), and the rows
+// below it only folded into one maximum tested at the end (a bright pixel there is a second
+// group): only the blob's rows need their bit masks.
 template <int V>
 bool find_runs(const cv::Mat& image, cv::Rect window, uint8_t threshold, RunMoments& m) {
   const cv::v_uint8x16 t = cv::v_setall_u8(threshold);
+  const cv::v_uint8x16 last_lanes = first_lanes(window.width - 16 * (V - 1));
   const uint64_t keep = window.width == 64 ? ~uint64_t{0} : (uint64_t{1} << window.width) - 1;
   const uint8_t* p = image.ptr<uint8_t>(window.y) + window.x;
   const size_t step = image.step[0];
+  // The lanes' maximum over a row's vectors, the lanes beyond the window 0 (bright only when the
+  // threshold is 0, and then every row is the blob's).
+  const auto row_max = [&](const uint8_t* q) {
+    cv::v_uint8x16 top = cv::v_load(q + 16 * (V - 1)) & last_lanes;
+#pragma GCC unroll 4
+    for (int j = 0; j < V - 1; ++j) top = cv::v_max(top, cv::v_load(q + 16 * j));
+    return top;
+  };
+  const auto any_bright = [&](const cv::v_uint8x16& v) {
+    return cv::v_signmask(bright_lanes(v, t)) != 0;
+  };
+  int i = 0;
+  for (; i < window.height && !any_bright(row_max(p)); ++i) p += step;
+  m = {};
+  if (i == window.height) return true;  // nothing bright
+  const int first = i;
   int64_t n = 0, k = 0, kk = 0, ni = 0, nii = 0, ki = 0;
   uint64_t prev = 0, columns = 0;
-  int first = -1, last = -1;
-  for (int i = 0; i < window.height; ++i, p += step) {
+  for (; i < window.height; ++i, p += step) {
     uint64_t mask = 0;
 #pragma GCC unroll 4
     for (int j = 0; j < V; ++j) {
@@ -85,12 +104,9 @@ bool find_runs(const cv::Mat& image, cv::Rect window, uint8_t threshold, RunMome
       mask |= static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(lanes))) << (16 * j);
     }
     mask &= keep;
-    if (mask == 0) continue;
-    if (last >= 0 && last != i - 1) return false;                                 // two groups
+    if (mask == 0) break;                                                         // below it
     if (!detail::one_run(mask)) return false;                                     // two runs
-    if (last >= 0 && ((prev | prev << 1 | prev >> 1) & mask) == 0) return false;  // apart
-    if (first < 0) first = i;
-    last = i;
+    if (i > first && ((prev | prev << 1 | prev >> 1) & mask) == 0) return false;  // apart
     prev = mask;
     columns |= mask;
     const int s = detail::trailing_zeros(mask), e = s + detail::trailing_zeros(~(mask >> s));
@@ -101,6 +117,12 @@ bool find_runs(const cv::Mat& image, cv::Rect window, uint8_t threshold, RunMome
     ni += area * i;
     nii += area * i * i;
     ki += sk * i;
+  }
+  const int last = i - 1;
+  if (i < window.height) {
+    cv::v_uint8x16 below = row_max(p);
+    for (++i, p += step; i < window.height; ++i, p += step) below = cv::v_max(below, row_max(p));
+    if (any_bright(below)) return false;  // two groups
   }
   m = {n, k, kk, ni, nii, ki, first, last, columns};
   return true;
