@@ -38,7 +38,7 @@ inline void reduce_sums(const cv::v_int32x4& a, const cv::v_int32x4& b, const cv
 
 // Sums of k and k^2 over k = 0 .. j-1: a run [s, e) adds table[e] - table[s].
 struct PrefixSums {
-  int32_t k[kMaxSide + 1], kk[kMaxSide + 1];
+  int64_t k[kMaxSide + 1], kk[kMaxSide + 1];
 };
 constexpr PrefixSums kPrefix = [] {
   PrefixSums p{};
@@ -95,7 +95,8 @@ bool find_runs(const cv::Mat& image, cv::Rect window, uint8_t threshold, RunMome
   if (i == window.height) return true;  // nothing bright
   const int first = i;
   int64_t n = 0, k = 0, kk = 0, ni = 0, nii = 0, ki = 0;
-  uint64_t prev = 0, columns = 0;
+  uint64_t columns = 0;
+  int prev_s = 0, prev_e = 64;  // the last row's run [prev_s, prev_e); the first touches it
   for (; i < window.height; ++i, p += step) {
     uint64_t mask = 0;
 #pragma GCC unroll 4
@@ -104,12 +105,15 @@ bool find_runs(const cv::Mat& image, cv::Rect window, uint8_t threshold, RunMome
       mask |= static_cast<uint64_t>(static_cast<uint16_t>(cv::v_signmask(lanes))) << (16 * j);
     }
     mask &= keep;
-    if (mask == 0) break;                                                         // below it
-    if (!detail::one_run(mask)) return false;                                     // two runs
-    if (i > first && ((prev | prev << 1 | prev >> 1) & mask) == 0) return false;  // apart
-    prev = mask;
+    if (mask == 0) break;  // below the blob
+    const int s = detail::trailing_zeros(mask);
+    const uint64_t run = mask >> s;
+    if ((run & (run + 1)) != 0) return false;  // two runs
+    const int e = s + detail::trailing_zeros(~run);
+    if (s > prev_e || e < prev_s) return false;  // apart from the last row's run (8-connected)
+    prev_s = s;
+    prev_e = e;
     columns |= mask;
-    const int s = detail::trailing_zeros(mask), e = s + detail::trailing_zeros(~(mask >> s));
     const int64_t area = e - s, sk = kPrefix.k[e] - kPrefix.k[s];
     n += area;
     k += sk;
