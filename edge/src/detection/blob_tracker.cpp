@@ -209,23 +209,9 @@ bool BlobTracker::clipped_by_window(const blob_t& b, const cv::Rect& window) con
          y1 > window.y + window.height;
 }
 
-// Asks for every cache line of the windows before any is read. A window's rows lie a whole
-// image row apart, so each is a cache line of its own that the hardware prefetcher does not see
-// coming: read one after the other, their memory latencies add up, fetched together they overlap.
-static void prefetch_windows(const cv::Mat& image, const std::vector<cv::Rect>& windows) {
-  for (const cv::Rect& w : windows) {
-    for (int y = w.y; y < w.y + w.height; ++y) {
-      const uint8_t* row = image.ptr<uint8_t>(y);
-      for (int x = w.x; x < w.x + w.width; x += 64) __builtin_prefetch(row + x);
-      __builtin_prefetch(row + w.x + w.width - 1);
-    }
-  }
-}
-
 bool BlobTracker::windowed_scan(const cv::Mat& image) {
   windows_into(windows_, &window_owner_);
   if (window_owner_.size() != tracks_.size()) return false;  // a track left the image
-  prefetch_windows(image, windows_);
   found_.clear();
   window_found_.assign(1, 0);
   for (const cv::Rect& w : windows_) {
