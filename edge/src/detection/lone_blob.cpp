@@ -173,7 +173,7 @@ void sum_plain(const cv::Mat& image, cv::Rect cw, WindowMoments& w) {
 
 // Pass 2b over the box's rows, B vectors a row from box.x (lanes beyond the box cleared: every
 // bright pixel of the window is in the box): int16 column sums of the bright pixels; their row
-// sums weighted by i and i^2 (i = y - row0), and their v i weighted by k (k = x - box.x), through
+// sums weighted by i and i^2 (i = y - row0), and their v k (k = x - box.x) weighted by i, through
 // pmaddwd into int32 lanes.
 template <int B>
 void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold, WindowMoments& w) {
@@ -185,12 +185,13 @@ void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold,
   cv::v_int32x4 by_i = cv::v_setzero_s32(), by_ii = by_i, by_ki = by_i;
   cv::v_uint8x16 top = cv::v_setzero_u8();
   const int i0 = box.y - row0;
-  cv::v_int16x8 index = cv::v_setall_s16(static_cast<int16_t>(i0));  // i and i^2 in every lane
-  cv::v_int16x8 square = cv::v_setall_s16(static_cast<int16_t>(i0 * i0));
+  cv::v_int16x8 index = cv::v_setall_s16(static_cast<int16_t>(i0));  // i in every lane
   const uint8_t* p = image.ptr<uint8_t>(box.y) + box.x;
   const size_t step = image.step[0];
-  for (int r = 0; r < box.height; ++r, p += step) {
-    cv::v_int16x8 row = cv::v_setzero_s16();
+  for (int r = 0; r < box.height; ++r, p += step, index += one) {
+    // The row's bright pixels summed lane by lane: v in row, v k in by_k while that fits int16
+    // (B <= 2: at most 255 * (4 * 7 + 8 * (0 + 1 + 2 + 3)) = 19380 a lane), else v i k at once.
+    cv::v_int16x8 row = cv::v_setzero_s16(), by_k = row;
 #pragma GCC unroll 4
     for (int j = 0; j < B; ++j) {
       cv::v_uint8x16 a = cv::v_load(p + 16 * j);
@@ -203,13 +204,16 @@ void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold,
       cols[2 * j] += slo;
       cols[2 * j + 1] += shi;
       row += slo + shi;
-      by_ki += cv::v_dotprod(cv::v_mul_wrap(slo, index), lane_index(2 * j)) +  // v i <= 16065
-               cv::v_dotprod(cv::v_mul_wrap(shi, index), lane_index(2 * j + 1));
+      if constexpr (B <= 2) {
+        by_k += cv::v_mul_wrap(slo, lane_index(2 * j)) + cv::v_mul_wrap(shi, lane_index(2 * j + 1));
+      } else {
+        by_ki += cv::v_dotprod(cv::v_mul_wrap(slo, index), lane_index(2 * j)) +  // v i <= 16065
+                 cv::v_dotprod(cv::v_mul_wrap(shi, index), lane_index(2 * j + 1));
+      }
     }
+    if constexpr (B <= 2) by_ki += cv::v_dotprod(by_k, index);
     by_i += cv::v_dotprod(row, index);
-    by_ii += cv::v_dotprod(row, square);  // 64 rows * 2 * 2040 * 63^2 < 2^31
-    square += index + index + one;
-    index += one;
+    by_ii += cv::v_dotprod(row, cv::v_mul_wrap(index, index));  // 64 * 2 * 2040 * 63^2 < 2^31
   }
   cv::v_int32x4 v = cv::v_setzero_s32(), vk = v, vkk = v;
   for (int h = 0; h < 2 * B; ++h) {
