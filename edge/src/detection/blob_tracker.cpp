@@ -162,10 +162,10 @@ void BlobTracker::associate(const std::vector<blob_t>& blobs, bool own_window_on
 
 // Uses match_ from associate(found).
 void BlobTracker::update_tracks(const std::vector<blob_t>& found, bool keep_unmatched_tracks) {
-  next_tracks_.clear();
+  size_t kept = 0;  // the tracks kept so far, in place and in order
   for (size_t t = 0; t < tracks_.size(); ++t) {
     if (match_[t] < 0) {
-      if (keep_unmatched_tracks) next_tracks_.push_back(tracks_[t]);
+      if (keep_unmatched_tracks) tracks_[kept++] = tracks_[t];
       continue;
     }
     const blob_t& b = found[static_cast<size_t>(match_[t])];
@@ -177,15 +177,15 @@ void BlobTracker::update_tracks(const std::vector<blob_t>& found, bool keep_unma
     track.position = position;
     track.box = {b.bbox_w, b.bbox_h};
     ++track.age;
-    next_tracks_.push_back(track);
+    tracks_[kept++] = track;
   }
+  tracks_.resize(kept);
   for (size_t b = 0; b < found.size(); ++b) {
     if (taken_[b]) continue;
     const float unknown = static_cast<float>(config_.search_margin);
-    next_tracks_.push_back(
+    tracks_.push_back(
         {{found[b].x, found[b].y}, {0, 0}, {found[b].bbox_w, found[b].bbox_h}, 0, unknown});
   }
-  std::swap(tracks_, next_tracks_);
 }
 
 void BlobTracker::full_scan(const cv::Mat& image) {
@@ -225,8 +225,8 @@ bool BlobTracker::windowed_scan(const cv::Mat& image) {
   associate(found_, true);
   if (std::find(match_.begin(), match_.end(), -1) != match_.end()) return false;  // one is lost
   update_tracks(found_, true);
+  std::swap(blobs_, found_);  // found_ is cleared by the next windowed scan
   // By descending area, ties in the order found (an insertion sort: a few blobs, no buffer).
-  blobs_ = found_;
   for (size_t i = 1; i < blobs_.size(); ++i) {
     const blob_t b = blobs_[i];
     size_t j = i;

@@ -80,7 +80,6 @@ class BlobTracker {
   std::vector<blob_t> found_;
   std::vector<int> match_;
   std::vector<uint8_t> taken_;
-  std::vector<Track> next_tracks_;
   std::vector<int> window_owner_;     // per track, its window in windows_
   std::vector<size_t> window_found_;  // window w's blobs are found_[window_found_[w], [w + 1])
   mutable std::vector<int> by_x_;     // windows in order of x, for the overlap check
