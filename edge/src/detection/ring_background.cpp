@@ -1,6 +1,7 @@
 #include "detection/ring_background.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include <opencv2/core/hal/intrin.hpp>
 
@@ -8,8 +9,8 @@ namespace syncap::edge {
 namespace {
 
 // Copies the ring's pixels into `ring` (grown to hold them and 32 bytes more: the row copies
-// and the padding store whole vectors) and returns how many. Row segments by vectors, when the
-// vector after the segment's end still lies inside the image.
+// and the padding store whole vectors) and returns how many. Row segments by whole vectors when
+// those lie inside the image.
 size_t gather_ring(const cv::Mat& image, cv::Rect cw, cv::Rect window, std::vector<uint8_t>& ring) {
   const int xa = std::max(cw.x - 1, window.x);
   const int xb = std::min(cw.x + cw.width, window.x + window.width - 1);
@@ -20,16 +21,18 @@ size_t gather_ring(const cv::Mat& image, cv::Rect cw, cv::Rect window, std::vect
   if (ring.size() < most + 32) ring.resize(most + 32);
   // Through a local pointer: a byte store may alias anything, the vector's own pointer too.
   uint8_t* out = ring.data();
-  for (const int y : {cw.y - 1, cw.y + cw.height}) {
-    if (y == cw.y - 1 ? !top : !bottom) continue;
+  const int row_vectors = (row_length + 15) / 16;
+  const auto copy_row = [&](int y) {
     const uint8_t* row = image.ptr<uint8_t>(y) + xa;
-    int k = 0;
-    for (; k < row_length && row + k + 16 <= image.dataend; k += 16) {
-      cv::v_store(out + k, cv::v_load(row + k));
+    if (row + 16 * row_vectors <= image.dataend) {
+      for (int j = 0; j < row_vectors; ++j) cv::v_store(out + 16 * j, cv::v_load(row + 16 * j));
+    } else {
+      std::memcpy(out, row, static_cast<size_t>(row_length));
     }
-    for (; k < row_length; ++k) out[k] = row[k];
     out += row_length;
-  }
+  };
+  if (top) copy_row(cw.y - 1);
+  if (bottom) copy_row(cw.y + cw.height);
   const size_t step = image.step[0];
   const uint8_t* p = image.ptr<uint8_t>(cw.y) + (cw.x - 1);
   if (left && right) {
