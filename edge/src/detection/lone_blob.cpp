@@ -11,7 +11,9 @@ namespace syncap::edge {
 namespace {
 
 // The window at most 64 x 64 px: int16 column sums stay exact (64 * 255 < 2^15), and so do
-// the int32 sums of k^2 times a column sum over 8 lanes (8 * 16320 * 63^2 < 2^31).
+// the int32 sums of k^2 times a column sum over 8 lanes (8 * 16320 * 63^2 < 2^31). The int16
+// sums are added by v_add_wrap (paddw), exact within those bounds: with the saturating +=
+// (paddsw) GCC copied the accumulators from register to register every row.
 constexpr int kMaxSide = 64;
 
 #if CV_SIMD128
@@ -145,7 +147,7 @@ void sum_plain(const cv::Mat& image, cv::Rect cw, WindowMoments& w) {
   cv::v_int16x8 index = cv::v_setzero_s16();  // i in every lane
   const uint8_t* p = image.ptr<uint8_t>(cw.y) + cw.x;
   const size_t step = image.step[0];
-  for (int i = 0; i < cw.height; ++i, p += step, index += one) {
+  for (int i = 0; i < cw.height; ++i, p += step, index = cv::v_add_wrap(index, one)) {
     cv::v_int16x8 row = cv::v_setzero_s16();
 #pragma GCC unroll 4
     for (int j = 0; j < V; ++j) {
@@ -153,11 +155,11 @@ void sum_plain(const cv::Mat& image, cv::Rect cw, WindowMoments& w) {
       if (j == V - 1) a = a & last_lanes;
       cv::v_uint16x8 lo, hi;
       cv::v_expand(a, lo, hi);
-      cols[2 * j] += cv::v_reinterpret_as_s16(lo);
-      cols[2 * j + 1] += cv::v_reinterpret_as_s16(hi);
-      row += cv::v_reinterpret_as_s16(lo + hi);  // <= 4 * 510
+      cols[2 * j] = cv::v_add_wrap(cols[2 * j], cv::v_reinterpret_as_s16(lo));
+      cols[2 * j + 1] = cv::v_add_wrap(cols[2 * j + 1], cv::v_reinterpret_as_s16(hi));
+      row = cv::v_add_wrap(row, cv::v_reinterpret_as_s16(cv::v_add_wrap(lo, hi)));  // <= 4 * 510
     }
-    by_row += cv::v_dotprod(row, index);
+    by_row = by_row + cv::v_dotprod(row, index);
   }
   cv::v_int32x4 v = cv::v_dotprod(cols[0], one), vk = cv::v_dotprod(cols[0], lane_index(0));
   for (int h = 1; h < 2 * V; ++h) {
@@ -188,7 +190,7 @@ void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold,
   cv::v_int16x8 index = cv::v_setall_s16(static_cast<int16_t>(i0));  // i in every lane
   const uint8_t* p = image.ptr<uint8_t>(box.y) + box.x;
   const size_t step = image.step[0];
-  for (int r = 0; r < box.height; ++r, p += step, index += one) {
+  for (int r = 0; r < box.height; ++r, p += step, index = cv::v_add_wrap(index, one)) {
     // The row's bright pixels summed lane by lane: v in row, v k in by_k while that fits int16
     // (B <= 2: at most 255 * (4 * 7 + 8 * (0 + 1 + 2 + 3)) = 19380 a lane), else v i k at once.
     cv::v_int16x8 row = cv::v_setzero_s16(), by_k = row;
@@ -201,19 +203,21 @@ void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold,
       cv::v_uint16x8 lo, hi;
       cv::v_expand(b, lo, hi);
       const cv::v_int16x8 slo = cv::v_reinterpret_as_s16(lo), shi = cv::v_reinterpret_as_s16(hi);
-      cols[2 * j] += slo;
-      cols[2 * j + 1] += shi;
-      row += slo + shi;
+      cols[2 * j] = cv::v_add_wrap(cols[2 * j], slo);
+      cols[2 * j + 1] = cv::v_add_wrap(cols[2 * j + 1], shi);
+      row = cv::v_add_wrap(row, cv::v_add_wrap(slo, shi));
       if constexpr (B <= 2) {
-        by_k += cv::v_mul_wrap(slo, lane_index(2 * j)) + cv::v_mul_wrap(shi, lane_index(2 * j + 1));
+        by_k = cv::v_add_wrap(by_k, cv::v_add_wrap(cv::v_mul_wrap(slo, lane_index(2 * j)),
+                                                   cv::v_mul_wrap(shi, lane_index(2 * j + 1))));
       } else {
-        by_ki += cv::v_dotprod(cv::v_mul_wrap(slo, index), lane_index(2 * j)) +  // v i <= 16065
-                 cv::v_dotprod(cv::v_mul_wrap(shi, index), lane_index(2 * j + 1));
+        by_ki = by_ki + cv::v_dotprod(cv::v_mul_wrap(slo, index), lane_index(2 * j)) +
+                cv::v_dotprod(cv::v_mul_wrap(shi, index), lane_index(2 * j + 1));  // v i <= 16065
       }
     }
-    if constexpr (B <= 2) by_ki += cv::v_dotprod(by_k, index);
-    by_i += cv::v_dotprod(row, index);
-    by_ii += cv::v_dotprod(row, cv::v_mul_wrap(index, index));  // 64 * 2 * 2040 * 63^2 < 2^31
+    if constexpr (B <= 2) by_ki = by_ki + cv::v_dotprod(by_k, index);
+    by_i = by_i + cv::v_dotprod(row, index);
+    by_ii =
+        by_ii + cv::v_dotprod(row, cv::v_mul_wrap(index, index));  // 64 * 2 * 2040 * 63^2 < 2^31
   }
   cv::v_int32x4 v = cv::v_setzero_s32(), vk = v, vkk = v;
   for (int h = 0; h < 2 * B; ++h) {
