@@ -162,6 +162,7 @@ void sum_plain(const cv::Mat& image, cv::Rect cw, WindowMoments& w) {
     by_row = by_row + cv::v_dotprod(row, index);
   }
   cv::v_int32x4 v = cv::v_dotprod(cols[0], one), vk = cv::v_dotprod(cols[0], lane_index(0));
+#pragma GCC unroll 8
   for (int h = 1; h < 2 * V; ++h) {
     v += cv::v_dotprod(cols[h], one);
     vk += cv::v_dotprod(cols[h], lane_index(h));
@@ -220,6 +221,7 @@ void sum_bright(const cv::Mat& image, cv::Rect box, int row0, uint8_t threshold,
         by_ii + cv::v_dotprod(row, cv::v_mul_wrap(index, index));  // 64 * 2 * 2040 * 63^2 < 2^31
   }
   cv::v_int32x4 v = cv::v_setzero_s32(), vk = v, vkk = v;
+#pragma GCC unroll 8
   for (int h = 0; h < 2 * B; ++h) {
     const cv::v_int16x8 k = lane_index(h), kk = cv::v_mul_wrap(k, k);  // k^2 <= 63^2
     v += cv::v_dotprod(cols[h], one);
