@@ -63,26 +63,23 @@ double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect wi
   const cv::v_uint8x16 t = cv::v_setall_u8(static_cast<uint8_t>(std::min(threshold, 255)));
   const cv::v_uint8x16 blobs_count = threshold > 255 ? cv::v_setzero_u8() : cv::v_setall_u8(255);
   cv::v_uint8x16 low = cv::v_setall_u8(255), high = cv::v_setzero_u8();
-  size_t blob = 0;
-  for (size_t j = 0; j < vectors;) {
-    cv::v_uint8x16 counters = cv::v_setzero_u8();
-    for (const size_t end = std::min(vectors, j + 255); j < end; ++j) {
-      const cv::v_uint8x16 x = cv::v_load(ring + 16 * j);
-      const cv::v_uint8x16 bright = ((t - x) == cv::v_setzero_u8()) & blobs_count;  // x >= t
-      cv::v_store(ring + 16 * j, x | bright);  // a blob's pixel: 255, never summed below
-      counters = cv::v_sub_wrap(counters, bright);
-      low = cv::v_min(low, x);
-      high = cv::v_max(high, x & ~bright);
-    }
-    blob += cv::v_reduce_sum(counters);
+  for (size_t j = 0; j < vectors; ++j) {
+    const cv::v_uint8x16 x = cv::v_load(ring + 16 * j);
+    const cv::v_uint8x16 bright = ((t - x) == cv::v_setzero_u8()) & blobs_count;  // x >= t
+    cv::v_store(ring + 16 * j, x | bright);  // a blob's pixel: 255, never summed below
+    low = cv::v_min(low, x);
+    high = cv::v_max(high, x & ~bright);
   }
-  const size_t n = std::min(16 * vectors - blob, total);
-  if (n == 0) return 0;
   // A histogram, then the sum a sort would give in one pass over [low, high] that leaves the
-  // counts zero (bin 255 too, where the blobs' pixels went).
+  // counts zero (bin 255 too, where the blobs' pixels went: how many do not count).
   int* const count = count_.data();  // a local pointer: the stores may not alias it
 #pragma GCC unroll 4
   for (const uint8_t* p = ring; p != ring + total; ++p) ++count[*p];
+  const size_t n = threshold > 255 ? total : total - static_cast<size_t>(count[255]);
+  if (n == 0) {
+    count[255] = 0;
+    return 0;
+  }
   const int64_t lo = static_cast<int64_t>(n / 4), hi = std::max<int64_t>(n - n / 4, lo + 1);
   int v = cv::v_reduce_min(low);
   int64_t seen = 0;

@@ -15,11 +15,11 @@ namespace syncap::edge {
 // the pixels below `threshold` of the one-pixel ring just outside `cw` (inside `window`) that lie
 // inside `window`; 0 when there are none. The ring's pixels are gathered into one buffer (row
 // segments by vectors); one vector pass over it finds the range of the values below the
-// threshold and how many there are, and marks the blobs' pixels 255; then a histogram without a
-// branch a pixel, and the sum a sort would give from one pass over the range. (A bisection of
-// the range by vector counts of the values at most its middle took ~6 counts a ring and more
-// instructions.) Keeps the buffer and the histogram (zero between calls): one per thread, reused
-// blob after blob.
+// threshold and marks the blobs' pixels 255; then a histogram without a branch a pixel (its bin
+// 255 counts the blobs' pixels), and the sum a sort would give from one pass over the range. (A
+// bisection of the range by vector counts of the values at most its middle took ~6 counts a ring
+// and more instructions.) Keeps the buffer and the histogram (zero between calls): one per thread,
+// reused blob after blob.
 class RingBackground {
  public:
   double operator()(const cv::Mat& image, cv::Rect cw, cv::Rect window, int threshold);

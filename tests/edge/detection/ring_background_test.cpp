@@ -61,7 +61,7 @@ TEST(RingBackground, EqualsTheSortedDefinitionOnRandomRings) {
   }
 }
 
-// A ring of more than 255 16-pixel vectors: its byte counters are emptied in parts.
+// A ring of thousands of pixels (a large blob's in a full-frame scan), over 255 16-pixel vectors.
 TEST(RingBackground, EqualsTheSortedDefinitionOnARingOfThousandsOfPixels) {
   cv::RNG rng(11);
   cv::Mat image(700, 1700, CV_8UC1);
