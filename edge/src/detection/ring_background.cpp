@@ -73,7 +73,7 @@ double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect wi
   // A histogram, then the sum a sort would give in one pass over [low, high] that leaves the
   // counts zero (bin 255 too, where the blobs' pixels went: how many do not count).
   int* const count = count_.data();  // a local pointer: the stores may not alias it
-#pragma GCC unroll 4
+#pragma GCC unroll 8
   for (const uint8_t* p = ring; p != ring + total; ++p) ++count[*p];
   const size_t n = threshold > 255 ? total : total - static_cast<size_t>(count[255]);
   if (n == 0) {
