@@ -2,6 +2,8 @@
 
 #include <glog/logging.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <map>
 #include <random>
@@ -56,6 +58,67 @@ void simulate_observations(scene::Network& network, double scale, std::mt19937& 
   }
 }
 
+// The observations of `from` (measurements, distances, observed interior values) into `to`, the
+// same network with other approximate values.
+void take_observations(const scene::Network& from, scene::Network& to) {
+  to.measurements = from.measurements;
+  to.distances = from.distances;
+  for (size_t m = 0; m < to.models.size(); ++m) {
+    auto values = sensor::interior_block(to.models[m].interior);
+    const auto observed = sensor::interior_block(from.models[m].interior);
+    for (int i = 0; i < sensor::InteriorBlock::kSize; ++i) {
+      if (to.models[m].priors[static_cast<size_t>(i)].mode == scene::ParameterMode::kObserved) {
+        values[static_cast<size_t>(i)] = observed[static_cast<size_t>(i)];
+      }
+    }
+    to.models[m].interior = sensor::interior_from_block(values.data());
+  }
+}
+
+// The sample covariance of the vectors added.
+template <int N>
+struct Spread {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  int count = 0;
+  Vector sum = Vector::Zero();
+  Eigen::Matrix<double, N, N> squares = Eigen::Matrix<double, N, N>::Zero();
+  void add(const Vector& v) {
+    ++count;
+    sum += v;
+    squares += v * v.transpose();
+  }
+  Eigen::Matrix<double, N, N> covariance() const {
+    const Vector mean = sum / count;
+    return (squares - count * mean * mean.transpose()) / (count - 1);
+  }
+};
+
+// The sample's points moved by the rigid motion that fits them best onto the adjusted ones: the
+// free network's datum differs from sample to sample, its shape is what the bootstrap measures.
+std::map<std::string, Eigen::Vector3d> fitted_points(const BundleAdjustmentResult& sample,
+                                                     const BundleAdjustmentResult& adjusted) {
+  std::map<std::string, Eigen::Vector3d> reference;
+  for (const auto& p : adjusted.points) {
+    if (p.adjusted) reference[p.name] = Eigen::Vector3d(p.xyz.data());
+  }
+  std::vector<std::pair<std::string, Eigen::Vector3d>> common;
+  for (const auto& p : sample.points) {
+    if (p.adjusted && reference.count(p.name)) common.emplace_back(p.name, p.xyz.data());
+  }
+  std::map<std::string, Eigen::Vector3d> out;
+  if (common.size() < 3) return out;
+  Eigen::Matrix3Xd from(3, common.size()), to(3, common.size());
+  for (size_t i = 0; i < common.size(); ++i) {
+    from.col(static_cast<long>(i)) = common[i].second;
+    to.col(static_cast<long>(i)) = reference.at(common[i].first);
+  }
+  const Eigen::Matrix4d motion = Eigen::umeyama(from, to, false);
+  for (const auto& [name, xyz] : common) {
+    out[name] = motion.topLeftCorner<3, 3>() * xyz + motion.topRightCorner<3, 1>();
+  }
+  return out;
+}
+
 }  // namespace
 
 scene::Network with_adjusted_values(scene::Network network,
@@ -103,18 +166,20 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
   if (!adjusted.converged || adjusted.models.empty()) {
     throw std::invalid_argument("bootstrap: the adjustment has no converged solution");
   }
-  scene::Network base = accepted_part(with_adjusted_values(network, adjusted), adjusted);
-  // Each sample is a plain least-squares solution from the adjusted values: no covariance, no
-  // tests, no rejections.
-  base.design.simulate = false;
-  base.design.ignore_approximates = false;
-  base.design.calculate_covariance = false;
-  base.design.statistical_tests = false;
-  base.residual_test.iterative_rejection = false;
+  const scene::Network truth = accepted_part(with_adjusted_values(network, adjusted), adjusted);
+  scene::Network start = options.from_approximate_values ? accepted_part(network, adjusted) : truth;
+  // Each sample is a plain least-squares solution: no covariance, no tests, no rejections.
+  start.design.simulate = false;
+  start.design.ignore_approximates =
+      options.from_approximate_values && network.design.ignore_approximates;
+  start.design.calculate_covariance = false;
+  start.design.statistical_tests = false;
+  start.residual_test.iterative_rejection = false;
   const double scale = adjusted.sigma0 > 0.0 ? adjusted.sigma0 : 1.0;
 
   const size_t models = adjusted.models.size();
-  std::vector<std::vector<std::array<double, 10>>> values(models);
+  std::vector<Spread<10>> interior(models);
+  std::map<std::string, Spread<3>> points;
   std::mt19937 rng(options.seed);
   BootstrapResult out;
   // Ceres warns on stderr whenever a Levenberg-Marquardt step's dense Cholesky fails; started at
@@ -128,36 +193,34 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
   {
     const ErrorsOnly quiet;
     for (int s = 0; s < options.samples; ++s) {
-      scene::Network sample = base;
-      simulate_observations(sample, scale, rng);
+      scene::Network simulated = truth;
+      simulate_observations(simulated, scale, rng);
+      scene::Network sample = start;
+      take_observations(simulated, sample);
       const BundleAdjustmentResult r = adjust(sample, options.bundle);
       if (!r.converged || r.models.size() != models) {
         ++out.failed;
         continue;
       }
       ++out.samples;
-      for (size_t c = 0; c < models; ++c)
-        values[c].push_back(sensor::interior_block(r.models[c].interior));
+      for (size_t c = 0; c < models; ++c) {
+        const auto values = sensor::interior_block(r.models[c].interior);
+        interior[c].add(Eigen::Map<const Eigen::Matrix<double, 10, 1>>(values.data()));
+      }
+      for (const auto& [name, xyz] : fitted_points(r, adjusted)) points[name].add(xyz);
     }
   }
   out.interior_sigma.assign(models, {});
   out.interior_covariance.assign(models, Eigen::Matrix<double, 10, 10>::Zero());
   if (out.samples < 2) return out;
   for (size_t c = 0; c < models; ++c) {
-    Eigen::Matrix<double, 10, 1> mean = Eigen::Matrix<double, 10, 1>::Zero();
-    for (const auto& v : values[c])
-      mean += Eigen::Map<const Eigen::Matrix<double, 10, 1>>(v.data());
-    mean /= out.samples;
-    Eigen::Matrix<double, 10, 10> covariance = Eigen::Matrix<double, 10, 10>::Zero();
-    for (const auto& v : values[c]) {
-      const Eigen::Matrix<double, 10, 1> d =
-          Eigen::Map<const Eigen::Matrix<double, 10, 1>>(v.data()) - mean;
-      covariance += d * d.transpose();
+    out.interior_covariance[c] = interior[c].covariance();
+    for (int i = 0; i < 10; ++i) {
+      out.interior_sigma[c][static_cast<size_t>(i)] = std::sqrt(out.interior_covariance[c](i, i));
     }
-    covariance /= out.samples - 1;
-    out.interior_covariance[c] = covariance;
-    for (int i = 0; i < 10; ++i)
-      out.interior_sigma[c][static_cast<size_t>(i)] = std::sqrt(covariance(i, i));
+  }
+  for (const auto& [name, spread] : points) {
+    if (spread.count == out.samples) out.point_covariance[name] = spread.covariance();
   }
   return out;
 }

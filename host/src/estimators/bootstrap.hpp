@@ -2,20 +2,25 @@
 // network stands in for the truth: its measurements are replaced by the projections of its
 // adjusted points through its adjusted cameras plus Gaussian noise of the a posteriori sigma
 // (sigma_px x sigma0 a measurement; the distances and the observed parameters likewise), and
-// the network is adjusted again from the adjusted values, `samples` times. The spread of the
-// re-adjusted interior values is their covariance.
+// the network is adjusted again, `samples` times, from the approximate values the adjustment
+// itself started from. The spread of the re-adjusted interior values is their covariance.
 //
-// Why: the adjustment's covariance is the linearised one (thesis eq 4.39). In a weak network (a
-// few wand positions, all ten interior values free) the errors of the correlated principal
-// point, decentring and radial terms are large enough for the model's curvature to matter, and
-// the linearised sigmas understate them (docs/calibration-accuracy.md: at 1 px with 10 wand
-// positions, RMS of e/sigma 1.64; at 0.04 px, 1.14). The bootstrap's spread carries that
-// curvature. Where the network is strong both agree.
+// Why: the adjustment's covariance is the linearised one (thesis eq 4.39), the curvature of the
+// cost at the minimum it ended in. A weak network (a few wand positions, all ten interior values
+// free) has more than one minimum: the same simulated network adjusted from the true values ends
+// in another minimum, principal point several linearised sigmas away, at a cost that differs by
+// a tenth of a unit of v^T P v. Which one the adjustment finds depends on the noise and the
+// start. Re-adjusting from the adjusted values stays in the first basin and still falls short
+// (docs/calibration-accuracy.md: at 1 px with 10 wand positions, 97 % of the true errors within
+// 3 such sigmas); re-adjusting from the approximate values, as the estimator does, samples the
+// minima as the estimator does (99.6 %). Where the network is strong all three agree.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "estimators/bundle_adjustment.hpp"
@@ -27,6 +32,11 @@ namespace syncap::estimators {
 struct BootstrapOptions {
   int samples = 30;   // re-adjustments (the sigmas' own relative error is ~1 / sqrt(2 samples))
   uint32_t seed = 1;  // of the simulated noise
+  // Where each re-adjustment starts: false, at the adjusted values (the spread of the basin the
+  // adjustment ended in); true, at the network's own approximate values, as the adjustment
+  // itself did (the spread of the whole estimator, which in a weak network may end in any of
+  // several minima).
+  bool from_approximate_values = true;
   BundleOptions bundle;
 };
 
@@ -38,6 +48,10 @@ struct BootstrapResult {
   // values held fixed) and their covariance.
   std::vector<std::array<double, sensor::InteriorBlock::kSize>> interior_sigma;
   std::vector<Eigen::Matrix<double, 10, 10>> interior_covariance;
+  // Per point that every converged sample adjusted, the covariance of its coordinates, each
+  // sample's points first fitted onto the adjusted ones by a rigid motion (the free network's
+  // datum is arbitrary; the wand's distances fix its scale). In the adjusted points' frame.
+  std::map<std::string, Eigen::Matrix3d> point_covariance;
 };
 
 // `network` is the one `adjusted` came from (estimators::adjust). Throws std::invalid_argument
