@@ -202,6 +202,21 @@ long Identification::rejected_frames() const {
   return n;
 }
 
+namespace {
+
+// A spot that touches the image's border is not measured whole (the edge flags it); one whose
+// centre lies outside the image (pixel centres at 0 .. size - 1) is no detection at all: a
+// corrupt record. Neither is used.
+bool measurable(const Spot& spot, const Observations& observations, int camera) {
+  if (spot.flags & blob_t::FLAG_AT_BORDER) return false;
+  const auto size = observations.image_sizes.find(camera);
+  if (size == observations.image_sizes.end() || size->second.width <= 0) return true;
+  return spot.x >= -0.5 && spot.y >= -0.5 && spot.x <= size->second.width - 0.5 &&
+         spot.y <= size->second.height - 0.5;
+}
+
+}  // namespace
+
 Identification identify_targets(const Observations& observations, const WandSpec& wand,
                                 const IdentificationOptions& options) {
   const ImageIdentifier identifier(wand, options);
@@ -226,7 +241,7 @@ Identification identify_targets(const Observations& observations, const WandSpec
         const int s = assignment.spots[t];
         if (s < 0) continue;
         const Spot& spot = spots[static_cast<size_t>(s)];
-        if (spot.flags & blob_t::FLAG_AT_BORDER) {
+        if (!measurable(spot, observations, camera)) {
           ++stats.at_border;
           continue;
         }

@@ -62,7 +62,8 @@ struct CameraIdentificationStats {
   long identified = 0;  // all targets found
   long missing = 0;     // fewer spots than targets, or no spots fitting the wand
   long ambiguous = 0;   // more than one way to see the wand
-  long at_border = 0;   // targets identified but not used: their spot touches the border
+  long at_border = 0;   // targets identified but not used: their spot touches the border (or
+                        // lies outside the image: a corrupt record)
 };
 
 // The image positions of the targets: per frame, per camera, one entry per target (nullopt: not

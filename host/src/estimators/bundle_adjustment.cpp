@@ -79,6 +79,15 @@ const char* const kPointNames[3] = {"X", "Y", "Z"};
 
 std::string quoted(const std::string& s) { return "\"" + s + "\""; }
 
+// ", N of them with the M points whose wrong ray could not be told", or nothing.
+std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
+  long rays = 0;
+  for (const auto& r : rejected) rays += r.ambiguous;
+  if (rays == 0) return "";
+  return util::printf_string(", %ld of them with the %ld points whose wrong ray could not be told",
+                             rays, rays / 2);
+}
+
 // Where an object point's values live: the parameter block of its group, at an offset.
 struct PointSlot {
   int group = -1;  // -1: not adjusted (undetermined)
@@ -247,6 +256,9 @@ class Adjuster {
   void evaluate_residuals();
   bool compute_cofactors();
   bool reject_worst_blunder();
+  void reject(size_t m, double w, bool ambiguous = false);
+  double pair_square_sum(size_t a, size_t b) const;
+  bool reject_ambiguous_points();
   void fill_result();
   DatumDefect datum_defect() const;
   void s_transform(ArrowCofactors* q) const;
@@ -752,10 +764,91 @@ bool Adjuster::reject_worst_blunder() {
   }
   const double w = w_of_log_p(worst);
   if (!(w > test.critical_snooping)) return false;
-  status_[worst_index] = MeasurementStatus::kRejectedBlunder;
-  const auto& meas = network_.measurements[worst_index];
-  result_.rejected.push_back({worst_index, meas.station, meas.point, meas.frame_number, w});
+  reject(worst_index, w);
   return true;
+}
+
+void Adjuster::reject(size_t m, double w, bool ambiguous) {
+  status_[m] = MeasurementStatus::kRejectedBlunder;
+  const auto& meas = network_.measurements[m];
+  result_.rejected.push_back({m, meas.station, meas.point, meas.frame_number, w, ambiguous});
+}
+
+// v^T P v of two rays after their point is triangulated from them alone, with the current
+// cameras: 1 degree of freedom, 0 for rays that meet. From the point nearest to both rays, a few
+// Gauss-Newton steps on the image residuals (numeric derivatives: 3 unknowns, 4 residuals).
+double Adjuster::pair_square_sum(size_t a, size_t b) const {
+  const std::array<size_t, 2> index{a, b};
+  std::array<sensor::CameraModel, 2> cameras;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 2; ++i) {
+    const auto& meas = network_.measurements[index[i]];
+    cameras[i] = camera(resolved_.measurement_station[index[i]]);
+    const sensor::Ray ray = cameras[i].back_project({meas.u, meas.v});
+    const Eigen::Matrix3d projector =
+        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
+    normal += projector;
+    right += projector * ray.origin;
+  }
+  const auto residuals = [&](const Eigen::Vector3d& x) {
+    Eigen::Vector4d r;
+    for (int i = 0; i < 2; ++i) {
+      const auto& meas = network_.measurements[index[i]];
+      r.segment<2>(2 * i) =
+          (cameras[i].project(x).pixel - Eigen::Vector2d(meas.u, meas.v)) / meas.sigma_px;
+    }
+    return r;
+  };
+  Eigen::Vector3d x = normal.ldlt().solve(right);
+  for (int step = 0; step < 5; ++step) {
+    const Eigen::Vector4d r = residuals(x);
+    Eigen::Matrix<double, 4, 3> jacobian;
+    for (int k = 0; k < 3; ++k) {
+      const double h = 1e-6 * std::max(1.0, x.norm());
+      jacobian.col(k) = (residuals(x + h * Eigen::Vector3d::Unit(k)) - r) / h;
+    }
+    const Eigen::Vector3d dx =
+        (jacobian.transpose() * jacobian).ldlt().solve(-jacobian.transpose() * r);
+    if (!dx.allFinite()) break;
+    x += dx;
+  }
+  return residuals(x).squaredNorm();
+}
+
+// Once no measurement is left to reject, the points that lost a ray to data snooping and kept
+// two are looked at again, with the cleaned cameras. A blunder along the epipolar line of one
+// good ray can make the other good ray look worst; rejecting that one keeps the blunder,
+// undetectable in a two-ray point. Each two-ray subset of the three rays stands for the
+// hypothesis that the third ray is the wrong one, its v^T P v for the evidence against it.
+// When a gross error is there (a subset far beyond the critical value) but the evidence for
+// the rejection (the kept pair) over the best other hypothesis is less than the critical value,
+// the data cannot tell which ray was wrong: the kept rays go too, and with them the point.
+// True when any went.
+bool Adjuster::reject_ambiguous_points() {
+  const double sigma0 = options_.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
+  const double critical = std::pow(network_.residual_test.critical_snooping * sigma0, 2);
+  constexpr double kGross = 4.0;  // a gross error: v^T P v beyond 4 x critical (2 x critical |w|)
+  std::vector<std::vector<size_t>> kept(point_.size());
+  for (size_t m = 0; m < status_.size(); ++m) {
+    if (status_[m] == MeasurementStatus::kAccepted) {
+      kept[resolved_.measurement_point[m]].push_back(m);
+    }
+  }
+  bool any = false;
+  for (size_t r = 0; r < result_.rejected.size(); ++r) {
+    const size_t m = result_.rejected[r].index;
+    const int point = resolved_.measurement_point[m];
+    const std::vector<size_t> rays = kept[point];
+    if (rays.size() != 2 || point_held(point)) continue;
+    const double without_m = pair_square_sum(rays[0], rays[1]);
+    const double a = pair_square_sum(m, rays[1]), b = pair_square_sum(m, rays[0]);
+    if (std::max(a, b) <= kGross * critical || std::min(a, b) - without_m > critical) continue;
+    for (size_t k : rays) reject(k, w_of_log_p(log_p_[k]), true);
+    kept[point].clear();
+    any = true;
+  }
+  return any;
 }
 
 DatumDefect Adjuster::datum_defect() const {
@@ -928,7 +1021,7 @@ BundleAdjustmentResult Adjuster::run() {
       break;
     }
     if (!design.calculate_covariance || !compute_cofactors()) break;
-    if (snoop && reject_worst_blunder()) {
+    if (snoop && (reject_worst_blunder() || reject_ambiguous_points())) {
       strict = false;
     } else if (strict) {
       break;
@@ -956,7 +1049,7 @@ BundleAdjustmentResult Adjuster::run() {
   if (!result_.rejected.empty()) {
     result_.messages.push_back("data snooping removed " + std::to_string(result_.rejected.size()) +
                                " measurements (|w| > " + std::to_string(test.critical_snooping) +
-                               ")");
+                               ")" + ambiguous_note(result_.rejected));
   }
   fill_result();
   return std::move(result_);
@@ -982,8 +1075,8 @@ std::string format_summary(const BundleAdjustmentResult& r) {
         "goodness of fit y %.2f <= %.2f (%d classes, %ld residuals): %s; KS D %.4f p %.3f\n",
         g.statistic, g.critical, g.bins, g.samples, g.passed ? "passed" : "FAILED", g.ks_distance,
         g.ks_p_value);
-    out +=
-        printf_string("data snooping |w| > %.2f: %zu removed\n", r.critical_w, r.rejected.size());
+    out += printf_string("data snooping |w| > %.2f: %zu removed%s\n", r.critical_w,
+                         r.rejected.size(), ambiguous_note(r.rejected).c_str());
   }
   for (const auto& m : r.models) {
     out += "camera model " + m.name + ":";

@@ -151,9 +151,11 @@ TEST(Calibrate, WandAmongReflectionsFindsTheTruthFromTheImageSizeAlone) {
 }
 
 // Three cameras, two or three rays a point: a blunder on a three-ray point can lie along the
-// epipolar line of one good ray, so that the point fits its two other rays as well as it fits
-// the good one's pair (frame 16 here). Data snooping then takes the good ray; the test allows
-// one such miss and names it.
+// epipolar line of one good ray, so that data snooping takes the good ray. Where the rejected
+// ray then fits one kept ray about as well as the kept two fit each other, the point goes
+// (estimators: reject_ambiguous_points). In frame 16 here no pair of rays shows the blunder
+// grossly (it lies nearly along the epipolar lines of both good rays: cameras on an arc at one
+// height): the test allows one such miss and names it.
 TEST(Calibrate, LedModeFlagsTheInjectedBlunders) {
   estimators::WandSimulation sim;
   sim.frames = 150;
@@ -182,7 +184,12 @@ TEST(Calibrate, LedModeFlagsTheInjectedBlunders) {
     }
   }
   EXPECT_LE(missed, 1u);
-  EXPECT_LE(r.quality.outliers_removed, static_cast<long>(s.blunders.size()) + 5);
+  // The removed: the blunders, a few good rays beyond the critical value, and the two other rays
+  // of each point whose wrong ray could not be told (two here).
+  long ambiguous = 0;
+  for (const auto& rejection : r.adjustment.rejected) ambiguous += rejection.ambiguous;
+  EXPECT_LE(ambiguous, 4);
+  EXPECT_LE(r.quality.outliers_removed - ambiguous, static_cast<long>(s.blunders.size()) + 5);
   EXPECT_GT(r.quality.rms_px, 0.1);  // two or three rays a point: below the 0.2 px noise
   EXPECT_LT(r.quality.rms_px, 0.2);
   EXPECT_NEAR(r.quality.sigma0_px, 0.2, 0.03);

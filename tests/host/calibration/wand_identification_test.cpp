@@ -92,6 +92,22 @@ TEST(WandIdentification, ATargetAtTheBorderIsIdentifiedButNotUsed) {
   EXPECT_EQ(id.cameras.at(0).at_border, 1);
 }
 
+// A spot outside the image is no detection (a corrupt record): identified, but not used.
+TEST(WandIdentification, ASpotOutsideTheImageIsNotUsed) {
+  WandSpec led;
+  led.led = true;
+  Observations obs;
+  obs.image_sizes[0] = {640, 480};
+  obs.frames[1][0] = {spot(-0.8, 100)};
+  obs.frames[2][0] = {spot(-0.4, 479.5)};  // inside: pixel 0's and row 479's far halves
+  obs.frames[3][0] = {spot(100, 480)};
+  const Identification id = identify_targets(obs, led);
+  EXPECT_FALSE(id.frames.at(1).at(0)[0].has_value());
+  expect_at(id.frames.at(2).at(0)[0], -0.4, 479.5);
+  EXPECT_FALSE(id.frames.at(3).at(0)[0].has_value());
+  EXPECT_EQ(id.cameras.at(0).at_border, 2);
+}
+
 TEST(WandIdentification, TwoTargetsBySize) {
   WandSpec wand;
   wand.length_mm = 500;
