@@ -370,6 +370,11 @@ RunResult run_calibration(const WandSimulation& simulation, int wand_check_frame
       estimators::BootstrapOptions options;
       options.samples = bootstrap_samples;
       options.seed = simulation.seed;
+      options.restart = [](scene::Network sample) {
+        for (auto& station : sample.stations) station.has_approximation = false;
+        for (auto& point : sample.points) point.has_approximation = false;
+        return calibration::start_network(sample).network;
+      };
       bootstrap = estimators::bootstrap_precision(start.network, r, options);
       out.interior_sigma_bootstrap = bootstrap.interior_sigma;
     }

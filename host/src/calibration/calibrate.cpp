@@ -154,8 +154,8 @@ struct Stage {
   bool snoop = false;
 };
 
-estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
-                                                const CalibrationOptions& options, Stage stage) {
+// The stage's free and held values, design and tests on `network`.
+void prepare_stage(scene::Network& network, const CalibrationOptions& options, Stage stage) {
   std::set<int> free(options.free_interior.begin(), options.free_interior.end());
   if (free.empty()) {
     free = options.wand.led ? std::set<int>{0, 1, 2, 3, 4, 6, 7}
@@ -187,6 +187,11 @@ estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
   network.design.statistical_tests = stage.snoop;
   network.residual_test.iterative_rejection = stage.snoop;
   network.residual_test.critical_snooping = options.critical_snooping;
+}
+
+estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
+                                                const CalibrationOptions& options, Stage stage) {
+  prepare_stage(network, options, stage);
   estimators::BundleOptions bundle;
   bundle.snoop_with_a_posteriori_sigma0 = options.snoop_with_a_posteriori_sigma0;
   return estimators::adjust(network, bundle);
@@ -237,11 +242,43 @@ std::vector<double> adjusted_wand_lengths(const scene::Network& network,
   return lengths;
 }
 
+// The second stage's approximate values from a network's observations alone: the start
+// (relative orientations, resection, scale), the first stage (c, xp, yp and the exterior, on the
+// points the start triangulated), and the levelled frame.
+struct SecondStageStart {
+  scene::Network network;
+  NetworkStartReport start;
+  estimators::BundleAdjustmentResult first;
+};
+
+SecondStageStart second_stage_start(scene::Network network, const CalibrationOptions& options) {
+  NetworkStart start = start_network(network, options.start);
+  SecondStageStart out{std::move(start.network), std::move(start.report), {}};
+  scene::Network first_network = triangulated_part(out.network);
+  out.first = adjust_stage(first_network, options, {false, false});
+  out.network = estimators::with_adjusted_values(std::move(out.network), out.first);
+  level_network(out.network);
+  return out;
+}
+
 // The parametric bootstrap's interior sigmas beside the linearised ones in the report.
-void add_bootstrap(CalibrationResult& out, const CalibrationOptions& options) {
+// `nominal`: the camera models the calibration started from.
+void add_bootstrap(CalibrationResult& out, const CalibrationOptions& options,
+                   const std::vector<scene::CameraModel>& nominal) {
   say(options, "bootstrap: " + std::to_string(options.bootstrap_samples) + " re-adjustments ...");
   estimators::BootstrapOptions bootstrap;
   bootstrap.samples = options.bootstrap_samples;
+  // Each sample goes the calibration's whole way from its own observations to the second stage.
+  bootstrap.restart = [&options, &nominal](scene::Network sample) {
+    for (size_t m = 0; m < sample.models.size() && m < nominal.size(); ++m) {
+      sample.models[m].interior = nominal[m].interior;
+    }
+    for (auto& station : sample.stations) station.has_approximation = false;
+    for (auto& point : sample.points) point.has_approximation = false;
+    scene::Network second = second_stage_start(std::move(sample), options).network;
+    prepare_stage(second, options, {true, true});
+    return second;
+  };
   const estimators::BootstrapResult b =
       estimators::bootstrap_precision(out.network, out.adjustment, bootstrap);
   out.report.bootstrap_samples = b.samples;
@@ -461,21 +498,17 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
                    std::to_string(network.measurements.size()) + " measurements, " +
                    std::to_string(network.distances.size()) + " distances");
 
-  NetworkStart start = start_network(network, options.start);
-  out.start = start.report;
-  say(options, "start values: root " + start.report.root + ", " +
-                   std::to_string(start.report.triangulated_points) + " points triangulated" +
-                   (start.report.resected.empty()
+  const std::vector<scene::CameraModel> nominal = network.models;  // the bootstrap restarts there
+  SecondStageStart second = second_stage_start(std::move(network), options);
+  out.start = second.start;
+  say(options, "start values: root " + second.start.root + ", " +
+                   std::to_string(second.start.triangulated_points) + " points triangulated" +
+                   (second.start.resected.empty()
                         ? std::string()
-                        : ", " + std::to_string(start.report.resected.size()) + " resected"));
-
-  network = start.network;
-  scene::Network first_network = triangulated_part(network);
-  const auto first = adjust_stage(first_network, options, {false, false});
-  say(options, "adjustment 1/2 (c, xp, yp, exterior): " + std::to_string(first.iterations) +
-                   " iterations, sigma0 " + std::to_string(first.sigma0));
-  network = estimators::with_adjusted_values(std::move(network), first);
-  level_network(network);
+                        : ", " + std::to_string(second.start.resected.size()) + " resected"));
+  say(options, "adjustment 1/2 (c, xp, yp, exterior): " + std::to_string(second.first.iterations) +
+                   " iterations, sigma0 " + std::to_string(second.first.sigma0));
+  network = std::move(second.network);
   out.adjustment = adjust_stage(network, options, {true, true});
   say(options, "adjustment 2/2 (all interior values, data snooping): " +
                    std::to_string(out.adjustment.adjustments) + " adjustments, " +
@@ -502,7 +535,9 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
     out.measurements_of_point[out.network.measurements[m].point].push_back(m);
   }
   fill_report(out, observations, options, frames);
-  if (options.bootstrap_samples > 1 && out.adjustment.converged) add_bootstrap(out, options);
+  if (options.bootstrap_samples > 1 && out.adjustment.converged) {
+    add_bootstrap(out, options, nominal);
+  }
   out.quality = quality_of(out, options);
   return out;
 }

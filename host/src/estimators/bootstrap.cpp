@@ -75,6 +75,14 @@ void take_observations(const scene::Network& from, scene::Network& to) {
   }
 }
 
+// Each sample is a plain least-squares solution: no covariance, no tests, no rejections.
+void as_plain_solution(scene::Network& network) {
+  network.design.simulate = false;
+  network.design.calculate_covariance = false;
+  network.design.statistical_tests = false;
+  network.residual_test.iterative_rejection = false;
+}
+
 // The sample covariance of the vectors added.
 template <int N>
 struct Spread {
@@ -168,13 +176,9 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
   }
   const scene::Network truth = accepted_part(with_adjusted_values(network, adjusted), adjusted);
   scene::Network start = options.from_approximate_values ? accepted_part(network, adjusted) : truth;
-  // Each sample is a plain least-squares solution: no covariance, no tests, no rejections.
-  start.design.simulate = false;
   start.design.ignore_approximates =
       options.from_approximate_values && network.design.ignore_approximates;
-  start.design.calculate_covariance = false;
-  start.design.statistical_tests = false;
-  start.residual_test.iterative_rejection = false;
+  as_plain_solution(start);
   const double scale = adjusted.sigma0 > 0.0 ? adjusted.sigma0 : 1.0;
 
   const size_t models = adjusted.models.size();
@@ -197,6 +201,15 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
       simulate_observations(simulated, scale, rng);
       scene::Network sample = start;
       take_observations(simulated, sample);
+      if (options.from_approximate_values && options.restart) {
+        try {
+          sample = options.restart(std::move(sample));
+          as_plain_solution(sample);
+        } catch (const std::exception&) {
+          ++out.failed;  // no start from these observations: the estimator would fail too
+          continue;
+        }
+      }
       const BundleAdjustmentResult r = adjust(sample, options.bundle);
       if (!r.converged || r.models.size() != models) {
         ++out.failed;

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,6 +38,10 @@ struct BootstrapOptions {
   // itself did (the spread of the whole estimator, which in a weak network may end in any of
   // several minima).
   bool from_approximate_values = true;
+  // With from_approximate_values: when set, each sample's approximate values are computed anew
+  // from its own simulated observations by this (e.g. calibration::start_network), as the
+  // adjustment's were from the real ones; else every sample starts from the network's.
+  std::function<scene::Network(scene::Network)> restart;
   BundleOptions bundle;
 };
 

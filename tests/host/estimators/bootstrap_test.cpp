@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "estimators/bundle_adjustment_simulation.hpp"
 
@@ -90,6 +91,31 @@ TEST(Bootstrap, FromTheApproximateValuesCoversTheErrorsOfAWeakNetwork) {
   EXPECT_LT(worst_of_estimator, 3.5);
   EXPECT_GT(worst_in_basin, 4.0);
   EXPECT_GT(worst_linearised, 6.0);
+}
+
+// A restart computes each sample's approximate values from its own observations; a sample it
+// cannot start counts as failed, as the estimator would have failed on it.
+TEST(Bootstrap, RestartsEachSampleFromItsOwnObservations) {
+  WandSimulation sim;
+  sim.frames = 40;
+  const SimulatedWandNetwork s = simulate_wand_network(sim);
+  const BundleAdjustmentResult r = adjusted(s.network);
+  BootstrapOptions options;
+  options.samples = 4;
+  int calls = 0;
+  options.restart = [&](scene::Network sample) {
+    ++calls;
+    EXPECT_NE(sample.measurements.front().u, s.network.measurements.front().u);  // simulated
+    return sample;
+  };
+  EXPECT_EQ(bootstrap_precision(s.network, r, options).samples, 4);
+  EXPECT_EQ(calls, 4);
+  options.restart = [](scene::Network) -> scene::Network {
+    throw std::runtime_error("no relative orientation");
+  };
+  const BootstrapResult none = bootstrap_precision(s.network, r, options);
+  EXPECT_EQ(none.samples, 0);
+  EXPECT_EQ(none.failed, 4);
 }
 
 TEST(Bootstrap, SimulatesOnlyWhatTheAdjustmentAccepted) {
