@@ -19,6 +19,8 @@ constexpr double kPi = 3.14159265358979323846;
 // the blunders still in, only gives approximate values: longer, it can wander off along c
 // against depth (strawlab blunder seed 8 ends at 1.1 px RMS with 1000).
 constexpr int kFirstStageIterations = 200;
+// The thesis finds the interior orientation stable from about 40 wand positions on (Table 4.3).
+constexpr size_t kStableFrames = 40;
 constexpr int kMaxIterations = 1000;
 
 std::string camera_name(int id) {
@@ -345,6 +347,14 @@ void fill_report(CalibrationResult& out, const Observations& observations,
                               " frame groups lacked a camera");
   }
   for (const std::string& m : r.messages) report.messages.push_back(m);
+  if (options.bootstrap_samples < 2 && (options.wand.led || frames.size() < kStableFrames)) {
+    report.messages.push_back(
+        "weak network (" +
+        (options.wand.led ? std::string("one LED a frame")
+                          : std::to_string(frames.size()) + " wand positions") +
+        "): its minima are several and its linearised sigmas can understate the errors several "
+        "times; --bootstrap 30 gives sigmas that cover them (docs/calibration.md)");
+  }
 }
 
 sensor::CalibrationQuality quality_of(const CalibrationResult& out, const CalibrationOptions& o) {

@@ -222,6 +222,32 @@ TEST(Calibrate, ErrorsNameTheCameraOrTheOption) {
   EXPECT_THROW(calibrate(obs, one_sample), CalibrationError);
 }
 
+bool says_weak(const CalibrationResult& r) {
+  for (const std::string& m : r.report.messages) {
+    if (m.rfind("weak network", 0) == 0) return true;
+  }
+  return false;
+}
+
+// Fewer than 40 wand positions: the report says the linearised sigmas may fall short and
+// points to --bootstrap; not with 40 or more, nor when the bootstrap ran.
+TEST(Calibrate, AWeakNetworkPointsToTheBootstrap) {
+  estimators::WandSimulation sim;
+  sim.frames = 20;
+  const Simulated weak = observe(sim, false, 0.0, 0.0);
+  CalibrationOptions options = wand_options();
+  const CalibrationResult r = calibrate(weak.observations, options);
+  ASSERT_TRUE(r.adjustment.converged);
+  EXPECT_TRUE(says_weak(r));
+  EXPECT_NE(format_report_text(r.report).find("note: weak network (20 wand positions)"),
+            std::string::npos);
+  options.bootstrap_samples = 3;
+  EXPECT_FALSE(says_weak(calibrate(weak.observations, options)));
+  sim.frames = 40;
+  options.bootstrap_samples = 0;
+  EXPECT_FALSE(says_weak(calibrate(observe(sim, false, 0.0, 0.0).observations, options)));
+}
+
 // --bootstrap: the report carries the bootstrap's interior sigmas beside the linearised ones;
 // in this strong network (120 wand positions) they agree to the bootstrap's sampling error.
 TEST(Calibrate, BootstrapSigmasBesideTheLinearisedOnes) {
