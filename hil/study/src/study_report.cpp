@@ -157,8 +157,9 @@ void write_table_4_3_reading(std::ostringstream& out, const StudyReport& report)
   if (weakest != nullptr && weakest->interior_3_bootstrap.total > 0) {
     out << printf_string(
         "The parametric bootstrap (`estimators::bootstrap_precision`: %d re-adjustments a run of "
-        "measurements simulated from the adjusted network, each started from the approximate "
-        "values the adjustment started from) samples the minima as the estimator does: at 1 px "
+        "measurements simulated from the adjusted network, each from approximate values the "
+        "network start computed from its own measurements, as the adjustment's were) samples the "
+        "minima as the estimator does: at 1 px "
         "with 10 wands %s of the true interior errors lie within 3 of its sigmas (RMS of "
         "e/sigma %.2f, xp %.2f) against %s of the linearised ones, and %s of the point "
         "coordinates (linearised: %s). Its sigmas are the ones the claims above hold to; "

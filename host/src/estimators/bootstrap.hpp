@@ -7,13 +7,14 @@
 //
 // Why: the adjustment's covariance is the linearised one (thesis eq 4.39), the curvature of the
 // cost at the minimum it ended in. A weak network (a few wand positions, all ten interior values
-// free) has more than one minimum: the same simulated network adjusted from the true values ends
-// in another minimum, principal point several linearised sigmas away, at a cost that differs by
-// a tenth of a unit of v^T P v. Which one the adjustment finds depends on the noise and the
-// start. Re-adjusting from the adjusted values stays in the first basin and still falls short
-// (docs/calibration-accuracy.md: at 1 px with 10 wand positions, 97 % of the true errors within
-// 3 such sigmas); re-adjusting from the approximate values, as the estimator does, samples the
-// minima as the estimator does (99.6 %). Where the network is strong all three agree.
+// free) has more than one minimum: the same measurements adjusted from the true values end in
+// another one, an interior value several linearised sigmas away, at a v^T P v a few units apart
+// at most (docs/calibration-accuracy.md: 15 of 50 networks of 10 wand positions at 1 px). Which
+// one the adjustment finds depends on the noise and the start, and the linearised sigmas cannot
+// see the others. Re-adjusting from the adjusted values stays in the first basin; re-adjusting
+// from approximate values got as the adjustment got its own samples the minima as the estimator
+// does (at 1 px with 10 wand positions, 99.5 % of the true interior errors within 3 of its
+// sigmas against 93.9 % of the linearised ones). Where the network is strong all agree.
 #pragma once
 
 #include <Eigen/Core>
