@@ -1,7 +1,8 @@
-# syncap_cmocka_test(<name> LABEL unit|hil SOURCES ... [LIBS ...] [TIMEOUT seconds])
+# syncap_cmocka_test(<name> LABEL unit|hil SOURCES ... [LIBS ...] [TIMEOUT seconds] [SERIAL])
 #
 # Builds a cmocka test program and registers one ctest test per cmocka case, named
-# <name>.<case>, with LABELS <label> and TIMEOUT (default 60 s). The cases are discovered from
+# <name>.<case>, with LABELS <label> and TIMEOUT (default 60 s); SERIAL: RUN_SERIAL too (cases
+# that measure timing, which a loaded machine spoils). The cases are discovered from
 # the program itself, like gtest_discover_tests: its main must come from SYNCAP_CMOCKA_MAIN
 # (tests/firmware/cmocka_main.h), which makes `<exe> --list` print the case names and
 # `<exe> <case>` run that case alone. A POST_BUILD step runs `--list` and writes a ctest include
@@ -14,7 +15,7 @@ set(_SYNCAP_CMOCKA_SCRIPT "${CMAKE_CURRENT_LIST_FILE}")
 set(_SYNCAP_CMOCKA_MAIN_DIR "${CMAKE_CURRENT_LIST_DIR}/../tests/firmware")
 
 # Script mode: run the program with --list and write one add_test per case into OUT.
-# Inputs: EXE, OUT, PREFIX, LABEL, TIMEOUT and LAUNCHER (empty for none).
+# Inputs: EXE, OUT, PREFIX, LABEL, TIMEOUT, SERIAL (ON or OFF) and LAUNCHER (empty for none).
 function(_syncap_cmocka_write_tests)
   execute_process(COMMAND "${EXE}" --list
     OUTPUT_VARIABLE listing ERROR_VARIABLE errors RESULT_VARIABLE status)
@@ -37,7 +38,8 @@ function(_syncap_cmocka_write_tests)
     set(test "${PREFIX}.${case}")
     string(APPEND content
       "add_test([==[${test}]==] ${LAUNCHER} [==[${EXE}]==] [==[${case}]==])\n"
-      "set_tests_properties([==[${test}]==] PROPERTIES LABELS ${LABEL} TIMEOUT ${TIMEOUT})\n")
+      "set_tests_properties([==[${test}]==] PROPERTIES LABELS ${LABEL} TIMEOUT ${TIMEOUT}"
+      " RUN_SERIAL ${SERIAL})\n")
     math(EXPR count "${count} + 1")
   endforeach()
   if(count EQUAL 0)
@@ -58,7 +60,7 @@ endif()
 pkg_check_modules(CMOCKA REQUIRED IMPORTED_TARGET GLOBAL cmocka>=1.1)
 
 function(syncap_cmocka_test name)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "LABEL;TIMEOUT" "SOURCES;LIBS")
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "SERIAL" "LABEL;TIMEOUT" "SOURCES;LIBS")
   if(NOT ARG_LABEL MATCHES "^(unit|hil)$")
     message(FATAL_ERROR "syncap_cmocka_test(${name}): LABEL must be unit or hil")
   endif()
@@ -81,6 +83,7 @@ function(syncap_cmocka_test name)
   add_custom_command(TARGET ${name} POST_BUILD
     COMMAND ${CMAKE_COMMAND} -D SYNCAP_CMOCKA_EXE=$<TARGET_FILE:${name}> -D OUT=${tests_file}
             -D PREFIX=${name} -D LABEL=${ARG_LABEL} -D TIMEOUT=${ARG_TIMEOUT}
+            -D SERIAL=$<IF:$<BOOL:${ARG_SERIAL}>,ON,OFF>
             -D LAUNCHER=${launcher} -P ${_SYNCAP_CMOCKA_SCRIPT}
     COMMENT "cmocka: listing the test cases of ${name}"
     VERBATIM)
