@@ -128,6 +128,25 @@ std::vector<const sensor::CameraModel*> truth_of(
   return out;
 }
 
+// The simulation's true cameras by station name (each station has a model of that name).
+std::map<std::string, const sensor::CameraModel*> true_cameras_by_name(
+    const SimulatedWandNetwork& simulated) {
+  std::map<std::string, const sensor::CameraModel*> cameras;
+  for (const auto& camera : simulated.cameras) {
+    cameras["camera" + std::to_string(camera.id)] = &camera;
+  }
+  return cameras;
+}
+
+// The simulation's true points by name.
+std::map<std::string, Eigen::Vector3d> true_points_by_name(const SimulatedWandNetwork& simulated) {
+  std::map<std::string, Eigen::Vector3d> points;
+  for (size_t i = 0; i < simulated.points.size(); ++i) {
+    points[simulated.network.points[i].name] = simulated.points[i];
+  }
+  return points;
+}
+
 // Measures the wand's end-to-end length on fresh wand positions with the estimated cameras.
 void check_wand_length(const WandSimulation& simulation,
                        const std::map<std::string, sensor::CameraModel>& cameras, int frames,
@@ -172,27 +191,19 @@ void check_wand_length(const WandSimulation& simulation,
   out.wand_length_sd_true_cameras_mm = standard_deviation(true_deviations);
 }
 
-// The adjusted points against the truth after the rigid motion that fits them best (the
-// inner-constraint datum of the covariance: minimum trace over the points, scale from the wand).
 // The network adjusted again from the true values (all of them approximate values): where it
 // ends against where the adjustment from the start values ended (`r`): the largest difference of
 // c, xp, yp, sc, k1 in r's sigmas, and of v^T P v.
 void adjust_from_truth(const scene::Network& network, const SimulatedWandNetwork& simulated,
                        const BundleAdjustmentResult& r, RunResult& out) {
   scene::Network truth = network;
-  std::map<std::string, const sensor::CameraModel*> cameras;
-  for (const auto& camera : simulated.cameras) {
-    cameras["camera" + std::to_string(camera.id)] = &camera;
-  }
+  const auto cameras = true_cameras_by_name(simulated);
   for (auto& station : truth.stations) {
     station.exterior = cameras.at(station.name)->exterior;
     station.has_approximation = true;
   }
   for (auto& model : truth.models) model.interior = cameras.at(model.name)->interior;
-  std::map<std::string, Eigen::Vector3d> points;
-  for (size_t i = 0; i < simulated.points.size(); ++i) {
-    points[simulated.network.points[i].name] = simulated.points[i];
-  }
+  const auto points = true_points_by_name(simulated);
   for (auto& point : truth.points) {
     const Eigen::Vector3d& xyz = points.at(point.name);
     point.xyz = {xyz.x(), xyz.y(), xyz.z()};
@@ -219,13 +230,12 @@ void adjust_from_truth(const scene::Network& network, const SimulatedWandNetwork
   }
 }
 
+// The adjusted points against the truth after the rigid motion that fits them best (the
+// inner-constraint datum of the covariance: minimum trace over the points, scale from the wand).
 // `bootstrap`: the points' covariances from the bootstrap (empty: none).
 void compare_points(const BundleAdjustmentResult& r, const SimulatedWandNetwork& simulated,
                     const std::map<std::string, Eigen::Matrix3d>& bootstrap, RunResult& out) {
-  std::map<std::string, Eigen::Vector3d> truth;
-  for (size_t i = 0; i < simulated.points.size(); ++i) {
-    truth[simulated.network.points[i].name] = simulated.points[i];
-  }
+  const auto truth = true_points_by_name(simulated);
   std::vector<const estimators::PointResult*> adjusted;
   for (const auto& p : r.points) {
     if (p.adjusted && truth.count(p.name)) adjusted.push_back(&p);
@@ -267,10 +277,7 @@ void image_residual_figures(const BundleAdjustmentResult& r, double noise_px, Ru
 }
 
 void image_coverage(const SimulatedWandNetwork& simulated, RunResult& out) {
-  std::map<std::string, const sensor::CameraModel*> cameras;
-  for (const auto& camera : simulated.cameras) {
-    cameras["camera" + std::to_string(camera.id)] = &camera;
-  }
+  const auto cameras = true_cameras_by_name(simulated);
   for (const auto& m : simulated.network.measurements) {
     const sensor::CameraModel& camera = *cameras.at(m.station);
     const Eigen::Vector2d image = camera.image_from_pixel({m.u, m.v}) -
@@ -353,10 +360,7 @@ RunResult run_calibration(const WandSimulation& simulation, int wand_check_frame
     out.sigma0 = r.sigma0;
     image_residual_figures(r, simulation.noise_px, out);
     image_coverage(simulated, out);
-    std::map<std::string, const sensor::CameraModel*> truth;
-    for (const auto& camera : simulated.cameras) {
-      truth["camera" + std::to_string(camera.id)] = &camera;
-    }
+    const auto truth = true_cameras_by_name(simulated);
     for (const auto& model : r.models) {
       const auto estimate = sensor::interior_block(model.interior);
       const auto true_values = sensor::interior_block(truth.at(model.name)->interior);
@@ -371,8 +375,6 @@ RunResult run_calibration(const WandSimulation& simulation, int wand_check_frame
       options.samples = bootstrap_samples;
       options.seed = simulation.seed;
       options.restart = [](scene::Network sample) {
-        for (auto& station : sample.stations) station.has_approximation = false;
-        for (auto& point : sample.points) point.has_approximation = false;
         return calibration::start_network(sample).network;
       };
       bootstrap = estimators::bootstrap_precision(start.network, r, options);

@@ -19,9 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 // the blunders still in, only gives approximate values: longer, it can wander off along c
 // against depth (strawlab blunder seed 8 ends at 1.1 px RMS with 1000).
 constexpr int kFirstStageIterations = 200;
+constexpr int kMaxIterations = 1000;
 // The thesis finds the interior orientation stable from about 40 wand positions on (Table 4.3).
 constexpr size_t kStableFrames = 40;
-constexpr int kMaxIterations = 1000;
 
 std::string camera_name(int id) {
   std::ostringstream name;
@@ -275,8 +275,6 @@ void add_bootstrap(CalibrationResult& out, const CalibrationOptions& options,
     for (size_t m = 0; m < sample.models.size() && m < nominal.size(); ++m) {
       sample.models[m].interior = nominal[m].interior;
     }
-    for (auto& station : sample.stations) station.has_approximation = false;
-    for (auto& point : sample.points) point.has_approximation = false;
     scene::Network second = second_stage_start(std::move(sample), options).network;
     prepare_stage(second, options, {true, true});
     return second;

@@ -202,6 +202,8 @@ BootstrapResult bootstrap_precision(const scene::Network& network,
       scene::Network sample = start;
       take_observations(simulated, sample);
       if (options.from_approximate_values && options.restart) {
+        for (auto& station : sample.stations) station.has_approximation = false;
+        for (auto& point : sample.points) point.has_approximation = false;
         try {
           sample = options.restart(std::move(sample));
           as_plain_solution(sample);

@@ -41,7 +41,8 @@ struct BootstrapOptions {
   bool from_approximate_values = true;
   // With from_approximate_values: when set, each sample's approximate values are computed anew
   // from its own simulated observations by this (e.g. calibration::start_network), as the
-  // adjustment's were from the real ones; else every sample starts from the network's.
+  // adjustment's were from the real ones; it gets the sample with no station and no point
+  // approximated. Else every sample starts from the network's approximate values.
   std::function<scene::Network(scene::Network)> restart;
   BundleOptions bundle;
 };

@@ -88,6 +88,19 @@ std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
                              rays, rays / 2);
 }
 
+// The normal equations of the point nearest to some rays: sum (I - d d^T) (X - o) = 0.
+struct NearestPoint {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  void add(const sensor::Ray& ray) {
+    const Eigen::Matrix3d projector =
+        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
+    normal += projector;
+    right += projector * ray.origin;
+  }
+  Eigen::Vector3d solve() const { return normal.ldlt().solve(right); }
+};
+
 // Where an object point's values live: the parameter block of its group, at an offset.
 struct PointSlot {
   int group = -1;  // -1: not adjusted (undetermined)
@@ -241,6 +254,10 @@ class Adjuster {
     c.exterior = sensor::exterior_from_block(exterior_[station].data());
     return c;
   }
+  // The sigma0 data snooping standardises with: the a posteriori one, or 1 (the a priori).
+  double snooping_sigma0() const {
+    return options_.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
+  }
   bool point_held(int p) const {
     for (const auto& prior : network_.points[p].priors) {
       if (prior.mode == ParameterMode::kFree) return false;
@@ -301,21 +318,15 @@ void Adjuster::triangulate_approximations() {
   for (size_t p = 0; p < point_.size(); ++p) {
     if (network_.points[p].has_approximation && !network_.design.ignore_approximates) continue;
     if (point_held(static_cast<int>(p))) continue;  // a control point keeps its given value
-    // The point nearest to all rays: sum (I - d d^T) (X - o) = 0.
-    Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    NearestPoint nearest;
     std::set<int> stations;
     for (size_t m : rays[p]) {
       const auto& meas = network_.measurements[m];
       const int s = resolved_.measurement_station[m];
-      const sensor::Ray ray = camera(s).back_project({meas.u, meas.v});
-      const Eigen::Matrix3d projector =
-          Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
-      a += projector;
-      b += projector * ray.origin;
+      nearest.add(camera(s).back_project({meas.u, meas.v}));
       stations.insert(s);
     }
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(a);
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(nearest.normal);
     if (stations.size() < 2 || svd.singularValues()[2] < 1e-9 * svd.singularValues()[0]) {
       result_.messages.push_back("point " + quoted(network_.points[p].name) +
                                  ": no approximation and fewer than two distinct rays; not "
@@ -323,7 +334,7 @@ void Adjuster::triangulate_approximations() {
       for (size_t m : rays[p]) status_[m] = MeasurementStatus::kUndetermined;
       continue;
     }
-    point_[p] = a.ldlt().solve(b);
+    point_[p] = nearest.solve();
     ++triangulated;
   }
   if (triangulated > 0) {
@@ -713,7 +724,7 @@ bool Adjuster::compute_cofactors() {
 
   // q_vv = q_ll - a Q_xx a^T per image coordinate, from the cofactors of the values it touches;
   // whitened, q_ll = 1.
-  const double sigma0 = options_.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
+  const double sigma0 = snooping_sigma0();
   log_p_.assign(network_.measurements.size(), 0.0);
   for (size_t t = 0; t < terms_.size(); ++t) {
     if (terms_[t].kind != Term::Kind::kImage) continue;
@@ -780,16 +791,11 @@ void Adjuster::reject(size_t m, double w, bool ambiguous) {
 double Adjuster::pair_square_sum(size_t a, size_t b) const {
   const std::array<size_t, 2> index{a, b};
   std::array<sensor::CameraModel, 2> cameras;
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  NearestPoint nearest;
   for (int i = 0; i < 2; ++i) {
     const auto& meas = network_.measurements[index[i]];
     cameras[i] = camera(resolved_.measurement_station[index[i]]);
-    const sensor::Ray ray = cameras[i].back_project({meas.u, meas.v});
-    const Eigen::Matrix3d projector =
-        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
-    normal += projector;
-    right += projector * ray.origin;
+    nearest.add(cameras[i].back_project({meas.u, meas.v}));
   }
   const auto residuals = [&](const Eigen::Vector3d& x) {
     Eigen::Vector4d r;
@@ -800,7 +806,7 @@ double Adjuster::pair_square_sum(size_t a, size_t b) const {
     }
     return r;
   };
-  Eigen::Vector3d x = normal.ldlt().solve(right);
+  Eigen::Vector3d x = nearest.solve();
   for (int step = 0; step < 5; ++step) {
     const Eigen::Vector4d r = residuals(x);
     Eigen::Matrix<double, 4, 3> jacobian;
@@ -826,7 +832,7 @@ double Adjuster::pair_square_sum(size_t a, size_t b) const {
 // the data cannot tell which ray was wrong: the kept rays go too, and with them the point.
 // True when any went.
 bool Adjuster::reject_ambiguous_points() {
-  const double sigma0 = options_.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
+  const double sigma0 = snooping_sigma0();
   const double critical = std::pow(network_.residual_test.critical_snooping * sigma0, 2);
   constexpr double kGross = 4.0;  // a gross error: v^T P v beyond 4 x critical (2 x critical |w|)
   std::vector<std::vector<size_t>> kept(point_.size());
