@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detection/bright_mask.hpp"
 #include "detection/run_labeller.hpp"
 
 namespace syncap::edge {
@@ -60,11 +61,8 @@ cv::Rect BlobTracker::window_of(const Track& t) const {
   const cv::Point2f p = predicted(t);
   const int grow = margin_of(t) + config_.detector.window_margin + 1;
   const int hw = t.box.width / 2 + grow, hh = t.box.height / 2 + grow;
-  const int cx = round_half_away(p.x), cy = round_half_away(p.y);
-  const int x0 = std::max(cx - hw, 0), x1 = std::min(cx + hw + 1, size_.width);
-  const int y0 = std::max(cy - hh, 0), y1 = std::min(cy + hh + 1, size_.height);
-  if (x1 <= x0 || y1 <= y0) return {};
-  return {x0, y0, x1 - x0, y1 - y0};
+  const cv::Rect w(round_half_away(p.x) - hw, round_half_away(p.y) - hh, 2 * hw + 1, 2 * hh + 1);
+  return detail::intersection(w, cv::Rect({0, 0}, size_));
 }
 
 void BlobTracker::windows_into(std::vector<cv::Rect>& windows, std::vector<int>* owner) const {
@@ -202,11 +200,9 @@ void BlobTracker::full_scan(const cv::Mat& image) {
 // window wherever the image does not clip them; else it was measured on part of its pixels.
 bool BlobTracker::clipped_by_window(const blob_t& b, const cv::Rect& window) const {
   const int m = config_.detector.window_margin + 1;
-  const int x0 = std::max(b.bbox_x - m, 0), x1 = std::min(b.bbox_x + b.bbox_w + m, size_.width);
-  const int y0 = std::max(b.bbox_y - m, 0), y1 = std::min(b.bbox_y + b.bbox_h + m, size_.height);
-  if (x1 <= x0 || y1 <= y0) return false;  // nothing needed
-  return x0 < window.x || y0 < window.y || x1 > window.x + window.width ||
-         y1 > window.y + window.height;
+  const cv::Rect needed = detail::intersection(
+      {b.bbox_x - m, b.bbox_y - m, b.bbox_w + 2 * m, b.bbox_h + 2 * m}, cv::Rect({0, 0}, size_));
+  return detail::intersection(needed, window) != needed;
 }
 
 bool BlobTracker::windowed_scan(const cv::Mat& image) {

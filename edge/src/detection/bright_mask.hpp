@@ -11,7 +11,6 @@
 
 namespace syncap::edge::detail {
 
-#if CV_SIMD128
 // 0xFF in the lanes of pixels >= t: t - v saturates to 0 exactly there (two instructions on
 // SSE2, where an unsigned compare takes four).
 [[gnu::always_inline]] inline cv::v_uint8x16 bright_lanes(const cv::v_uint8x16& v,
@@ -25,7 +24,6 @@ inline cv::v_uint8x16 first_lanes(int n) {
                                          0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
   return cv::v_load(kLanes + 16 - n);
 }
-#endif
 
 // Bit i set when p[i] >= t, for i < n <= 64. `overread`: the whole 16-pixel vectors that cover
 // the n pixels may be read. A vector compare per 16 pixels and only as many vectors as n needs:

@@ -5,6 +5,8 @@
 
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "detection/bright_mask.hpp"
+
 namespace syncap::edge {
 namespace {
 
@@ -65,7 +67,7 @@ double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect wi
   cv::v_uint8x16 low = cv::v_setall_u8(255), high = cv::v_setzero_u8();
   for (size_t j = 0; j < vectors; ++j) {
     const cv::v_uint8x16 x = cv::v_load(ring + 16 * j);
-    const cv::v_uint8x16 bright = ((t - x) == cv::v_setzero_u8()) & blobs_count;  // x >= t
+    const cv::v_uint8x16 bright = detail::bright_lanes(x, t) & blobs_count;  // x >= t
     cv::v_store(ring + 16 * j, x | bright);  // a blob's pixel: 255, never summed below
     low = cv::v_min(low, x);
     high = cv::v_max(high, x & ~bright);
