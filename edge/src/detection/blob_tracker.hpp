@@ -61,6 +61,7 @@ class BlobTracker {
   bool needs_full_scan() const;
   void full_scan(const cv::Mat& image);
   bool windowed_scan(const cv::Mat& image);
+  void prefetch_windows(const cv::Mat& image) const;
   bool clipped_by_window(const blob_t& b, const cv::Rect& window) const;
   // The windows around the tracks' predictions, overlapping ones merged; `owner` (if given)
   // gets each track's window index.
