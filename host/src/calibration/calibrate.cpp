@@ -189,14 +189,13 @@ void prepare_stage(scene::Network& network, const CalibrationOptions& options, S
   network.design.statistical_tests = stage.snoop;
   network.residual_test.iterative_rejection = stage.snoop;
   network.residual_test.critical_snooping = options.critical_snooping;
+  network.residual_test.snoop_with_a_posteriori_sigma0 = options.snoop_with_a_posteriori_sigma0;
 }
 
 estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
                                                 const CalibrationOptions& options, Stage stage) {
   prepare_stage(network, options, stage);
-  estimators::BundleOptions bundle;
-  bundle.snoop_with_a_posteriori_sigma0 = options.snoop_with_a_posteriori_sigma0;
-  return estimators::adjust(network, bundle);
+  return estimators::adjust(network, {});
 }
 
 ReportCamera report_camera(const sensor::CameraModel& camera, const scene::CameraModel& model,

@@ -256,7 +256,7 @@ class Adjuster {
   }
   // The sigma0 data snooping standardises with: the a posteriori one, or 1 (the a priori).
   double snooping_sigma0() const {
-    return options_.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
+    return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
   bool point_held(int p) const {
     for (const auto& prior : network_.points[p].priors) {
@@ -1046,7 +1046,7 @@ BundleAdjustmentResult Adjuster::run() {
       if (status_[m] != MeasurementStatus::kAccepted) continue;
       const auto& out = result_.measurements[m];
       const double scale =
-          options_.snoop_with_a_posteriori_sigma0 || !(result_.sigma0 > 0.0) ? 1.0 : result_.sigma0;
+          test.snoop_with_a_posteriori_sigma0 || !(result_.sigma0 > 0.0) ? 1.0 : result_.sigma0;
       if (out.redundancy_u > kMinRedundancyShare) w.push_back(out.w_u / scale);
       if (out.redundancy_v > kMinRedundancyShare) w.push_back(out.w_v / scale);
     }

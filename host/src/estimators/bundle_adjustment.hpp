@@ -35,9 +35,6 @@ namespace syncap::estimators {
 // What adjust() needs beyond the network (whose DesignOptions and ResidualTest it follows).
 struct BundleOptions {
   int num_threads = 1;
-  // Data snooping standardises with the a priori sigma0 = 1 (Baarda's w-test, the default) or
-  // with the a posteriori sigma0 (Pope's tau-like variant, robust to a wrong sigma_px).
-  bool snoop_with_a_posteriori_sigma0 = false;
   // The standard deviation given to a distance constraint of sigma 0 ("exact") [mm].
   double exact_distance_sigma_mm = 1e-4;
   // Ceres' progress per iteration on stderr (OUTPUT ITERATIONS also switches it on).

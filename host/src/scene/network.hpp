@@ -121,6 +121,9 @@ struct ResidualTest {
   double critical_snooping = 3.29;  // |w| above this is a blunder (data snooping, eq 4.31)
   bool iterative_rejection = true;  // remove the worst blunder and re-adjust, repeatedly
   int max_rejections = 1000;
+  // Data snooping standardises with the a priori sigma0 = 1 (Baarda's w-test, the default) or
+  // with the a posteriori sigma0 (Pope's tau-like variant, robust to a wrong sigma_px).
+  bool snoop_with_a_posteriori_sigma0 = false;
 };
 
 struct Network {

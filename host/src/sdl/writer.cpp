@@ -218,6 +218,8 @@ void write_residual_test(const scene::ResidualTest& t, std::string& out) {
   out +=
       std::string("  iterative_rejection = ") + (t.iterative_rejection ? "true" : "false") + "\n";
   out += "  max_rejections = " + std::to_string(t.max_rejections) + "\n";
+  out += std::string("  snoop_with_a_posteriori_sigma0 = ") +
+         (t.snoop_with_a_posteriori_sigma0 ? "true" : "false") + "\n";
   out += "}\n";
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <random>
 #include <set>
@@ -15,7 +16,11 @@
 #include <vector>
 
 #include "calibration/calibrate.hpp"
+#include "calibration/outputs.hpp"
 #include "syncap_test_data.hpp"
+#ifdef SYNCAP_HAVE_SDL
+#include "sdl/sdl.hpp"
+#endif
 
 namespace syncap::calibration {
 namespace {
@@ -53,6 +58,33 @@ TEST(CalibrateStrawlab, ThreeCamerasConvergeFromTheImageSizes) {
   SYNCAP_REQUIRE_DATA(dir, "calibration/strawlab-DATA20090709_111010");
   const CalibrationResult r = calibrate(read_mcsc_observations(dir), led_options());
   expect_calibrated(r, 3);
+}
+
+// The scene.sdl that `syncap calibrate` writes, re-adjusted as `syncap bundle scene.sdl` does,
+// tests its measurements as the calibration did (with the a posteriori sigma0, which the file
+// carries): the same sigma0 and nearly the same blunders (it starts from the calibration's
+// solution, not from the start values). This recording's sigma0 is ~3 (its noise is ~3 times the
+// a priori sigma_px): snooping with the a priori sigma0 instead, as the file once had it, removed
+// 1011 measurements of the whole recording instead of 196.
+TEST(CalibrateStrawlab, SceneFileReadjustsAsCalibrated) {
+#ifndef SYNCAP_HAVE_SDL
+  GTEST_SKIP() << "built without the scene description language (host/src/sdl)";
+#else
+  SYNCAP_REQUIRE_DATA(dir, "calibration/strawlab-DATA20100906_134124");
+  const CalibrationResult r = calibrate(read_mcsc_observations(dir), led_options());
+  const auto folder = std::filesystem::path(::testing::TempDir()) / "scene_readjusts";
+  write_calibration(r, folder);
+  const scene::Network scene = sdl::parse_file(folder / "scene.sdl");
+  EXPECT_TRUE(scene.residual_test.snoop_with_a_posteriori_sigma0);
+  const estimators::BundleAdjustmentResult again = estimators::adjust(scene, {});
+  ASSERT_TRUE(again.converged) << again.termination;
+  std::cout << "  calibrate: " << r.adjustment.rejected.size() << " removed, sigma0 "
+            << r.adjustment.sigma0 << "; scene.sdl re-adjusted: " << again.rejected.size()
+            << " removed, sigma0 " << again.sigma0 << "\n";
+  EXPECT_NEAR(static_cast<double>(again.rejected.size()),
+              static_cast<double>(r.adjustment.rejected.size()), 3.0);
+  EXPECT_NEAR(again.sigma0, r.adjustment.sigma0, 0.02 * r.adjustment.sigma0);
+#endif
 }
 
 // 5 % of the used frames get a blunder of 5-20 px in one camera, on points seen by at least

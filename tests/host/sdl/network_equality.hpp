@@ -110,6 +110,7 @@ inline void expect_same_network(const scene::Network& a, const scene::Network& b
   EXPECT_EQ(s.critical_snooping, t.critical_snooping);
   EXPECT_EQ(s.iterative_rejection, t.iterative_rejection);
   EXPECT_EQ(s.max_rejections, t.max_rejections);
+  EXPECT_EQ(s.snoop_with_a_posteriori_sigma0, t.snoop_with_a_posteriori_sigma0);
 }
 
 }  // namespace syncap::sdl::testing

@@ -56,7 +56,7 @@ constraints {
 }
 residual_test {
   alpha_variance = 0.01 alpha_goodness = 0.1 critical_snooping = 4.9
-  iterative_rejection = false max_rejections = 12
+  iterative_rejection = false max_rejections = 12 snoop_with_a_posteriori_sigma0 = true
 }
 )";
 
@@ -127,6 +127,7 @@ TEST(SdlParser, ReadsEveryStatement) {
   EXPECT_EQ(n.residual_test.critical_snooping, 4.9);
   EXPECT_FALSE(n.residual_test.iterative_rejection);
   EXPECT_EQ(n.residual_test.max_rejections, 12);
+  EXPECT_TRUE(n.residual_test.snoop_with_a_posteriori_sigma0);
 }
 
 TEST(SdlParser, AnEmptySceneIsTheDefaultNetwork) {
