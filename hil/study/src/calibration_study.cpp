@@ -52,16 +52,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 bool triangulate(const std::vector<const sensor::CameraModel*>& cameras,
                  const std::vector<Eigen::Vector2d>& pixels, Eigen::Vector3d& point) {
   if (cameras.size() < 2) return false;
-  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < cameras.size(); ++i) {
-    const sensor::Ray ray = cameras[i]->back_project(pixels[i]);
-    const Eigen::Matrix3d across =
-        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
-    a += across;
-    b += across * ray.origin;
-  }
-  point = a.ldlt().solve(b);
+  sensor::NearestPoint nearest;
+  for (size_t i = 0; i < cameras.size(); ++i) nearest.add(cameras[i]->back_project(pixels[i]));
+  point = nearest.solve();
   for (int iteration = 0; iteration < 5; ++iteration) {
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();

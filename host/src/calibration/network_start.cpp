@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
+#include "sensor/camera_model.hpp"
 #include "sensor/rotation.hpp"
 
 namespace syncap::calibration {
@@ -179,33 +180,28 @@ std::vector<std::pair<int, int>> spanning_tree(const std::vector<std::vector<int
 // The point nearest to the rays of the oriented stations (least squares); rays farther than
 // max_ray_error_px from it are left out one by one, the worst first.
 void triangulate(StartState& s, Track& track) {
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays;  // origin, unit direction
+  std::vector<sensor::Ray> rays;
   std::vector<double> pixels_per_unit;
   for (const Observation& o : track.observations) {
     const Pose& pose = s.poses[o.station];
     if (!pose.oriented) continue;
-    rays.emplace_back(pose.centre, (pose.rotation * o.direction).normalized());
+    rays.push_back({pose.centre, (pose.rotation * o.direction).normalized()});
     pixels_per_unit.push_back(s.pixels_per_unit[o.station]);
   }
   track.triangulated = false;
   while (rays.size() >= 2) {
-    Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (const auto& [origin, direction] : rays) {
-      const Eigen::Matrix3d projector =
-          Eigen::Matrix3d::Identity() - direction * direction.transpose();
-      a += projector;
-      b += projector * origin;
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(a, Eigen::EigenvaluesOnly);
+    sensor::NearestPoint nearest;
+    for (const sensor::Ray& ray : rays) nearest.add(ray);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(nearest.normal,
+                                                               Eigen::EigenvaluesOnly);
     if (!(eigen.eigenvalues().minCoeff() > 1e-6)) return;  // (nearly) parallel rays
-    const Eigen::Vector3d x = a.ldlt().solve(b);
+    const Eigen::Vector3d x = nearest.solve();
     size_t worst = 0;
     double worst_error = -1.0;
     for (size_t r = 0; r < rays.size(); ++r) {
-      const Eigen::Vector3d to_point = x - rays[r].first;
+      const Eigen::Vector3d to_point = x - rays[r].origin;
       const double angle =
-          std::atan2(rays[r].second.cross(to_point).norm(), rays[r].second.dot(to_point));
+          std::atan2(rays[r].direction.cross(to_point).norm(), rays[r].direction.dot(to_point));
       const double error_px = angle * pixels_per_unit[r];
       if (error_px > worst_error) {
         worst_error = error_px;

@@ -24,6 +24,7 @@ namespace {
 using scene::ParameterMode;
 using sensor::ExteriorBlock;
 using sensor::InteriorBlock;
+using sensor::NearestPoint;
 
 constexpr int kInteriorSize = InteriorBlock::kSize;
 constexpr int kExteriorSize = ExteriorBlock::kSize;
@@ -87,19 +88,6 @@ std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
   return util::printf_string(", %ld of them with the %ld points whose wrong ray could not be told",
                              rays, rays / 2);
 }
-
-// The normal equations of the point nearest to some rays: sum (I - d d^T) (X - o) = 0.
-struct NearestPoint {
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d right = Eigen::Vector3d::Zero();
-  void add(const sensor::Ray& ray) {
-    const Eigen::Matrix3d projector =
-        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
-    normal += projector;
-    right += projector * ray.origin;
-  }
-  Eigen::Vector3d solve() const { return normal.ldlt().solve(right); }
-};
 
 // Where an object point's values live: the parameter block of its group, at an offset.
 struct PointSlot {

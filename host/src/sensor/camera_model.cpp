@@ -1,5 +1,6 @@
 #include "sensor/camera_model.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 namespace syncap::sensor {
@@ -126,5 +127,7 @@ ProjectionJacobians CameraModel::project_with_jacobians(
       -d_pixel_d_xu * correction_parameter_derivatives(xb, yb);
   return result;
 }
+
+Eigen::Vector3d NearestPoint::solve() const { return normal.ldlt().solve(right); }
 
 }  // namespace syncap::sensor
