@@ -9,6 +9,10 @@
 //                           written to memory (both sides read every pixel they need from memory)
 //   blobs-windowed-vs-opencv  the windowed steady state vs the OpenCV baseline of the first line
 //                           (the two goals above together ask 4 x 20 = 80)
+//   blobs-ideal-windows-vs-full  the ceiling of any tracker with this measurement: each blob
+//                           measured in the smallest window that holds its centroid window and
+//                           background ring (a perfect prediction, no search margin), with no
+//                           tracking at all, vs our full-frame scan
 // The windowed side first checks that it finds what the full frame finds, to the last bit.
 #include <benchmark/benchmark.h>
 
@@ -257,12 +261,51 @@ void ours_windowed_fresh(benchmark::State& state) {
   state.counters["frame_per_window_bytes"] = static_cast<double>(frame(0).total()) / (64.0 * lines);
 }
 
+// The smallest windows a tracker could search: each blob's box grown by the centroid window's
+// margin and the one-pixel background ring. detect_in in them is the per-blob work a windowed
+// frame cannot avoid while it measures what the full frame measures.
+void ours_ideal_windows(benchmark::State& state) {
+  BlobDetector full, windowed;
+  const int grow = full.config().window_margin + 1;
+  std::vector<cv::Rect> windows;
+  for (const blob_t& b : full.detect(frame(0))) {
+    windows.emplace_back(b.bbox_x - grow, b.bbox_y - grow, b.bbox_w + 2 * grow,
+                         b.bbox_h + 2 * grow);
+  }
+  const int threshold = full.threshold_for(frame(0));
+  std::vector<blob_t> blobs;
+  blobs.reserve(windows.size());
+  const auto detect = [&](const cv::Mat& image) {
+    blobs.clear();
+    for (const cv::Rect& w : windows) windowed.detect_in(image, w, threshold, 0, blobs);
+  };
+  for (int k = 0; k < 2; ++k) {
+    detect(frame(k));
+    if (!same_blobs(blobs, full.detect(frame(k)))) {
+      state.SkipWithError("blobs in the ideal windows differ from the full frame's");
+      return;
+    }
+  }
+  int i = 0;
+  for (auto _ : state) {
+    detect(frame(i++));
+    benchmark::DoNotOptimize(blobs.data());
+  }
+  int pixels = 0;
+  for (const cv::Rect& w : windows) pixels += w.area();
+  state.counters["window_px"] = pixels;
+}
+
 BENCHMARK(ours_full)->Name("blobs-full-vs-opencv/ours")->Unit(benchmark::kMicrosecond);
 BENCHMARK(opencv_full)->Name("blobs-full-vs-opencv/baseline")->Unit(benchmark::kMicrosecond);
 BENCHMARK(ours_windowed)->Name("blobs-windowed-vs-full/ours")->Unit(benchmark::kMicrosecond);
 BENCHMARK(ours_full)->Name("blobs-windowed-vs-full/baseline")->Unit(benchmark::kMicrosecond);
 BENCHMARK(ours_windowed)->Name("blobs-windowed-vs-opencv/ours")->Unit(benchmark::kMicrosecond);
 BENCHMARK(opencv_full)->Name("blobs-windowed-vs-opencv/baseline")->Unit(benchmark::kMicrosecond);
+BENCHMARK(ours_ideal_windows)
+    ->Name("blobs-ideal-windows-vs-full/ours")
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(ours_full)->Name("blobs-ideal-windows-vs-full/baseline")->Unit(benchmark::kMicrosecond);
 BENCHMARK(ours_windowed_fresh)
     ->Name("blobs-windowed-vs-full-fresh/ours")
     ->UseManualTime()
