@@ -51,6 +51,32 @@ size_t gather_ring(const cv::Mat& image, cv::Rect cw, cv::Rect window, std::vect
   return most;
 }
 
+// The interquartile mean from counts of each value v in [low, high], each counted over the whole
+// ring by one vector compare a 16 values (a lane counts at most `vectors` <= 255 matches). A small
+// ring's values lie in a narrow range: ~16 counts of a few vectors each, where a histogram's
+// increments of the same few bins wait on each other's stores.
+double mean_by_vector_counts(const uint8_t* ring, size_t vectors, int64_t n, int low, int high) {
+  const int64_t lo = n / 4, hi = std::max<int64_t>(n - n / 4, lo + 1);
+  int64_t seen = 0, taken = lo, sum = 0;  // taken: ranks lo .. seen, hi at most
+  for (int v = low; taken < hi && v <= high; ++v) {
+    const cv::v_uint8x16 value = cv::v_setall_u8(static_cast<uint8_t>(v));
+    cv::v_uint8x16 matches = cv::v_setzero_u8();
+    for (size_t j = 0; j < vectors; ++j) {
+      matches = cv::v_sub_wrap(matches, cv::v_load(ring + 16 * j) == value);  // 0xFF is -1
+    }
+    seen += cv::v_reduce_sad(matches, cv::v_setzero_u8());
+    if (seen <= taken) continue;
+    const int64_t now = std::min(seen, hi);
+    sum += v * (now - taken);
+    taken = now;
+  }
+  return static_cast<double>(sum) / static_cast<double>(hi - lo);
+}
+
+// Vector counts win while the range has at most this many values and the ring this many vectors.
+constexpr int kMaxCountedRange = 24;
+constexpr size_t kMaxCountedVectors = 32;
+
 }  // namespace
 
 double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect window,
@@ -65,12 +91,23 @@ double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect wi
   const cv::v_uint8x16 t = cv::v_setall_u8(static_cast<uint8_t>(std::min(threshold, 255)));
   const cv::v_uint8x16 blobs_count = threshold > 255 ? cv::v_setzero_u8() : cv::v_setall_u8(255);
   cv::v_uint8x16 low = cv::v_setall_u8(255), high = cv::v_setzero_u8();
+  cv::v_uint8x16 marked = cv::v_setzero_u8();  // per lane, how many were marked (mod 256)
   for (size_t j = 0; j < vectors; ++j) {
     const cv::v_uint8x16 x = cv::v_load(ring + 16 * j);
     const cv::v_uint8x16 bright = detail::bright_lanes(x, t) & blobs_count;  // x >= t
     cv::v_store(ring + 16 * j, x | bright);  // a blob's pixel: 255, never summed below
     low = cv::v_min(low, x);
     high = cv::v_max(high, x & ~bright);
+    marked = cv::v_sub_wrap(marked, bright);  // 0xFF is -1
+  }
+  const int low_value = cv::v_reduce_min(low), high_value = cv::v_reduce_max(high);
+  // Below the threshold (<= 255) every value that counts is < 255, the marked ones and the
+  // padding 255: counting the values of [low, high] counts exactly the ring's.
+  if (threshold <= 255 && vectors <= kMaxCountedVectors &&
+      high_value - low_value < kMaxCountedRange) {
+    const auto n =
+        static_cast<int64_t>(16 * vectors - cv::v_reduce_sad(marked, cv::v_setzero_u8()));
+    return n == 0 ? 0 : mean_by_vector_counts(ring, vectors, n, low_value, high_value);
   }
   // A histogram, then the sum a sort would give in one pass over [low, high] that leaves the
   // counts zero (bin 255 too, where the blobs' pixels went: how many do not count).
@@ -83,7 +120,7 @@ double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect wi
     return 0;
   }
   const int64_t lo = static_cast<int64_t>(n / 4), hi = std::max<int64_t>(n - n / 4, lo + 1);
-  int v = cv::v_reduce_min(low);
+  int v = low_value;
   int64_t seen = 0;
   for (; seen + count[v] <= lo; ++v) {  // ranks below lo
     seen += count[v];
@@ -97,7 +134,7 @@ double RingBackground::operator()(const cv::Mat& image, cv::Rect cw, cv::Rect wi
     sum += v * (now - taken);
     taken = now;
   }
-  for (const int high_value = cv::v_reduce_max(high); v <= high_value; ++v) count[v] = 0;
+  for (; v <= high_value; ++v) count[v] = 0;
   count[255] = 0;
   return static_cast<double>(sum) / static_cast<double>(hi - lo);
 }

@@ -75,6 +75,29 @@ TEST(RingBackground, EqualsTheSortedDefinitionOnARingOfThousandsOfPixels) {
   }
 }
 
+// Rings whose values span a narrow range are counted by vector compares while they hold at most
+// 32 vectors, by the histogram above that: every size from 1 to 40 vectors, ranges about the
+// switch's 24 values, blob pixels on the ring, thresholds right above the range.
+TEST(RingBackground, EqualsTheSortedDefinitionOnNarrowRingsOfEverySize) {
+  cv::RNG rng(13);
+  RingBackground ring_background;
+  cv::Mat image(180, 180, CV_8UC1);
+  const cv::Rect whole(0, 0, image.cols, image.rows);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int level = rng.uniform(0, 230), range = rng.uniform(1, 30);
+    rng.fill(image, cv::RNG::UNIFORM, level, level + range);
+    for (int k = rng.uniform(0, 20); k > 0; --k) {
+      image.at<uint8_t>(rng.uniform(0, image.rows), rng.uniform(0, image.cols)) = 255;
+    }
+    const int side = 1 + trial % 160;  // a ring of 4 side + 4 pixels: 1 to 41 vectors
+    const cv::Rect cw(rng.uniform(1, image.cols - side), rng.uniform(1, image.rows - side), side,
+                      side);
+    const int threshold = level + range + rng.uniform(0, 3);
+    ASSERT_EQ(ring_background(image, cw, whole, threshold), reference(image, cw, whole, threshold))
+        << "trial " << trial << " cw " << cw << " threshold " << threshold;
+  }
+}
+
 TEST(RingBackground, IgnoresBlobPixelsAndOutliersOfTheRing) {
   cv::Mat image(20, 20, CV_8UC1, cv::Scalar(30));
   image(cv::Rect(4, 4, 12, 1)).setTo(250);  // a neighbour crossing the top of the ring
