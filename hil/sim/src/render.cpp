@@ -61,17 +61,32 @@ struct UnitFrame {
   }
 };
 
+// Rays from one origin (the camera centre) against one ellipsoid: the origin's part of the
+// quadratic is computed once, not once a pixel.
+struct RaysFromOrigin {
+  UnitFrame unit;
+  Eigen::Vector3d o;  // the origin in the unit frame
+  double c;           // |o|^2 - 1
+
+  RaysFromOrigin(const Ellipsoid& e, const Eigen::Vector3d& origin)
+      : unit(e), o(unit.to_unit * (origin - unit.centre)), c(o.squaredNorm() - 1.0) {}
+  std::optional<double> hit(const Eigen::Vector3d& dir) const {
+    return UnitFrame::hit(o, unit.to_unit * dir, c);
+  }
+};
+
 void paint_body(const View& view, const FrameContent& content, cv::Mat& radiance, cv::Mat& mask) {
   cv::Mat depth(view.height, view.width, CV_32F,
                 cv::Scalar(std::numeric_limits<float>::infinity()));
   for (std::size_t i = 0; i < content.body.size(); ++i) {
     const Ellipsoid& e = content.body[i];
     const cv::Rect box = ellipsoid_box(view, e);
+    const RaysFromOrigin rays(e, view.centre_mm);
     for (int y = box.y; y < box.y + box.height; ++y) {
       for (int x = box.x; x < box.x + box.width; ++x) {
         const Eigen::Vector3d dir =
             view.rays[static_cast<std::size_t>(y) * view.width + x].cast<double>();
-        const auto t = ray_ellipsoid(view.centre_mm, dir, e);
+        const auto t = rays.hit(dir);
         if (!t || *t >= depth.at<float>(y, x)) continue;
         depth.at<float>(y, x) = static_cast<float>(*t);
         radiance.at<float>(y, x) =
@@ -198,9 +213,7 @@ void add_noise(cv::Mat& radiance, double sigma, uint64_t seed) {
 
 std::optional<double> ray_ellipsoid(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
                                     const Ellipsoid& e) {
-  const UnitFrame unit(e);
-  const Eigen::Vector3d o = unit.to_unit * (origin - unit.centre);
-  return UnitFrame::hit(o, unit.to_unit * dir, o.squaredNorm() - 1.0);
+  return RaysFromOrigin(e, origin).hit(dir);
 }
 
 RenderedView render_view(const View& view, const FrameContent& content, const ImageSpec& image,
