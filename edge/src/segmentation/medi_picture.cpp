@@ -316,20 +316,36 @@ cv::Rect flagged_box(const std::vector<uchar>& rows, const std::vector<uchar>& c
   return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
+// Calls f(x) for each x in [0, n) with row[x] != 0, skipping 16 zeros at a time: the shadow
+// candidates are few outside the shadow, scattered over a box that may span the frame.
+template <class F>
+void for_each_nonzero(const uchar* row, int n, F&& f) {
+  int x = 0;
+#if CV_SIMD128
+  for (; x + 16 <= n; x += 16) {
+    if (!cv::v_check_any(cv::v_load(row + x) != cv::v_setzero_u8())) continue;
+    for (int k = x; k < x + 16; ++k) {
+      if (row[k] != 0) f(k);
+    }
+  }
+#endif
+  for (; x < n; ++x) {
+    if (row[x] != 0) f(x);
+  }
+}
+
 // The darkening factor of the shadow: the mode of frame / lambda over the candidates darker than
 // lambda, in bins of 0.01 smoothed over three; 0 when there is no candidate.
 float common_ratio(const cv::Mat& median, const cv::Mat& frame, const cv::Mat& candidates) {
   constexpr int kBins = 100;
   std::vector<int> histogram(kBins, 0);
   for (int y = 0; y < frame.rows; ++y) {
-    const uchar* candidate = candidates.ptr<uchar>(y);
     const uchar* value = frame.ptr<uchar>(y);
     const float* lambda = median.ptr<float>(y);
-    for (int x = 0; x < frame.cols; ++x) {
+    for_each_nonzero(candidates.ptr<uchar>(y), frame.cols, [&](int x) {
       const auto v = static_cast<float>(value[x]);
-      if (candidate[x] == 0 || v >= lambda[x]) continue;
-      ++histogram[static_cast<std::size_t>(v / lambda[x] * kBins)];
-    }
+      if (v < lambda[x]) ++histogram[static_cast<std::size_t>(v / lambda[x] * kBins)];
+    });
   }
   int best = 0, best_count = 0;
   for (int bin = 1; bin + 1 < kBins; ++bin) {
@@ -346,18 +362,14 @@ void mark_common_ratio_shadow(const cv::Mat& median, const cv::Mat& sigma, const
                               cv::Mat& shadow) {
   if (ratio <= 0) return;
   for (int y = 0; y < frame.rows; ++y) {
-    const uchar* candidate = candidates.ptr<uchar>(y);
     const uchar* value = frame.ptr<uchar>(y);
     const float* lambda = median.ptr<float>(y);
     const float* spread = sigma.ptr<float>(y);
     uchar* out = shadow.ptr<uchar>(y);
-    for (int x = 0; x < frame.cols; ++x) {
+    for_each_nonzero(candidates.ptr<uchar>(y), frame.cols, [&](int x) {
       const float tolerance = sigmas * std::max(spread[x], 1.0f);
-      if (candidate[x] != 0 &&
-          std::abs(static_cast<float>(value[x]) - ratio * lambda[x]) <= tolerance) {
-        out[x] = 255;
-      }
-    }
+      if (std::abs(static_cast<float>(value[x]) - ratio * lambda[x]) <= tolerance) out[x] = 255;
+    });
   }
 }
 
