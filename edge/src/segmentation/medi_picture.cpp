@@ -376,31 +376,12 @@ void mark_common_ratio_shadow(const cv::Mat& median, const cv::Mat& sigma, const
 // Fills the holes of `mask` up to `max_area` pixels; `box` holds every foreground pixel. A hole
 // lies inside the foreground's bounding box, and a background component of the box that reaches the
 // box's edge reaches the outside (or the image border): the box alone decides.
-void fill_holes_in(cv::Mat& mask, cv::Rect box, int max_area) {
+void fill_holes_in(cv::Mat& mask, cv::Rect box, int max_area, detail::PackedMask& packed) {
   if (box.width < 3 || box.height < 3) return;
   cv::Mat inside = mask(box);
-  const cv::Mat background = inside == 0;
-  cv::Mat labels, stats, centroids;
-  const int count =
-      cv::connectedComponentsWithStats(background, labels, stats, centroids, 4, CV_32S);
-  std::vector<uchar> fill(static_cast<std::size_t>(count), 0);
-  bool any = false;
-  for (int label = 1; label < count; ++label) {
-    const int x = stats.at<int>(label, cv::CC_STAT_LEFT), y = stats.at<int>(label, cv::CC_STAT_TOP);
-    const int w = stats.at<int>(label, cv::CC_STAT_WIDTH),
-              h = stats.at<int>(label, cv::CC_STAT_HEIGHT);
-    const bool at_edge = x == 0 || y == 0 || x + w == box.width || y + h == box.height;
-    if (!at_edge && stats.at<int>(label, cv::CC_STAT_AREA) <= max_area) {
-      fill[static_cast<std::size_t>(label)] = 255;
-      any = true;
-    }
-  }
-  if (!any) return;
-  for (int y = 0; y < box.height; ++y) {
-    const int* label = labels.ptr<int>(y);
-    uchar* out = inside.ptr<uchar>(y);
-    for (int x = 0; x < box.width; ++x) out[x] |= fill[static_cast<std::size_t>(label[x])];
-  }
+  packed.pack(inside);
+  packed.fill_holes(max_area);
+  packed.unpack(inside);
 }
 
 }  // namespace
@@ -476,7 +457,8 @@ cv::Mat common_ratio_shadow_pixels(const MediPictureModel& model, const cv::Mat&
 }
 
 void fill_holes(cv::Mat& mask, int max_area) {
-  if (max_area > 0) fill_holes_in(mask, cv::boundingRect(mask), max_area);
+  detail::PackedMask packed;
+  if (max_area > 0) fill_holes_in(mask, cv::boundingRect(mask), max_area, packed);
 }
 
 void clip_to_polygon(cv::Mat& mask, std::span<const cv::Point> polygon) {
@@ -572,7 +554,7 @@ cv::Mat MediPicture::apply(const cv::Mat& frame) {
   if (!any_box.empty()) clean_inside(mask, any_box);
   if (options_.max_hole_area > 0 && !any_box.empty()) {
     // The bounding box of what the cleaning kept (scattered specks are gone by then).
-    fill_holes(mask, options_.max_hole_area);
+    fill_holes_in(mask, cv::boundingRect(mask), options_.max_hole_area, packed_);
     if (!clip_.empty()) mask &= clip_;
   }
   if (options_.update_rate > 0) update_model(frame, mask);

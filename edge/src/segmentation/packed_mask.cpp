@@ -205,20 +205,22 @@ void PackedMask::close(const cv::Mat& element) {
   morph_from<false>(dilated, element);
   set_padding(0);
 }
-void PackedMask::remove_small_components(int min_area) {
-  if (min_area <= 1) return;
+int PackedMask::root_of(int run) {
+  while (parent_[static_cast<std::size_t>(run)] != run) {
+    const int up = parent_[static_cast<std::size_t>(run)];
+    parent_[static_cast<std::size_t>(run)] = parent_[static_cast<std::size_t>(up)];
+    run = up;
+  }
+  return run;
+}
+
+void PackedMask::label_runs(bool eight_connected) {
   set_padding(0);
   runs_.clear();
   parent_.clear();
+  const int reach =
+      eight_connected ? 1 : 0;  // columns a run reaches into the last row beyond its ends
   std::size_t previous_begin = 0, previous_end = 0;
-  const auto find = [&](int run) {
-    while (parent_[static_cast<std::size_t>(run)] != run) {
-      const int up = parent_[static_cast<std::size_t>(run)];
-      parent_[static_cast<std::size_t>(run)] = parent_[static_cast<std::size_t>(up)];
-      run = up;
-    }
-    return run;
-  };
   for (int y = 0; y < rows_; ++y) {
     const std::size_t begin = runs_.size();
     const std::uint64_t* r = row(y);
@@ -242,10 +244,10 @@ void PackedMask::remove_small_components(int min_area) {
       runs_.push_back({y, start, x - 1});
       const int id = static_cast<int>(parent_.size());
       parent_.push_back(id);
-      // 8-connected to the runs of the previous row that overlap [start - 1, x].
-      while (scan < previous_end && runs_[scan].x1 < start - 1) ++scan;
-      for (std::size_t p = scan; p < previous_end && runs_[p].x0 <= x; ++p) {
-        const int a = find(static_cast<int>(p)), b = find(id);
+      // Joined to the runs of the previous row that overlap [start - reach, x - 1 + reach].
+      while (scan < previous_end && runs_[scan].x1 < start - reach) ++scan;
+      for (std::size_t p = scan; p < previous_end && runs_[p].x0 <= x - 1 + reach; ++p) {
+        const int a = root_of(static_cast<int>(p)), b = root_of(id);
         if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
       }
     }
@@ -254,12 +256,51 @@ void PackedMask::remove_small_components(int min_area) {
   }
   area_.assign(runs_.size(), 0);
   for (std::size_t i = 0; i < runs_.size(); ++i) {
-    area_[static_cast<std::size_t>(find(static_cast<int>(i)))] += runs_[i].x1 - runs_[i].x0 + 1;
+    area_[static_cast<std::size_t>(root_of(static_cast<int>(i)))] += runs_[i].x1 - runs_[i].x0 + 1;
   }
+}
+
+void PackedMask::set_run(const Run& run, bool value) {
+  std::uint64_t* r = row(run.y);
+  for (int x = run.x0; x <= run.x1; ++x) {
+    const std::uint64_t bit = std::uint64_t{1} << (x % 64);
+    r[x / 64] = value ? r[x / 64] | bit : r[x / 64] & ~bit;
+  }
+}
+
+void PackedMask::remove_small_components(int min_area) {
+  if (min_area <= 1) return;
+  label_runs(true);
   for (std::size_t i = 0; i < runs_.size(); ++i) {
-    if (area_[static_cast<std::size_t>(find(static_cast<int>(i)))] >= min_area) continue;
-    std::uint64_t* r = row(runs_[i].y);
-    for (int x = runs_[i].x0; x <= runs_[i].x1; ++x) r[x / 64] &= ~(std::uint64_t{1} << (x % 64));
+    if (area_[static_cast<std::size_t>(root_of(static_cast<int>(i)))] < min_area) {
+      set_run(runs_[i], false);
+    }
+  }
+}
+
+void PackedMask::fill_holes(int max_area) {
+  if (max_area <= 0) return;
+  for (int y = 0; y < rows_; ++y) {  // the background becomes the ones that label_runs joins
+    std::uint64_t* r = row(y);
+    for (int k = 0; k < words_per_row_; ++k) r[k] = ~r[k];
+  }
+  label_runs(false);
+  // A component with a run on the mask's rim reaches what lies beyond it: not a hole.
+  rim_.assign(runs_.size(), 0);
+  for (std::size_t i = 0; i < runs_.size(); ++i) {
+    const Run& run = runs_[i];
+    if (run.y == 0 || run.y == rows_ - 1 || run.x0 == 0 || run.x1 == cols_ - 1) {
+      rim_[static_cast<std::size_t>(root_of(static_cast<int>(i)))] = 1;
+    }
+  }
+  for (int y = 0; y < rows_; ++y) {
+    std::uint64_t* r = row(y);
+    for (int k = 0; k < words_per_row_; ++k) r[k] = ~r[k];
+  }
+  set_padding(0);
+  for (std::size_t i = 0; i < runs_.size(); ++i) {
+    const auto root = static_cast<std::size_t>(root_of(static_cast<int>(i)));
+    if (rim_[root] == 0 && area_[root] <= max_area) set_run(runs_[i], true);
   }
 }
 

@@ -1,6 +1,6 @@
 // A binary mask packed one bit a pixel, for the clean-up step of MediPicture::apply: the
-// closing and the removal of small 8-connected components work on 64 pixels a word, with the
-// same result as cv::morphologyEx (MORPH_CLOSE, default border) and
+// closing, the removal of small 8-connected components and the filling of small holes work on 64
+// pixels a word, with the same result as cv::morphologyEx (MORPH_CLOSE, default border) and
 // cv::connectedComponentsWithStats on the byte image. Internal to syncap_edge_segmentation.
 #pragma once
 
@@ -25,6 +25,9 @@ class PackedMask {
   void close(const cv::Mat& element);
   // Clears the 8-connected components of fewer than `min_area` pixels.
   void remove_small_components(int min_area);
+  // Sets the holes of at most `max_area` pixels: the 4-connected components of the background
+  // that touch no edge of the mask (as connectedComponentsWithStats of the inverse finds them).
+  void fill_holes(int max_area);
 
  private:
   struct Run {
@@ -36,6 +39,11 @@ class PackedMask {
   }
   // Sets the padding words and the bits past the last column of every row to `fill`.
   void set_padding(std::uint64_t fill);
+  // The runs of ones row by row (runs_), joined into components by union-find (parent_, 8- or
+  // 4-connected), and each component's area at its root (area_).
+  void label_runs(bool eight_connected);
+  int root_of(int run);  // the run's component, halving the path on the way
+  void set_run(const Run& run, bool value);
   // this = morphology of `source` by `element` (dilate: OR, else AND).
   template <bool kDilate>
   void morph_from(const PackedMask& source, const cv::Mat& element);
@@ -48,6 +56,7 @@ class PackedMask {
   std::vector<std::uint64_t> levels_, combined_;
   std::vector<Run> runs_;
   std::vector<int> parent_, area_;
+  std::vector<std::uint8_t> rim_;  // fill_holes: per component, whether it touches the rim
 };
 
 }  // namespace syncap::edge::detail

@@ -58,5 +58,49 @@ TEST(PackedMask, ClosingAndComponentsMatchOpenCv) {
       PackedMask::closable_by(cv::Mat(3, 3, CV_8UC1, cv::Scalar(1)) - cv::Mat::eye(3, 3, CV_8UC1)));
 }
 
+// The holes as connectedComponentsWithStats finds them: 4-connected components of the
+// background that touch no edge, of at most max_area pixels.
+cv::Mat holes_filled_by_opencv(const cv::Mat& mask, int max_area) {
+  cv::Mat labels, stats, centroids;
+  const int count =
+      cv::connectedComponentsWithStats(mask == 0, labels, stats, centroids, 4, CV_32S);
+  cv::Mat filled = mask.clone();
+  for (int label = 1; label < count; ++label) {
+    const int x = stats.at<int>(label, cv::CC_STAT_LEFT), y = stats.at<int>(label, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(label, cv::CC_STAT_WIDTH),
+              h = stats.at<int>(label, cv::CC_STAT_HEIGHT);
+    const bool at_edge = x == 0 || y == 0 || x + w == mask.cols || y + h == mask.rows;
+    if (!at_edge && stats.at<int>(label, cv::CC_STAT_AREA) <= max_area) {
+      filled.setTo(255, labels == label);
+    }
+  }
+  return filled;
+}
+
+TEST(PackedMask, FilledHolesMatchOpenCvComponents) {
+  cv::RNG rng(5);
+  int filled_somewhere = 0;
+  for (const cv::Size size : {cv::Size(1, 9), cv::Size(3, 3), cv::Size(64, 20), cv::Size(65, 33),
+                              cv::Size(127, 40), cv::Size(130, 129), cv::Size(200, 7)}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      // Blobs with specks flipped: holes of one pixel and more, diagonal gaps (8- but not
+      // 4-connected to the outside), background reaching every edge.
+      const cv::Mat mask = random_mask(rng, size);
+      for (const int max_area : {1, 4, 30, 100000}) {
+        const cv::Mat expected = holes_filled_by_opencv(mask, max_area);
+        PackedMask packed;
+        packed.pack(mask);
+        packed.fill_holes(max_area);
+        cv::Mat ours(size, CV_8UC1, cv::Scalar(7));
+        packed.unpack(ours);
+        ASSERT_EQ(cv::countNonZero(ours != expected), 0)
+            << size << " trial " << trial << " max_area " << max_area;
+        filled_somewhere += cv::countNonZero(expected != mask) > 0;
+      }
+    }
+  }
+  EXPECT_GT(filled_somewhere, 100);  // the masks had holes to fill
+}
+
 }  // namespace
 }  // namespace syncap::edge::detail
