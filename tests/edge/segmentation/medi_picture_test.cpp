@@ -214,6 +214,83 @@ ShadowAndBody shadow_and_body() {
   return scene;
 }
 
+// The common-ratio test's definition, pixel by pixel: the mode of frame / lambda over the darker
+// candidates (bins of 0.01 smoothed over three), and the candidates within sigmas x max(sigma, 1)
+// of ratio x lambda.
+float plain_ratio(const MediPictureModel& model, const cv::Mat& frame, const cv::Mat& candidates) {
+  std::vector<int> histogram(100, 0);
+  for (int y = 0; y < frame.rows; ++y) {
+    for (int x = 0; x < frame.cols; ++x) {
+      const auto v = static_cast<float>(frame.at<uchar>(y, x));
+      const float lambda = model.median.at<float>(y, x);
+      if (candidates.at<uchar>(y, x) != 0 && v < lambda) {
+        ++histogram[static_cast<std::size_t>(v / lambda * 100)];
+      }
+    }
+  }
+  int best = 0, best_count = 0;
+  for (std::size_t bin = 1; bin + 1 < 100; ++bin) {
+    const int count = histogram[bin - 1] + histogram[bin] + histogram[bin + 1];
+    if (count > best_count) best = static_cast<int>(bin), best_count = count;
+  }
+  return best_count == 0 ? 0.0f : (static_cast<float>(best) + 0.5f) / 100;
+}
+
+cv::Mat plain_shadow(const MediPictureModel& model, const cv::Mat& frame, const cv::Mat& candidates,
+                     float ratio, float sigmas) {
+  cv::Mat shadow = cv::Mat::zeros(frame.size(), CV_8UC1);
+  for (int y = 0; y < frame.rows; ++y) {
+    for (int x = 0; x < frame.cols; ++x) {
+      const auto v = static_cast<float>(frame.at<uchar>(y, x));
+      const float tolerance = sigmas * std::max(model.sigma.at<float>(y, x), 1.0f);
+      if (candidates.at<uchar>(y, x) != 0 &&
+          std::abs(v - ratio * model.median.at<float>(y, x)) <= tolerance) {
+        shadow.at<uchar>(y, x) = 255;
+      }
+    }
+  }
+  return shadow;
+}
+
+// The vector blocks of 16 pixels and the scalar rest give the definition's results: widths that
+// are and are not multiples of 16, sparse and dense candidates, values at and around the
+// tolerance and the bins' edges.
+TEST(MediPicture, CommonRatioTestEqualsItsDefinitionPixelByPixel) {
+  cv::RNG rng(9);
+  for (const cv::Size size :
+       {cv::Size(16, 3), cv::Size(37, 20), cv::Size(160, 40), cv::Size(7, 5)}) {
+    for (int trial = 0; trial < 30; ++trial) {
+      MediPictureModel model;
+      model.median.create(size, CV_32FC1);
+      model.sigma.create(size, CV_32FC1);
+      rng.fill(model.median, cv::RNG::UNIFORM, 1.0f, 255.0f);
+      rng.fill(model.sigma, cv::RNG::UNIFORM, 0.0f, 4.0f);
+      cv::Mat frame(size, CV_8UC1), candidates;
+      rng.fill(frame, cv::RNG::UNIFORM, 0, 256);
+      // Half the frames: shadows at a common ratio on integer medians (exact ties in the bins).
+      if (trial % 2 == 0) {
+        model.median.forEach<float>([](float& m, const int*) { m = std::round(m); });
+        cv::Mat scaled;
+        model.median.convertTo(scaled, CV_8U, 0.5);
+        scaled.copyTo(frame, frame > 128);
+      }
+      const int density = trial % 3 == 0 ? 50 : 3;  // per cent of pixels that are candidates
+      cv::Mat percent(size, CV_8UC1);
+      rng.fill(percent, cv::RNG::UNIFORM, 0, 100);
+      candidates = percent < density;
+      const float ratio = shadow_ratio(model, frame, candidates);
+      ASSERT_EQ(ratio, plain_ratio(model, frame, candidates)) << size << " trial " << trial;
+      MediPictureOptions options;
+      options.shadow_ratio_sigmas = 3.0f;
+      for (const float r : {ratio, 0.5f, 0.93f}) {
+        const cv::Mat shadow = common_ratio_shadow_pixels(model, frame, candidates, r, options);
+        ASSERT_EQ(cv::countNonZero(shadow != plain_shadow(model, frame, candidates, r, 3.0f)), 0)
+            << size << " trial " << trial << " ratio " << r;
+      }
+    }
+  }
+}
+
 TEST(MediPicture, CommonRatioFindsTheShadowsFactorAndSparesTheBody) {
   const ShadowAndBody scene = shadow_and_body();
   MediPictureOptions options = bare_options();
