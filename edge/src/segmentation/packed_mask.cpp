@@ -205,6 +205,7 @@ void PackedMask::close(const cv::Mat& element) {
   morph_from<false>(dilated, element);
   set_padding(0);
 }
+
 int PackedMask::root_of(int run) {
   while (parent_[static_cast<std::size_t>(run)] != run) {
     const int up = parent_[static_cast<std::size_t>(run)];
@@ -218,8 +219,8 @@ void PackedMask::label_runs(bool eight_connected) {
   set_padding(0);
   runs_.clear();
   parent_.clear();
-  const int reach =
-      eight_connected ? 1 : 0;  // columns a run reaches into the last row beyond its ends
+  // Columns beyond its ends where a run touches a run of the last row.
+  const int reach = eight_connected ? 1 : 0;
   std::size_t previous_begin = 0, previous_end = 0;
   for (int y = 0; y < rows_; ++y) {
     const std::size_t begin = runs_.size();
@@ -278,12 +279,17 @@ void PackedMask::remove_small_components(int min_area) {
   }
 }
 
-void PackedMask::fill_holes(int max_area) {
-  if (max_area <= 0) return;
-  for (int y = 0; y < rows_; ++y) {  // the background becomes the ones that label_runs joins
+void PackedMask::invert() {
+  for (int y = 0; y < rows_; ++y) {
     std::uint64_t* r = row(y);
     for (int k = 0; k < words_per_row_; ++k) r[k] = ~r[k];
   }
+  set_padding(0);
+}
+
+void PackedMask::fill_holes(int max_area) {
+  if (max_area <= 0) return;
+  invert();  // the background becomes the ones that label_runs joins
   label_runs(false);
   // A component with a run on the mask's rim reaches what lies beyond it: not a hole.
   rim_.assign(runs_.size(), 0);
@@ -293,11 +299,7 @@ void PackedMask::fill_holes(int max_area) {
       rim_[static_cast<std::size_t>(root_of(static_cast<int>(i)))] = 1;
     }
   }
-  for (int y = 0; y < rows_; ++y) {
-    std::uint64_t* r = row(y);
-    for (int k = 0; k < words_per_row_; ++k) r[k] = ~r[k];
-  }
-  set_padding(0);
+  invert();
   for (std::size_t i = 0; i < runs_.size(); ++i) {
     const auto root = static_cast<std::size_t>(root_of(static_cast<int>(i)));
     if (rim_[root] == 0 && area_[root] <= max_area) set_run(runs_[i], true);

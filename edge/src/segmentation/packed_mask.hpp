@@ -44,6 +44,7 @@ class PackedMask {
   void label_runs(bool eight_connected);
   int root_of(int run);  // the run's component, halving the path on the way
   void set_run(const Run& run, bool value);
+  void invert();  // every pixel of the mask; the padding stays clear
   // this = morphology of `source` by `element` (dilate: OR, else AND).
   template <bool kDilate>
   void morph_from(const PackedMask& source, const cv::Mat& element);
