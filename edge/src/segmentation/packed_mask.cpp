@@ -94,6 +94,22 @@ void PackedMask::unpack(cv::Mat& bytes) const {
     const std::uint64_t* in = row(y);
     uchar* out = bytes.ptr<uchar>(y);
     int x = 0;
+    // A mask is mostly wide stretches of one value: a word of 64 equal pixels is one fill.
+    for (; x + 64 <= cols_; x += 64) {
+      const std::uint64_t word = in[x / 64];
+      if (word == 0) {
+        std::memset(out + x, 0, 64);
+        continue;
+      }
+      if (word == kOnes) {
+        std::memset(out + x, 255, 64);
+        continue;
+      }
+      for (int i = 0; i < 64; i += 8) {
+        const std::uint64_t eight = kUnpack[(word >> i) & 0xFF];
+        std::memcpy(out + x + i, &eight, 8);
+      }
+    }
     for (; x + 8 <= cols_; x += 8) {
       const std::uint64_t eight = kUnpack[(in[x / 64] >> (x % 64)) & 0xFF];
       std::memcpy(out + x, &eight, 8);
