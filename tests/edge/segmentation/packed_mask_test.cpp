@@ -58,6 +58,25 @@ TEST(PackedMask, ClosingAndComponentsMatchOpenCv) {
       PackedMask::closable_by(cv::Mat(3, 3, CV_8UC1, cv::Scalar(1)) - cv::Mat::eye(3, 3, CV_8UC1)));
 }
 
+// Unpacking gives back the bytes packed (as 0 / 255): words of 64 equal pixels (filled whole)
+// beside mixed ones and the row's tail.
+TEST(PackedMask, UnpacksWhatItPacked) {
+  cv::RNG rng(6);
+  for (const int width : {5, 64, 100, 128, 200, 257}) {
+    cv::Mat mask = cv::Mat::zeros(12, width, CV_8UC1);
+    mask.rowRange(2, 5).setTo(255);                          // whole rows of ones
+    mask(cv::Rect(0, 6, std::min(width, 130), 2)).setTo(9);  // any non-zero value
+    for (int y = 8; y < 12; ++y) {                           // mixed words
+      for (int x = 0; x < width; ++x) mask.at<uchar>(y, x) = rng.uniform(0, 2) ? 255 : 0;
+    }
+    PackedMask packed;
+    packed.pack(mask);
+    cv::Mat out(mask.size(), CV_8UC1, cv::Scalar(7));
+    packed.unpack(out);
+    EXPECT_EQ(cv::countNonZero(out != (mask != 0)), 0) << "width " << width;
+  }
+}
+
 // The holes as connectedComponentsWithStats finds them: 4-connected components of the
 // background that touch no edge, of at most max_area pixels.
 cv::Mat holes_filled_by_opencv(const cv::Mat& mask, int max_area) {
