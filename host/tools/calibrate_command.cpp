@@ -225,7 +225,7 @@ void on_signal(int) { g_stop = 1; }
 calibration::Observations read_live(const std::string& url, const CalibrateArgs& a,
                                     std::ostream& err, bool progress) {
   if (a.cameras.empty()) throw UsageError{"lcm: needs --cameras (the ids to wait for)"};
-  lcm::LCM lcm(url);
+  lcm::LCM lcm(proto::receiving_lcm_url(url));
   if (!lcm.good()) throw calibration::ObservationError("lcm:" + url + ": cannot open LCM");
   calibration::BlobFrameCollector collector("lcm:" + url, a.cameras);
   proto::Subscriber sub(lcm, [&](const std::string& m) { err << kPrefix << m << '\n'; });

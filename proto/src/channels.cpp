@@ -45,4 +45,13 @@ std::optional<int> camera_of_channel(std::string_view channel) {
   return std::nullopt;
 }
 
+std::string receiving_lcm_url(std::string_view url, std::size_t bytes) {
+  std::string out(url);
+  if (!url.starts_with("udpm://") || url.find("recv_buf_size=") != std::string_view::npos) {
+    return out;
+  }
+  out += url.find('?') == std::string_view::npos ? '?' : '&';
+  return out + "recv_buf_size=" + std::to_string(bytes);
+}
+
 }  // namespace syncap::proto

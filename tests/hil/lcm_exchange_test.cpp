@@ -110,6 +110,43 @@ TEST(LcmExchange, MalformedMessageIsNamedAndLaterOnesStillArrive) {
   EXPECT_EQ(frames[0].blobs.size(), 2u);
 }
 
+// A receiver that stalls (a host descheduled for a few hundred ms, a page-cache flush) keeps
+// what arrived meanwhile: LCM's own limit, 30 waiting messages a subscription, dropped the 31st
+// of 6 cameras' blob messages without a word (the failure of CI's
+// hil.run.RingSixCameraPersonShort).
+TEST(LcmExchange, StalledReceiverKeepsEveryMessageThatArrived) {
+  lcm::LCM lcm(proto::kDefaultLcmUrl);
+  ASSERT_TRUE(lcm.good());
+  std::vector<blob_frame_t> frames;
+  proto::Subscriber sub(lcm, [](const std::string& e) { ADD_FAILURE() << e; });
+  sub.subscribe<blob_frame_t>(
+      "SYNCAP_BLOBS_.*", [&](const blob_frame_t& f, const std::string&) { frames.push_back(f); });
+  constexpr int kCameras = 6, kFrames = 50;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    lcm::LCM publisher(proto::kDefaultLcmUrl);
+    if (!publisher.good()) _exit(3);
+    for (int frame = 0; frame < kFrames; ++frame) {
+      for (int camera = 0; camera < kCameras; ++camera) {
+        blob_frame_t m = test::blob_frame_with(3);
+        m.camera_id = static_cast<int16_t>(camera);
+        m.frame_number = frame;
+        publisher.publish(proto::blob_channel(camera), &m);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    _exit(0);
+  }
+  ASSERT_EQ(wait_for_exit(pid), 0);  // the stall: everything is sent before anything is handled
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (std::chrono::steady_clock::now() < deadline && frames.size() < kCameras * kFrames) {
+    lcm.handleTimeout(50);
+  }
+  ASSERT_EQ(frames.size(), static_cast<std::size_t>(kCameras * kFrames));
+  EXPECT_EQ(frames.back().frame_number, kFrames - 1);
+  EXPECT_EQ(frames.back().camera_id, kCameras - 1);
+}
+
 // A raw socket on the multicast group sees LCM's datagrams as they are on the wire.
 int open_group_socket() {
   const int fd = socket(AF_INET, SOCK_DGRAM, 0);

@@ -33,5 +33,18 @@ TEST(Channels, CameraOfChannelParsesOnlyOurNames) {
   EXPECT_EQ(camera_of_channel("OTHER_BLOBS_07"), std::nullopt);
 }
 
+TEST(Channels, ReceivingUrlAsksForTheReceiveBuffer) {
+  EXPECT_EQ(receiving_lcm_url("udpm://239.255.76.67:7667?ttl=0"),
+            "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=" + std::to_string(kReceiveBufferBytes));
+  EXPECT_EQ(receiving_lcm_url("udpm://239.255.76.67:7667", 65536),
+            "udpm://239.255.76.67:7667?recv_buf_size=65536");
+  // The user's own choice stays; other providers have no such option.
+  EXPECT_EQ(receiving_lcm_url("udpm://239.1.1.1:7667?recv_buf_size=1000&ttl=1"),
+            "udpm://239.1.1.1:7667?recv_buf_size=1000&ttl=1");
+  EXPECT_EQ(receiving_lcm_url("file:///tmp/x.lcmlog?mode=r"), "file:///tmp/x.lcmlog?mode=r");
+  EXPECT_EQ(receiving_lcm_url("memq://"), "memq://");
+  EXPECT_EQ(receiving_lcm_url(""), "");
+}
+
 }  // namespace
 }  // namespace syncap::proto

@@ -65,9 +65,10 @@ std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeO
 
 int run(const syncap::edge::EdgeOptions& options) {
   auto source = open_source(options);
-  lcm::LCM lcm(options.lcm_url);
+  const std::string lcm_url = syncap::proto::receiving_lcm_url(options.lcm_url);
+  lcm::LCM lcm(lcm_url);
   if (!lcm.good()) {
-    std::cerr << "syncap-edge: cannot open LCM at " << options.lcm_url << "\n";
+    std::cerr << "syncap-edge: cannot open LCM at " << lcm_url << "\n";
     return 1;
   }
   const std::string blob_channel = syncap::proto::blob_channel(options.camera_id);

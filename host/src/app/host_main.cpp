@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "aggregator/arrival_tally.hpp"
 #include "aggregator/frame_grouper.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
@@ -152,23 +153,8 @@ std::string group_line(const syncap::host::FrameGroup& g, std::size_t expected) 
 
 struct Tally {
   long groups = 0, complete = 0, triggers = 0, blob_parts = 0, silhouette_parts = 0, rejected = 0;
-  std::map<int, syncap::camera_status_t> status;
+  syncap::host::ArrivalTally arrivals;
 };
-
-const char* state_name(int8_t state) {
-  switch (state) {
-    case syncap::camera_status_t::STATE_IDLE:
-      return "idle";
-    case syncap::camera_status_t::STATE_ACQUIRING:
-      return "acquiring";
-    case syncap::camera_status_t::STATE_ERROR:
-      return "error";
-    case syncap::camera_status_t::STATE_STOPPED:
-      return "stopped";
-    default:
-      return "unknown";
-  }
-}
 
 void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
                    const syncap::host::FrameGrouper& grouper) {
@@ -177,11 +163,7 @@ void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
             << t.blob_parts << " blob messages, " << t.silhouette_parts << " silhouette parts, "
             << sub.malformed() << " malformed, " << t.rejected << " rejected ("
             << grouper.late_messages() << " late)\n";
-  for (const auto& [id, s] : t.status) {
-    std::cout << "  camera " << id << " status: " << state_name(s.state) << ", "
-              << s.frames_received << " frames received, " << s.frames_lost << " lost"
-              << (s.message.empty() ? "" : ", note: " + s.message) << "\n";
-  }
+  std::cout << t.arrivals.summary();
 }
 
 }  // namespace
@@ -190,9 +172,10 @@ int main(int argc, char** argv) {
   const HostOptions options = parse_options(argc, argv);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  lcm::LCM lcm(options.lcm_url);
+  const std::string lcm_url = syncap::proto::receiving_lcm_url(options.lcm_url);
+  lcm::LCM lcm(lcm_url);
   if (!lcm.good()) {
-    std::cerr << "syncap-host: cannot open LCM at " << options.lcm_url << "\n";
+    std::cerr << "syncap-host: cannot open LCM at " << lcm_url << "\n";
     return 1;
   }
   std::ofstream out;
@@ -226,6 +209,7 @@ int main(int argc, char** argv) {
   sub.subscribe<syncap::blob_frame_t>(std::string(syncap::proto::kBlobChannelPrefix) + ".*",
                                       [&](const syncap::blob_frame_t& f, const std::string&) {
                                         ++tally.blob_parts;
+                                        tally.arrivals.add_record(f);
                                         reject(grouper.add_blob_part(f));
                                       });
   sub.subscribe<syncap::silhouette_part_t>(
@@ -236,7 +220,7 @@ int main(int argc, char** argv) {
       });
   sub.subscribe<syncap::camera_status_t>(
       std::string(syncap::proto::kStatusChannelPrefix) + ".*",
-      [&](const syncap::camera_status_t& s, const std::string&) { tally.status[s.camera_id] = s; });
+      [&](const syncap::camera_status_t& s, const std::string&) { tally.arrivals.add_status(s); });
 
   auto emit = [&](std::vector<syncap::host::FrameGroup> groups) {
     for (const auto& g : groups) {
@@ -247,7 +231,7 @@ int main(int argc, char** argv) {
       if (last_pulse_frame && g.frame_number >= *last_pulse_frame) last_pulse_seen = true;
     }
   };
-  if (!options.quiet) std::cout << "syncap-host: listening on " << options.lcm_url << std::endl;
+  if (!options.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
   while (!g_stop) {
     const int handled = lcm.handleTimeout(100);
     if (handled < 0) break;

@@ -23,6 +23,17 @@ inline constexpr std::size_t kMaxEncodedSize =
 // LCM's default multicast group with ttl=0: traffic never leaves the host (or namespace).
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
+// The kernel receive buffer a receiving process asks for. Every process on the group receives
+// every datagram (LCM filters channels after the kernel), and the kernel charges ~2-4 KiB for
+// even a short one: the usual 208 KiB default holds ~230 ms of 6 cameras at 30 Hz for a process
+// that is descheduled, 4 MiB holds seconds. The kernel caps it at net.core.rmem_max, and LCM
+// then warns on stderr (docs/deploy.md: raising it).
+inline constexpr std::size_t kReceiveBufferBytes = 4u << 20;
+
+// `url` with LCM's recv_buf_size option set to `bytes`, for a udpm URL that names none; any
+// other URL (one that sets it, another provider such as file:// or memq://) is returned as is.
+std::string receiving_lcm_url(std::string_view url, std::size_t bytes = kReceiveBufferBytes);
+
 inline constexpr const char* kTriggerChannel = "SYNCAP_TRIGGER";
 inline constexpr const char* kEdgeCommandChannel = "SYNCAP_EDGE_CMD";
 // clip_polygon_t, host -> edge (each message names its camera).
