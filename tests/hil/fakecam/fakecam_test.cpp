@@ -415,20 +415,28 @@ TEST_F(FakecamTest, TwoCamerasOnOneLineDeliverTheSameFrames) {
 // camera paces them to its 1 Gbit/s link.
 TEST_F(FakecamTest, LargeFramesArriveComplete) {
   constexpr int kFrames = 50;
-  write_images(0, kFrames, 640, 480);
+  write_images(0, kFrames + 1, 640, 480);
   auto fakecam = start_fakecam("127.0.0.2", {"--trigger", gpiosim_trigger()});
   AravisClient client("127.0.0.2");
   client.start("Line0");
   ChipWriter writer(chip_, 0);
+  // Aravis sets the stream's socket buffer (4 MiB) only when it reads the first frame's first
+  // packet; until then the kernel's default (208 KiB, a third of this frame) holds the burst, and
+  // a receiving thread that wakes a few ms late loses part of frame 0 (3 runs in 15, the machine
+  // idle). That is the client's start, not the camera: frame 0 is taken as it comes, and the
+  // frames under test follow it.
+  writer.pulses(1, 10ms);
+  ASSERT_TRUE(client.receive(kFrameTimeoutMs).has_value()) << "no frame 0";
+  const std::uint64_t missing_at_start = client.missing_packets();
   // More frames than the client has buffers: they are taken while the pulses go on.
   std::jthread pulses([&writer] { writer.pulses(kFrames, 10ms); });
   const std::vector<ReceivedFrame> frames = receive_frames(client, kFrames);
   ASSERT_EQ(frames.size(), static_cast<std::size_t>(kFrames));
-  FrameNumberTracker tracker;
+  FrameNumberTracker tracker(1);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    expect_frame(frames[i], i, tracker, Region{0, 0, 640, 480}, 640, 480);
+    expect_frame(frames[i], i + 1, tracker, Region{0, 0, 640, 480}, 640, 480);
   }
-  EXPECT_EQ(client.missing_packets(), 0u);
+  EXPECT_EQ(client.missing_packets(), missing_at_start);
 }
 
 // Bad input stops the camera before it serves, with exit status 1 and a message naming it.
