@@ -112,8 +112,8 @@ TEST(LcmExchange, MalformedMessageIsNamedAndLaterOnesStillArrive) {
 
 // A receiver that stalls (a host descheduled for a few hundred ms, a page-cache flush) keeps
 // what arrived meanwhile: LCM's own limit, 30 waiting messages a subscription, dropped the 31st
-// of 6 cameras' blob messages without a word (the failure of CI's
-// hil.run.RingSixCameraPersonShort).
+// of 6 cameras' blob messages without a word (likely what failed CI's
+// hil.run.RingSixCameraPersonShort once).
 TEST(LcmExchange, StalledReceiverKeepsEveryMessageThatArrived) {
   lcm::LCM lcm(proto::kDefaultLcmUrl);
   ASSERT_TRUE(lcm.good());

@@ -24,10 +24,11 @@ inline constexpr std::size_t kMaxEncodedSize =
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 // The kernel receive buffer a receiving process asks for. Every process on the group receives
-// every datagram (LCM filters channels after the kernel), and the kernel charges ~2-4 KiB for
-// even a short one: the usual 208 KiB default holds ~230 ms of 6 cameras at 30 Hz for a process
-// that is descheduled, 4 MiB holds seconds. The kernel caps it at net.core.rmem_max, and LCM
-// then warns on stderr (docs/deploy.md: raising it).
+// every datagram (LCM filters channels after the kernel), and the kernel charges a datagram's
+// bookkeeping too: the usual 208 KiB default held 25 frames (0.8 s) of six cameras' triggers,
+// blobs and silhouettes for a stopped host on the replay bench, then dropped; 4 MiB holds ~20
+// times that. The kernel caps it at net.core.rmem_max, and LCM then warns on stderr (raising
+// it: docs/edge.md, "Running syncap-edge on a board").
 inline constexpr std::size_t kReceiveBufferBytes = 4u << 20;
 
 // `url` with LCM's recv_buf_size option set to `bytes`, for a udpm URL that names none; any

@@ -6,8 +6,9 @@
 //
 // LCM's receive thread queues what arrives until handle() takes it, at most 30 messages a
 // subscription by default, and drops the rest without a word. One regex subscription for the blob
-// messages of 6 cameras holds 5 frames then: a host descheduled for 170 ms lost messages (CI saw
-// it). Subscriber gives each subscription room for seconds of traffic instead.
+// messages of 6 cameras holds 5 frames then: a host whose main thread fell 5 frames behind lost
+// messages (the likely cause of a CI failure). Subscriber gives each subscription room for
+// seconds of traffic instead.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
