@@ -36,7 +36,13 @@ TEST(ArrivalTally, CountsOneRecordPerFrameNotPerPart) {
 
 TEST(ArrivalTally, FinalStatusNamesTheRecordsLostOnTheWay) {
   ArrivalTally tally;
-  for (int k = 0; k < 89; ++k) tally.add_record(record(5, k));
+  tally.add_status(status(5, camera_status_t::STATE_ACQUIRING, 0));  // the edge's first status
+  for (int k = 0; k < 90; ++k) {
+    if (k != 17) tally.add_record(record(5, k));
+  }
+  EXPECT_EQ(tally.lost_in_transit(5), std::nullopt);  // a heartbeat proves nothing
+  tally.add_status(status(5, camera_status_t::STATE_ACQUIRING, 60));
+  EXPECT_EQ(tally.lost_in_transit(5), std::nullopt);
   tally.add_status(status(5, camera_status_t::STATE_STOPPED, 90));
   EXPECT_EQ(tally.lost_in_transit(5), 1);
   EXPECT_EQ(tally.summary(),
@@ -44,16 +50,40 @@ TEST(ArrivalTally, FinalStatusNamesTheRecordsLostOnTheWay) {
             "(1 lost between edge and host)\n");
 }
 
-TEST(ArrivalTally, HeartbeatProvesNothingAndNothingLostIsNotSaid) {
+TEST(ArrivalTally, AHostStartedLateCountsFromTheFirstStatusItSaw) {
+  ArrivalTally tally;
+  // The edge ran long before: records of frames it processed then arrive first (or never).
+  tally.add_record(record(2, 4000));
+  tally.add_status(status(2, camera_status_t::STATE_ACQUIRING, 4001));
+  for (int k = 4001; k < 4100; ++k) tally.add_record(record(2, k));
+  tally.add_status(status(2, camera_status_t::STATE_STOPPED, 4100));
+  EXPECT_EQ(tally.lost_in_transit(2), 0);
+  EXPECT_EQ(tally.summary(),
+            "  camera 2 status: stopped, 4100 frames received, 0 lost, 100 here\n");
+}
+
+TEST(ArrivalTally, AnEdgeThatRestartedStartsANewBaseline) {
+  ArrivalTally tally;
+  tally.add_status(status(1, camera_status_t::STATE_ACQUIRING, 0));
+  for (int k = 0; k < 50; ++k) tally.add_record(record(1, k));
+  tally.add_status(status(1, camera_status_t::STATE_ACQUIRING, 50));
+  // Restarted: its count starts again at 0; the records of the run before count for nothing.
+  tally.add_status(status(1, camera_status_t::STATE_ACQUIRING, 0));
+  for (int k = 60; k < 80; k += 2) tally.add_record(record(1, k));
+  tally.add_status(status(1, camera_status_t::STATE_STOPPED, 20));
+  EXPECT_EQ(tally.lost_in_transit(1), 10);
+}
+
+TEST(ArrivalTally, NothingLostIsNotSaid) {
   ArrivalTally tally;
   for (int k = 0; k < 3; ++k) tally.add_record(record(0, k));
-  // A heartbeat sent before the records that followed: no loss can be told from it.
   tally.add_status(status(0, camera_status_t::STATE_ACQUIRING, 10));
   EXPECT_EQ(tally.lost_in_transit(0), std::nullopt);
   auto last = status(1, camera_status_t::STATE_STOPPED, 0, 4);
   last.message = "no exposure for frame 3";
   tally.add_status(last);
   EXPECT_EQ(tally.lost_in_transit(1), 0);
+  tally.add_record(record(7, 0));  // a camera that never sent a status has no line
   EXPECT_EQ(tally.summary(),
             "  camera 0 status: acquiring, 10 frames received, 0 lost, 3 here\n"
             "  camera 1 status: stopped, 0 frames received, 4 lost, 0 here, "
