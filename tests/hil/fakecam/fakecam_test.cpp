@@ -422,9 +422,9 @@ TEST_F(FakecamTest, LargeFramesArriveComplete) {
   ChipWriter writer(chip_, 0);
   // Aravis sets the stream's socket buffer (4 MiB) only when it reads the first frame's first
   // packet; until then the kernel's default (208 KiB, a third of this frame) holds the burst, and
-  // a receiving thread that wakes a few ms late loses part of frame 0 (3 runs in 15, the machine
-  // idle). That is the client's start, not the camera: frame 0 is taken as it comes, and the
-  // frames under test follow it.
+  // a receiving thread that wakes a few ms late loses part of frame 0 (3 runs in 15 with three
+  // busy loops on the two cores; none in 20 idle or beside one). That is the client's start, not
+  // the camera: frame 0 is taken as it comes, and the frames under test follow it.
   writer.pulses(1, 10ms);
   ASSERT_TRUE(client.receive(kFrameTimeoutMs).has_value()) << "no frame 0";
   const std::uint64_t missing_at_start = client.missing_packets();
