@@ -457,8 +457,9 @@ cv::Mat common_ratio_shadow_pixels(const MediPictureModel& model, const cv::Mat&
 }
 
 void fill_holes(cv::Mat& mask, int max_area) {
+  if (max_area <= 0) return;
   detail::PackedMask packed;
-  if (max_area > 0) fill_holes_in(mask, cv::boundingRect(mask), max_area, packed);
+  fill_holes_in(mask, cv::boundingRect(mask), max_area, packed);
 }
 
 void clip_to_polygon(cv::Mat& mask, std::span<const cv::Point> polygon) {

@@ -9,6 +9,7 @@
 // edge that restarted (its count went down) starts a new baseline.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
