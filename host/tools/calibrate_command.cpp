@@ -57,6 +57,16 @@ double number_arg(const std::string& option, const std::string& text) {
   return v;
 }
 
+// "40,50,60" -> {40, 50, 60}; "none" -> {}.
+std::vector<double> number_list(const std::string& option, const std::string& text) {
+  std::vector<double> out;
+  if (text == "none") return out;
+  std::istringstream items(text);
+  for (std::string item; std::getline(items, item, ',');) out.push_back(number_arg(option, item));
+  if (out.empty()) throw UsageError{option + " needs a comma-separated list or 'none'"};
+  return out;
+}
+
 std::set<int> camera_list(const std::string& text) {
   std::set<int> ids;
   std::istringstream in(text);
@@ -125,6 +135,18 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
       if (!(o.pixel_size_mm > 0)) throw UsageError{"--pixel-size must be > 0"};
     } else if (arg == "--fov") {
       o.field_of_view_deg = number_arg(arg, value());
+    } else if (arg == "--start-fovs") {
+      o.start_fields_of_view_deg = number_list(arg, value());
+    } else if (arg == "--principal-point-sigma") {
+      o.principal_point_sigma_share = number_arg(arg, value());
+      if (!(o.principal_point_sigma_share >= 0)) {
+        throw UsageError{"--principal-point-sigma must be >= 0"};
+      }
+    } else if (arg == "--check-share") {
+      o.check_point_share = number_arg(arg, value());
+      if (!(o.check_point_share >= 0 && o.check_point_share <= 0.5)) {
+        throw UsageError{"--check-share must lie in [0, 0.5]"};
+      }
     } else if (arg == "--sigma-px") {
       o.sigma_px = number_arg(arg, value());
     } else if (arg == "--wand-sigma") {
@@ -144,6 +166,11 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
         throw UsageError{"--image-size must be WIDTHxHEIGHT in pixels, got '" + v + "'"};
       }
       a.image_size = calibration::ImageSize{static_cast<int>(w), static_cast<int>(h)};
+    } else if (arg == "--model") {
+      const std::string& v = value();
+      if (v != "auto" && v != "all")
+        throw UsageError{"--model must be auto or all, got '" + v + "'"};
+      o.select_model = v == "auto";
     } else if (arg == "--interior") {
       o.free_interior = interior_list(value());
     } else if (arg == "--cameras") {
@@ -286,6 +313,8 @@ void print_summary(const calibration::CalibrationResult& r, std::ostream& out) {
     out << ", wand " << *q.wand_length_mean_mm << " +- " << *q.wand_length_sd_mm << " mm";
   }
   out << (r.adjustment.converged ? "" : " (NOT CONVERGED)") << '\n';
+  out << "verdict: " << q.verdict << '\n';
+  for (const std::string& reason : r.report.verdict_reasons) out << "  " << reason << '\n';
   for (const auto& c : r.cameras) {
     out << "  camera " << c.id << ": c " << c.interior.c << " mm, RMS "
         << q.per_camera_rms_px.at(c.id) << " px\n";
@@ -332,6 +361,11 @@ int calibrate_command(std::span<const std::string> args, std::ostream& out, std:
     if (!result.adjustment.converged) {
       err << kPrefix << "the adjustment did not converge: " << result.adjustment.termination
           << '\n';
+      return kExitReportedErrors;
+    }
+    if (result.verdict == calibration::Verdict::kFailed) {
+      err << kPrefix << "the calibration failed its checks (report.txt says why): "
+          << result.quality.verdict_reasons.front() << '\n';
       return kExitReportedErrors;
     }
   } catch (const std::exception& e) {

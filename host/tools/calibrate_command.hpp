@@ -27,7 +27,22 @@ inline constexpr const char* kCalibrateUsage =
     "                        (default continuity: the upper spot starts as end A)\n"
     "  --pixel-size MM       the sensors' pixel pitch (default 0.005, nominal)\n"
     "  --image-size WxH      the image size of cameras the source gives none for (csv:)\n"
-    "  --fov DEG             typical horizontal field of view for the start value of c (60)\n"
+    "  --fov DEG             horizontal field of view for the start value of c, tried first\n"
+    "                        (default 60)\n"
+    "  --start-fovs LIST     the fields of view the start is also searched from, each run on\n"
+    "                        200 frames, the best (plausible, lowest median residual) kept\n"
+    "                        (default 40,50,60,70,80,90,100; none: --fov alone)\n"
+    "  --principal-point-sigma S  the principal point is observed at the image centre with\n"
+    "                        S x the sensor width as its sigma (default 0.03; 0: no prior, e.g.\n"
+    "                        for images cropped off-centre from the sensor)\n"
+    "  --check-share S       share of the frames held out and predicted as check points\n"
+    "                        (default 0.1; 0: none)\n"
+    "  --interior LIST       interior values that may be estimated, of c,xp,yp,k1,k2,k3,p1,p2,\n"
+    "                        sc,sh (default c,xp,yp,k1,k2,k3,p1,p2; --led without k3)\n"
+    "  --model auto|all      auto (default): the base model (c, xp, yp, k1, k2 of --interior)\n"
+    "                        first, then each further group (p1+p2, k3, sc, sh) only where it\n"
+    "                        improves the fit significantly, is significant and not too\n"
+    "                        correlated; all: every --interior value\n"
     "  --sigma-px PX         a priori standard deviation of a measured coordinate (0.1)\n"
     "  --wand-sigma MM       standard deviation of a wand distance (0.2)\n"
     "  --critical-w W        data snooping's critical value (3.29)\n"
@@ -39,8 +54,11 @@ inline constexpr const char* kCalibrateUsage =
     "  --frames N            lcm: stop after N frame groups\n"
     "  --idle-timeout S      lcm: stop S seconds after the last blob frame (default 5)\n"
     "  --progress            print progress on stderr (default: only when stderr is a terminal)\n"
-    "Exit status: 0 calibrated, 1 the calibration failed (the reason on stderr), 2 usage error or\n"
-    "unusable input.\n";
+    "The summary and report.txt start with the verdict: good, weak (usable; the reasons say\n"
+    "what the data could not determine) or failed (the geometry is wrong).\n"
+    "Exit status: 0 calibrated (good or weak), 1 the calibration failed (did not converge, or its\n"
+    "verdict is failed; the outputs are written for inspection), 2 usage error or unusable "
+    "input.\n";
 
 int calibrate_command(std::span<const std::string> args, std::ostream& out, std::ostream& err);
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "calibration/simulated_observations.hpp"
 #include "estimators/bundle_adjustment_simulation.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -68,6 +69,52 @@ TEST(CalibrateCommand, CsvWandRecordingGivesTheCalibrationFolder) {
   fs::remove_all(dir);
 }
 
+// The weak LED replica (tests/host/calibration/simulated_observations.hpp) as CSV: by default
+// the verdict is good and the exit status 0; the old way (--model all from 60 degrees alone) ends
+// (and the principal point held as loosely as before) in a wrong minimum that the checks call
+// failed: exit status 1, the files written, the verdict
+// in cameras.json and at the top of report.txt.
+TEST(CalibrateCommand, AFailedVerdictExitsWithStatusOne) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("syncap-calverdict-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const auto net = estimators::simulate_wand_network(calibration::weak_led_network(400, 11));
+  {
+    std::ofstream csv(dir / "led.csv");
+    csv << "frame,camera,x,y\n";
+    for (const auto& m : net.network.measurements) {
+      csv << m.frame_number << ',' << m.station.substr(6) << ',' << m.u << ',' << m.v << '\n';
+    }
+  }
+  const std::vector<std::string> common{"--input", "csv:" + (dir / "led.csv").string(),
+                                        "--led",   "--image-size",
+                                        "659x494", "--pixel-size",
+                                        "0.0074",  "--sigma-px",
+                                        "0.15"};
+  std::vector<std::string> old_way = common;
+  old_way.insert(old_way.end(), {"--model", "all", "--start-fovs", "none",
+                                 "--principal-point-sigma", "0", "--out", (dir / "old").string()});
+  std::string out, err;
+  EXPECT_EQ(run(old_way, out, err), kExitReportedErrors) << out << err;
+  EXPECT_NE(err.find("the calibration failed its checks"), std::string::npos) << err;
+  EXPECT_NE(out.find("verdict: failed"), std::string::npos) << out;
+  EXPECT_EQ(sensor::read_camera_set(dir / "old" / "cameras.json").quality->verdict, "failed");
+  std::ifstream report(dir / "old" / "report.txt");
+  std::string title, rule, verdict;
+  std::getline(report, title);
+  std::getline(report, rule);
+  std::getline(report, verdict);
+  EXPECT_EQ(verdict, "verdict: failed");
+
+  std::vector<std::string> by_default = common;
+  by_default.insert(by_default.end(), {"--out", (dir / "new").string()});
+  EXPECT_EQ(run(by_default, out, err), kExitOk) << out << err;
+  const sensor::CameraSet set = sensor::read_camera_set(dir / "new" / "cameras.json");
+  EXPECT_EQ(set.quality->verdict, "good");
+  EXPECT_TRUE(set.quality->verdict_reasons.empty());
+  fs::remove_all(dir);
+}
+
 TEST(CalibrateCommand, UsageErrorsNameTheOption) {
   std::string out, err;
   EXPECT_EQ(run({"--input", "csv:x.csv", "--out", "d"}, out, err), kExitUsage);
@@ -77,6 +124,15 @@ TEST(CalibrateCommand, UsageErrorsNameTheOption) {
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--interior", "c,q"}, out, err),
             kExitUsage);
   EXPECT_NE(err.find("--interior: 'q' is not one of"), std::string::npos);
+  EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--model", "some"}, out, err),
+            kExitUsage);
+  EXPECT_NE(err.find("--model must be auto or all, got 'some'"), std::string::npos) << err;
+  EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--start-fovs", "40,x"}, out, err),
+            kExitUsage);
+  EXPECT_NE(err.find("--start-fovs needs a number, got 'x'"), std::string::npos) << err;
+  EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--check-share", "0.7"}, out, err),
+            kExitUsage);
+  EXPECT_NE(err.find("--check-share must lie in [0, 0.5]"), std::string::npos) << err;
   EXPECT_EQ(
       run({"--input", "lcm:udpm://239.255.76.67:7667?ttl=0", "--led", "--out", "d"}, out, err),
       kExitUsage);

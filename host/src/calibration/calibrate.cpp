@@ -1,25 +1,18 @@
 #include "calibration/calibrate.hpp"
-#include "estimators/bootstrap.hpp"
-#include "sensor/rotation.hpp"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
 
+#include "calibration/stages.hpp"
+#include "calibration/verdict.hpp"
+#include "estimators/bootstrap.hpp"
+#include "util/printf_string.hpp"
+
 namespace syncap::calibration {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-// A free network from one point a frame converges slowly along the weakly determined camera
-// constants; 50 (the design default) is not always enough. The second stage, blunders removed,
-// must converge: a few strawlab blunder seeds crawl there for 150-400 iterations. The first, with
-// the blunders still in, only gives approximate values: longer, it can wander off along c
-// against depth (strawlab blunder seed 8 ends at 1.1 px RMS with 1000).
-constexpr int kFirstStageIterations = 200;
-constexpr int kMaxIterations = 1000;
 // The thesis finds the interior orientation stable from about 40 wand positions on (Table 4.3).
 constexpr size_t kStableFrames = 40;
 
@@ -53,13 +46,21 @@ std::vector<int64_t> frames_to_use(const Identification& identification, int max
   return thinned;
 }
 
-// Start interior: centred principal point, no distortion, c from the typical field of view.
-sensor::InteriorOrientation start_interior(const sensor::SensorGeometry& sensor,
-                                           double field_of_view_deg) {
-  sensor::InteriorOrientation interior;
-  const double half_width_mm = 0.5 * sensor.width_px * sensor.pixel_width_mm;
-  interior.c = half_width_mm / std::tan(0.5 * field_of_view_deg * kPi / 180.0);
-  return interior;
+// The frames the adjustment uses and those held out of it as check points.
+struct FrameSplit {
+  std::vector<int64_t> adjusted;
+  std::vector<int64_t> held_out;
+};
+
+FrameSplit split_frames(const Identification& identification, const CalibrationOptions& options) {
+  FrameSplit out;
+  const std::vector<int64_t> all = frames_to_use(identification, options.max_frames);
+  out.held_out = check_frames(all, options.check_point_share);
+  const std::set<int64_t> held(out.held_out.begin(), out.held_out.end());
+  for (int64_t f : all) {
+    if (!held.count(f)) out.adjusted.push_back(f);
+  }
+  return out;
 }
 
 const char* kInteriorNames[] = {"c", "xp", "yp", "k1", "k2", "k3", "p1", "p2", "sc", "sh"};
@@ -79,125 +80,6 @@ const char* mode_name(scene::ParameterMode mode) {
   }
   return "free";
 }
-
-// The network without the points the start could not triangulate (their rays did not meet
-// within NetworkStartOptions::max_ray_error_px with the start's rough interiors), for the first
-// stage; the second stage takes them back, triangulated with the first stage's orientations.
-scene::Network triangulated_part(const scene::Network& network) {
-  std::set<std::string> triangulated;
-  for (const scene::ObjectPoint& p : network.points) {
-    if (p.has_approximation) triangulated.insert(p.name);
-  }
-  return scene::restricted_to_points(network, triangulated);
-}
-
-// The room's vertical as the cameras show it. Cameras hang without roll, so their image-right
-// axes are horizontal, whatever their pitch: the vertical is the direction most nearly at right
-// angles to all of them (the smallest eigenvector of their scatter), turned to agree with the
-// mean image-up axis. When the right axes are (nearly) parallel that direction is not defined,
-// and the mean image-up axis itself serves (biased by the cameras' common pitch).
-Eigen::Vector3d vertical_of(const std::vector<scene::Station>& stations) {
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d mean_up = Eigen::Vector3d::Zero();
-  for (const scene::Station& s : stations) {
-    const Eigen::Matrix3d r =
-        sensor::rotation_matrix(s.exterior.omega, s.exterior.phi, s.exterior.kappa);
-    scatter += r.col(0) * r.col(0).transpose();
-    mean_up += r.col(1);
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
-  const Eigen::Vector3d values = solver.eigenvalues();  // increasing
-  if (values[1] < 0.05 * values[2]) return mean_up;     // right axes all alike
-  Eigen::Vector3d vertical = solver.eigenvectors().col(0);
-  return vertical.dot(mean_up) < 0 ? Eigen::Vector3d(-vertical) : vertical;
-}
-
-// Moves the network (stations and points, rigidly) into the levelled frame documented in
-// calibrate.hpp: origin at the centroid of the points, Z along the cameras' mean image-up axis,
-// Y horizontal from the first camera towards the origin. The last adjustment then stays in this
-// frame: its free-network datum holds the first station where it is put here.
-void level_network(scene::Network& network) {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  int points = 0;
-  for (const scene::ObjectPoint& p : network.points) {
-    if (!p.has_approximation) continue;
-    origin += Eigen::Vector3d(p.xyz[0], p.xyz[1], p.xyz[2]);
-    ++points;
-  }
-  if (points == 0 || network.stations.empty()) return;
-  origin /= points;
-  const Eigen::Vector3d up = vertical_of(network.stations);
-  const auto& first = network.stations.front().exterior;
-  const Eigen::Vector3d towards = origin - Eigen::Vector3d(first.X0, first.Y0, first.Z0);
-  if (up.norm() < 1e-9) return;  // cameras all around a sphere: no common up
-  const Eigen::Vector3d z = up.normalized();
-  Eigen::Vector3d y = towards - towards.dot(z) * z;
-  if (y.norm() < 1e-9) return;  // the first camera right above the points
-  y.normalize();
-  Eigen::Matrix3d axes;  // the new axes in the old frame, as columns
-  axes << y.cross(z), y, z;
-  for (scene::Station& s : network.stations) {
-    auto& e = s.exterior;
-    const Eigen::Vector3d centre = axes.transpose() * (Eigen::Vector3d(e.X0, e.Y0, e.Z0) - origin);
-    const sensor::RotationAngles a = sensor::angles_from_rotation(
-        axes.transpose() * sensor::rotation_matrix(e.omega, e.phi, e.kappa));
-    e = {centre.x(), centre.y(), centre.z(), a.omega, a.phi, a.kappa};
-  }
-  for (scene::ObjectPoint& p : network.points) {
-    if (!p.has_approximation) continue;
-    const Eigen::Vector3d q =
-        axes.transpose() * (Eigen::Vector3d(p.xyz[0], p.xyz[1], p.xyz[2]) - origin);
-    p.xyz = {q.x(), q.y(), q.z()};
-  }
-}
-
-struct Stage {
-  bool distortion_free = false;
-  bool snoop = false;
-};
-
-// The stage's free and held values, design and tests on `network`.
-void prepare_stage(scene::Network& network, const CalibrationOptions& options, Stage stage) {
-  std::set<int> free(options.free_interior.begin(), options.free_interior.end());
-  if (free.empty()) {
-    free = options.wand.led ? std::set<int>{0, 1, 2, 3, 4, 6, 7}
-                            : std::set<int>{0, 1, 2, 3, 4, 5, 6, 7};
-  }
-  for (scene::CameraModel& model : network.models) {
-    for (int i = 0; i < sensor::InteriorBlock::kSize; ++i) {
-      const bool is_free =
-          stage.distortion_free ? free.count(i) > 0 : i <= sensor::InteriorBlock::kYp;
-      model.priors[static_cast<size_t>(i)] =
-          is_free ? scene::ParameterPrior::free() : scene::ParameterPrior::fixed();
-    }
-    // One point a frame and no scale leave c and the principal point weakly determined (thesis
-    // Table 4.8): held loosely at their approximations (c within half its value, the principal
-    // point within a tenth of the sensor) so that blunders cannot walk them off to a degenerate
-    // camera (c -> 0) during data snooping. The first stage, with the blunders still in, holds c
-    // within a tenth: else it can wander along the flat valley of c against depth (one seed of
-    // the strawlab blunder test ended with c 3 to 7 times too long).
-    if (options.wand.led) {
-      const double width_mm = model.sensor.width_px * model.sensor.pixel_width_mm;
-      model.priors[sensor::InteriorBlock::kC] =
-          scene::ParameterPrior::observed((stage.snoop ? 0.5 : 0.1) * model.interior.c);
-      model.priors[sensor::InteriorBlock::kXp] = scene::ParameterPrior::observed(0.1 * width_mm);
-      model.priors[sensor::InteriorBlock::kYp] = scene::ParameterPrior::observed(0.1 * width_mm);
-    }
-  }
-  network.design.max_iterations = stage.snoop ? kMaxIterations : kFirstStageIterations;
-  network.design.calculate_covariance = stage.snoop;
-  network.design.statistical_tests = stage.snoop;
-  network.residual_test.iterative_rejection = stage.snoop;
-  network.residual_test.critical_snooping = options.critical_snooping;
-  network.residual_test.snoop_with_a_posteriori_sigma0 = options.snoop_with_a_posteriori_sigma0;
-}
-
-estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
-                                                const CalibrationOptions& options, Stage stage) {
-  prepare_stage(network, options, stage);
-  return estimators::adjust(network, {});
-}
-
 ReportCamera report_camera(const sensor::CameraModel& camera, const scene::CameraModel& model,
                            const estimators::ModelResult& m, const estimators::StationResult& s) {
   ReportCamera c;
@@ -242,26 +124,6 @@ std::vector<double> adjusted_wand_lengths(const scene::Network& network,
   }
   return lengths;
 }
-
-// The second stage's approximate values from a network's observations alone: the start
-// (relative orientations, resection, scale), the first stage (c, xp, yp and the exterior, on the
-// points the start triangulated), and the levelled frame.
-struct SecondStageStart {
-  scene::Network network;
-  NetworkStartReport start;
-  estimators::BundleAdjustmentResult first;
-};
-
-SecondStageStart second_stage_start(scene::Network network, const CalibrationOptions& options) {
-  NetworkStart start = start_network(network, options.start);
-  SecondStageStart out{std::move(start.network), std::move(start.report), {}};
-  scene::Network first_network = triangulated_part(out.network);
-  out.first = adjust_stage(first_network, options, {false, false});
-  out.network = estimators::with_adjusted_values(std::move(out.network), out.first);
-  level_network(out.network);
-  return out;
-}
-
 // The parametric bootstrap's interior sigmas beside the linearised ones in the report.
 // `nominal`: the camera models the calibration started from.
 void add_bootstrap(CalibrationResult& out, const CalibrationOptions& options,
@@ -404,6 +266,65 @@ void check_options(const CalibrationOptions& options) {
   if (!(options.sigma_px > 0)) throw CalibrationError("calibrate: sigma_px must be > 0");
 }
 
+// The start search's choice (start_search.hpp) becomes the network's interior start values.
+void choose_start(scene::Network& network, const CalibrationOptions& options,
+                  CalibrationResult& out) {
+  out.start_search = search_start(network, options);
+  const std::vector<std::string> lines = describe(out.start_search);
+  if (!lines.empty()) say(options, lines.back());
+  if (out.start_search.chosen < 0) {
+    say(options, "start search: every start failed; the calibration starts from " +
+                     std::to_string(options.field_of_view_deg) + " deg");
+    return;
+  }
+  const StartCandidate& best =
+      out.start_search.candidates[static_cast<size_t>(out.start_search.chosen)];
+  for (size_t m = 0; m < network.models.size() && m < best.interiors.size(); ++m) {
+    network.models[m].interior = best.interiors[m];
+  }
+}
+
+// The final adjustment with data snooping: the base model, then the groups the data carry
+// (model_selection.hpp). Returns the options of the model adjusted.
+CalibrationOptions adjust_final(scene::Network& network, const CalibrationOptions& options,
+                                CalibrationResult& out) {
+  CalibrationOptions model = options;
+  const std::vector<int> requested = requested_interior(options);
+  model.free_interior = options.select_model ? base_model(requested) : requested;
+  out.adjustment = adjust_stage(network, model, {true, true});
+  out.model.base = model.free_interior;
+  out.model.final = model.free_interior;
+  if (!options.select_model || !out.adjustment.converged) return model;
+  out.model = select_model(network, out.adjustment, options);
+  for (const GroupTest& t : out.model.tests) say(options, "model: " + t.text);
+  if (out.model.final == out.model.base) return model;
+  model.free_interior = out.model.final;
+  network = estimators::with_adjusted_values(std::move(network), out.adjustment);
+  out.adjustment = adjust_stage(network, model, {true, true});
+  return model;
+}
+
+// The verdict into the quality block (cameras.json) and at the top of the report, with the
+// start search and the check points.
+void add_verdict(CalibrationResult& out) {
+  const std::vector<std::string> search = describe(out.start_search);
+  out.report.start_search = search;
+  const CheckPointResult& c = out.check_points;
+  if (c.frames > 0) {
+    out.report.check_points = util::printf_string(
+        "%d frames held out, %ld points, %ld image points predicted: median distance %.4f px "
+        "(the fit's %.4f px), RMS %.4f px (the fit's %.4f px); %ld rays beyond %.2f px",
+        c.frames, c.points, c.measurements, c.median_px, c.fit_median_px, c.rms_px,
+        out.quality.rms_px, c.outliers, c.outlier_bound_px);
+  }
+  out.quality.verdict = verdict_name(out.verdict);
+  out.report.verdict = verdict_name(out.verdict);
+  for (const Finding& f : out.findings) {
+    out.quality.verdict_reasons.push_back(f.text);
+    out.report.verdict_reasons.push_back(std::string(verdict_name(f.severity)) + ": " + f.text);
+  }
+}
+
 }  // namespace
 
 scene::Network build_network(const Observations& observations, const Identification& identification,
@@ -440,7 +361,7 @@ scene::Network build_network(const Observations& observations, const Identificat
   }
   const std::vector<double> offsets = wand.offsets_mm();
   const int targets = wand.point_count();
-  for (int64_t frame : frames_to_use(identification, options.max_frames)) {
+  for (int64_t frame : split_frames(identification, options).adjusted) {
     const auto& cameras = identification.frames.at(frame);
     std::vector<bool> has_point(static_cast<size_t>(targets), false);
     for (int t = 0; t < targets; ++t) {
@@ -499,12 +420,20 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
     for (std::string line; std::getline(lines, line);) say(options, "identified " + line);
   }
   scene::Network network = build_network(observations, out.identification, options);
-  std::vector<int64_t> frames = frames_to_use(out.identification, options.max_frames);
+  const FrameSplit split = split_frames(out.identification, options);
+  const std::vector<int64_t>& frames = split.adjusted;
+  out.check_frames = split.held_out;
   say(options, "network: " + std::to_string(network.stations.size()) + " cameras, " +
                    std::to_string(network.points.size()) + " points, " +
                    std::to_string(network.measurements.size()) + " measurements, " +
                    std::to_string(network.distances.size()) + " distances");
 
+  if (!options.start_fields_of_view_deg.empty()) {
+    // Searched with the base model: the further groups trade off against c on a weak network.
+    CalibrationOptions base = options;
+    if (options.select_model) base.free_interior = base_model(requested_interior(options));
+    choose_start(network, base, out);
+  }
   const std::vector<scene::CameraModel> nominal = network.models;  // the bootstrap restarts there
   SecondStageStart second = second_stage_start(std::move(network), options);
   out.start = second.start;
@@ -516,7 +445,7 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
   say(options, "adjustment 1/2 (c, xp, yp, exterior): " + std::to_string(second.first.iterations) +
                    " iterations, sigma0 " + std::to_string(second.first.sigma0));
   network = std::move(second.network);
-  out.adjustment = adjust_stage(network, options, {true, true});
+  const CalibrationOptions model_options = adjust_final(network, options, out);
   say(options, "adjustment 2/2 (all interior values, data snooping): " +
                    std::to_string(out.adjustment.adjustments) + " adjustments, " +
                    std::to_string(out.adjustment.rejected.size()) + " outliers removed, sigma0 " +
@@ -541,11 +470,20 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
   for (size_t m = 0; m < out.network.measurements.size(); ++m) {
     out.measurements_of_point[out.network.measurements[m].point].push_back(m);
   }
+  // Held-out rays farther than this from their point are blunders, not prediction errors.
+  const double bound_px = std::max(1.0, 8.0 * out.adjustment.sigma0 * options.sigma_px);
+  out.check_points =
+      predict_check_points(out.cameras, out.identification, out.check_frames, bound_px);
+  out.check_points.fit_median_px = median_residual_px(out.adjustment, false);
   fill_report(out, observations, options, frames);
   if (options.bootstrap_samples > 1 && out.adjustment.converged) {
-    add_bootstrap(out, options, nominal);
+    add_bootstrap(out, model_options, nominal);
   }
   out.quality = quality_of(out, options);
+  out.findings = judge(out);
+  out.verdict = worst(out.findings);
+  add_verdict(out);
+  say(options, std::string("verdict: ") + verdict_name(out.verdict));
   return out;
 }
 

@@ -37,9 +37,13 @@
 #include <string>
 #include <vector>
 
+#include "calibration/check_points.hpp"
+#include "calibration/model_selection.hpp"
 #include "calibration/network_start.hpp"
 #include "calibration/observations.hpp"
+#include "calibration/plausibility.hpp"
 #include "calibration/report.hpp"
+#include "calibration/start_search.hpp"
 #include "calibration/wand_identification.hpp"
 #include "estimators/bundle_adjustment.hpp"
 #include "scene/network.hpp"
@@ -54,6 +58,14 @@ struct CalibrationOptions {
   double pixel_size_mm = 0.005;                   // nominal, when the source does not know it
   std::map<int, double> pixel_size_mm_by_camera;  // overrides per camera id
   double field_of_view_deg = 60.0;                // horizontal, for the start value of c
+  // The start is searched from these horizontal fields of view too (start_search.hpp), on
+  // start_search_frames frames evenly spread; field_of_view_deg is tried first and wins ties.
+  // Empty: the start from field_of_view_deg alone.
+  std::vector<double> start_fields_of_view_deg{40, 50, 60, 70, 80, 90, 100};
+  int start_search_frames = 200;
+  // This share of the frames is held out of the adjustment and predicted afterwards
+  // (check_points.hpp); 0: none.
+  double check_point_share = 0.1;
   double sigma_px = 0.1;            // a priori standard deviation of a measured coordinate
   double wand_sigma_mm = 0.2;       // of each wand distance (the wand's manufacture, flexing)
   double critical_snooping = 3.29;  // |w| above this is a blunder
@@ -63,6 +75,12 @@ struct CalibrationOptions {
   // Empty: the mode's default, square pixels (sc, sh held) and for a wand c, xp, yp, k1, k2, k3,
   // p1, p2, for an LED (weaker: one point a frame, no scale) the same without k3.
   std::vector<int> free_interior;
+  // The free interior values are candidates: the base model first, the further groups only
+  // where the data carry them (model_selection.hpp). false: exactly free_interior.
+  bool select_model = true;
+  // The principal point is observed at the image centre with this share of the sensor width as
+  // its standard deviation (a soft prior: lenses sit centred on their sensor); 0: no prior.
+  double principal_point_sigma_share = 0.03;
   int max_frames = 0;  // use at most this many frames, evenly spread (0: all)
   // > 1: also the interior sigmas of this many re-adjustments of measurements simulated from the
   // result (estimators/bootstrap.hpp), in the report beside the linearised ones.
@@ -81,6 +99,13 @@ struct CalibrationResult {
   scene::Network network;  // as adjusted in the final stage (start values filled)
   NetworkStartReport start;
   estimators::BundleAdjustmentResult adjustment;
+  StartSearch start_search;           // empty when options.start_fields_of_view_deg is
+  ModelSelection model;               // the interior values estimated and the tests behind them
+  std::vector<int64_t> check_frames;  // held out of the adjustment
+  CheckPointResult check_points;
+  // Whether the result can be trusted: every finding of the checks (verdict.hpp), worst first.
+  Verdict verdict = Verdict::kGood;
+  std::vector<Finding> findings;
   // Indices into network.measurements of the wand's points, per point name (for tests).
   std::map<std::string, std::vector<size_t>> measurements_of_point;
 };

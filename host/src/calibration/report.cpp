@@ -50,8 +50,17 @@ MeanSd mean_sd(const std::vector<double>& values) {
 
 // ---- text ------------------------------------------------------------------------------------
 
+// "verdict: weak" and its reasons, the first thing a reader sees.
+std::string text_verdict(const CalibrationReport& r) {
+  if (r.verdict.empty()) return "";
+  std::string out = "verdict: " + r.verdict + "\n";
+  for (const std::string& reason : r.verdict_reasons) out += "  " + reason + "\n";
+  return out;
+}
+
 std::string text_summary(const CalibrationReport& r) {
   std::string out = r.title + "\n" + std::string(r.title.size(), '=') + "\n";
+  out += text_verdict(r);
   if (!r.input.empty()) out += "input: " + r.input + "\n";
   out += printf_string("observations %ld, unknowns %ld, redundancy %ld\n", r.observations,
                        r.unknowns, r.redundancy);
@@ -64,6 +73,8 @@ std::string text_summary(const CalibrationReport& r) {
         "wand length: nominal %.3f mm, adjusted mean %.4f mm, sd %.4f mm (%zu frames)\n",
         r.wand_length_mm, w.mean, w.sd, r.wand_lengths_mm.size());
   }
+  if (!r.check_points.empty()) out += "check points: " + r.check_points + "\n";
+  for (const std::string& line : r.start_search) out += "start search: " + line + "\n";
   return out;
 }
 
@@ -106,10 +117,21 @@ const char* kStyle =
     "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;"
     "text-align:right;font-size:13px}th{background:#f0f0f0}.fail{color:#b00;font-weight:bold}"
     ".pass{color:#070}svg{border:1px solid #ddd;margin:4px;background:#fff}"
-    "figure{display:inline-block;margin:4px}figcaption{font-size:12px;text-align:center}";
+    "figure{display:inline-block;margin:4px}figcaption{font-size:12px;text-align:center}"
+    ".verdict{font-size:20px;font-weight:bold}.good{color:#070}.weak{color:#a60}"
+    ".failed{color:#b00}";
 
 std::string html_summary(const CalibrationReport& r) {
-  std::string out = "<h1>" + escaped(r.title) + "</h1><table>";
+  std::string out = "<h1>" + escaped(r.title) + "</h1>";
+  if (!r.verdict.empty()) {
+    out += "<p class='verdict " + escaped(r.verdict) + "'>verdict: " + escaped(r.verdict) + "</p>";
+    if (!r.verdict_reasons.empty()) {
+      out += "<ul>";
+      for (const std::string& reason : r.verdict_reasons) out += "<li>" + escaped(reason) + "</li>";
+      out += "</ul>";
+    }
+  }
+  out += "<table>";
   auto row = [&](const std::string& k, const std::string& v) {
     out += "<tr><th>" + k + "</th><td>" + v + "</td></tr>";
   };
@@ -125,6 +147,8 @@ std::string html_summary(const CalibrationReport& r) {
     row("wand length mean / sd",
         printf_string("%.4f mm / %.4f mm (nominal %.3f mm)", w.mean, w.sd, r.wand_length_mm));
   }
+  if (!r.check_points.empty()) row("check points", escaped(r.check_points));
+  for (const std::string& line : r.start_search) row("start search", escaped(line));
   for (const std::string& m : r.messages) row("note", escaped(m));
   return out + "</table>";
 }

@@ -74,6 +74,13 @@ struct CalibrationReport {
   long outliers_removed = 0;
   int bootstrap_samples = 0;          // re-adjustments behind ReportParameter::bootstrap_sigma
   std::vector<std::string> messages;  // notes from the run (rejected frames, warnings)
+  // The calibration's verdict ("good", "weak", "failed"; empty: not judged) and its reasons,
+  // each "weak: ..." or "failed: ...": the report's first lines.
+  std::string verdict;
+  std::vector<std::string> verdict_reasons;
+  // How the start was found and how the held-out frames were predicted (one line each).
+  std::vector<std::string> start_search;
+  std::string check_points;
 };
 
 std::string format_report_text(const CalibrationReport& report);

@@ -159,10 +159,10 @@ CalibrationQuality read_quality(const json& object, const std::string& where) {
     throw CameraFileError(where + ": field \"quality." + field + "\" " + what);
   };
   if (!object.is_object()) throw CameraFileError(where + ": field \"quality\" must be an object");
-  static const std::set<std::string> known{"sigma0_px",         "rms_px",
-                                           "per_camera_rms_px", "observations",
-                                           "outliers_removed",  "wand_length_mean_mm",
-                                           "wand_length_sd_mm"};
+  static const std::set<std::string> known{
+      "sigma0_px",         "rms_px",           "per_camera_rms_px",
+      "observations",      "outliers_removed", "wand_length_mean_mm",
+      "wand_length_sd_mm", "verdict",          "verdict_reasons"};
   for (const auto& item : object.items()) {
     if (known.count(item.key()) == 0) fail(item.key(), "is unknown");
   }
@@ -186,6 +186,20 @@ CalibrationQuality read_quality(const json& object, const std::string& where) {
   q.outliers_removed = static_cast<long>(number("outliers_removed"));
   q.wand_length_mean_mm = optional_number("wand_length_mean_mm");
   q.wand_length_sd_mm = optional_number("wand_length_sd_mm");
+  if (const auto verdict = object.find("verdict"); verdict != object.end()) {
+    static const std::set<std::string> verdicts{"good", "weak", "failed"};
+    if (!verdict->is_string() || !verdicts.count(verdict->get<std::string>())) {
+      fail("verdict", "must be \"good\", \"weak\" or \"failed\"");
+    }
+    q.verdict = verdict->get<std::string>();
+  }
+  if (const auto reasons = object.find("verdict_reasons"); reasons != object.end()) {
+    if (!reasons->is_array()) fail("verdict_reasons", "must be an array of strings");
+    for (const auto& reason : *reasons) {
+      if (!reason.is_string()) fail("verdict_reasons", "must be an array of strings");
+      q.verdict_reasons.push_back(reason.get<std::string>());
+    }
+  }
   const auto per_camera = object.find("per_camera_rms_px");
   if (per_camera == object.end()) fail("per_camera_rms_px", "is missing");
   if (!per_camera->is_object()) fail("per_camera_rms_px", "must be an object by camera id");
@@ -213,6 +227,10 @@ ordered_json quality_json(const CalibrationQuality& q) {
   j["outliers_removed"] = q.outliers_removed;
   j["wand_length_mean_mm"] = q.wand_length_mean_mm ? json(*q.wand_length_mean_mm) : json(nullptr);
   j["wand_length_sd_mm"] = q.wand_length_sd_mm ? json(*q.wand_length_sd_mm) : json(nullptr);
+  if (!q.verdict.empty()) {
+    j["verdict"] = q.verdict;
+    j["verdict_reasons"] = q.verdict_reasons;
+  }
   return j;
 }
 

@@ -42,6 +42,10 @@ struct CalibrationQuality {
   long outliers_removed = 0;                  // by data snooping (and undetermined after it)
   std::optional<double> wand_length_mean_mm;  // of the adjusted wands; none in LED mode
   std::optional<double> wand_length_sd_mm;
+  // The calibration's own judgement (calibration/verdict.hpp): "good", "weak" or "failed"; empty
+  // in files written before it existed. The reasons, one sentence each, worst first.
+  std::string verdict;
+  std::vector<std::string> verdict_reasons;
 };
 
 // A cameras.json with its optional quality block.

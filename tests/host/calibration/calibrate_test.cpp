@@ -13,57 +13,10 @@
 #include <set>
 
 #include "estimators/bundle_adjustment_simulation.hpp"
+#include "simulated_observations.hpp"
 
 namespace syncap::calibration {
 namespace {
-
-struct Simulated {
-  Observations observations;
-  std::vector<sensor::CameraModel> truth;
-  std::set<std::pair<int64_t, int>> blunders;  // (frame, camera)
-};
-
-// The simulation's measurements as spots, unlabelled unless `labelled`; every image gets a
-// reflection with probability `reflections`, and loses a target with probability `losses`.
-Simulated observe(const estimators::WandSimulation& sim, bool labelled, double reflections,
-                  double losses) {
-  const auto net = estimators::simulate_wand_network(sim);
-  Simulated out;
-  out.truth = net.cameras;
-  std::map<std::string, int> camera_of;
-  for (const auto& c : net.cameras) {
-    camera_of["camera" + std::to_string(c.id)] = c.id;
-    out.observations.image_sizes[c.id] = {c.sensor.width_px, c.sensor.height_px};
-  }
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (size_t m = 0; m < net.network.measurements.size(); ++m) {
-    const auto& meas = net.network.measurements[m];
-    if (unit(rng) < losses) continue;
-    Spot s;
-    s.x = meas.u;
-    s.y = meas.v;
-    s.area = 30;
-    if (labelled) s.target = std::stoi(meas.point.substr(meas.point.find('t') + 1));
-    out.observations.frames[meas.frame_number][camera_of.at(meas.station)].push_back(s);
-  }
-  for (auto& [frame, cameras] : out.observations.frames) {
-    for (auto& [camera, spots] : cameras) {
-      if (unit(rng) >= reflections) continue;
-      Spot s;
-      s.x = 1280 * unit(rng);
-      s.y = 1024 * unit(rng);
-      s.area = 12;
-      spots.push_back(s);
-    }
-  }
-  for (size_t m : net.blunders) {
-    const auto& meas = net.network.measurements[m];
-    out.blunders.insert({meas.frame_number, camera_of.at(meas.station)});
-  }
-  out.observations.source = "simulation";
-  return out;
-}
 
 CalibrationOptions wand_options() {
   CalibrationOptions o;
@@ -170,7 +123,9 @@ TEST(Calibrate, LedModeFlagsTheInjectedBlunders) {
   ASSERT_TRUE(r.adjustment.converged);
   EXPECT_FALSE(r.quality.wand_length_mean_mm.has_value());
   size_t missed = 0;
+  const std::set<int64_t> held_out(r.check_frames.begin(), r.check_frames.end());
   for (const auto& [frame, camera] : s.blunders) {
+    if (held_out.count(frame)) continue;  // a check point, not adjusted
     const auto& indices = r.measurements_of_point.at("f" + std::to_string(frame));
     bool flagged = false;
     for (size_t m : indices) {
@@ -229,7 +184,7 @@ bool says_weak(const CalibrationResult& r) {
   return false;
 }
 
-// Fewer than 40 wand positions: the report says the linearised sigmas may fall short and
+// Fewer than 40 wand positions adjusted: the report says the linearised sigmas may fall short and
 // points to --bootstrap; not with 40 or more, nor when the bootstrap ran.
 TEST(Calibrate, AWeakNetworkPointsToTheBootstrap) {
   estimators::WandSimulation sim;
@@ -243,7 +198,7 @@ TEST(Calibrate, AWeakNetworkPointsToTheBootstrap) {
             std::string::npos);
   options.bootstrap_samples = 3;
   EXPECT_FALSE(says_weak(calibrate(weak.observations, options)));
-  sim.frames = 40;
+  sim.frames = 45;  // 41 adjusted, 4 held out as check points
   options.bootstrap_samples = 0;
   EXPECT_FALSE(says_weak(calibrate(observe(sim, false, 0.0, 0.0).observations, options)));
 }
@@ -261,7 +216,8 @@ TEST(Calibrate, BootstrapSigmasBesideTheLinearisedOnes) {
   const CalibrationResult r = calibrate(s.observations, options);
   ASSERT_TRUE(r.adjustment.converged);
   EXPECT_EQ(r.report.bootstrap_samples, 20);
-  EXPECT_EQ(progress.back().rfind("bootstrap: 20 converged", 0), 0u) << progress.back();
+  EXPECT_EQ(progress.end()[-2].rfind("bootstrap: 20 converged", 0), 0u) << progress.end()[-2];
+  EXPECT_EQ(progress.back(), "verdict: good");
   for (const ReportCamera& camera : r.report.cameras) {
     for (const ReportParameter& p : camera.parameters) {
       if (p.name == "c" || p.name == "xp" || p.name == "yp") {
