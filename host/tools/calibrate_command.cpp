@@ -137,6 +137,14 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
       o.field_of_view_deg = number_arg(arg, value());
     } else if (arg == "--start-fovs") {
       o.start_fields_of_view_deg = number_list(arg, value());
+    } else if (arg == "--scale-from") {
+      const std::vector<double> v = number_list(arg, value());
+      if (v.size() != 3 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] == v[1] ||
+          !(v[2] > 0)) {
+        throw UsageError{"--scale-from needs A,B,MM: two camera ids and their centres' distance"};
+      }
+      o.scale_from =
+          calibration::KnownCameraDistance{static_cast<int>(v[0]), static_cast<int>(v[1]), v[2]};
     } else if (arg == "--principal-point-sigma") {
       o.principal_point_sigma_share = number_arg(arg, value());
       if (!(o.principal_point_sigma_share >= 0)) {

@@ -21,6 +21,7 @@ inline constexpr const char* kCalibrateUsage =
     "Options:\n"
     "  --wand-length MM      distance between the wand's end targets\n"
     "  --led                 one point per frame (no scale: the result is in arbitrary units)\n"
+    "  --scale-from A,B,MM   --led: the scale from the distance of cameras A and B's centres\n"
     "  --wand-targets N      2 or 3 (default 3)\n"
     "  --wand-ratio R        middle target's distance from end A / length (default 0.4)\n"
     "  --wand-ends size|continuity  how a 2-target (or symmetric) wand's ends are told apart\n"

@@ -80,8 +80,12 @@ const char* mode_name(scene::ParameterMode mode) {
   }
   return "free";
 }
+
+// `scaled`: the network has a scale (a wand); without one (an LED) positions are in the
+// arbitrary units of the start's first base, not mm.
 ReportCamera report_camera(const sensor::CameraModel& camera, const scene::CameraModel& model,
-                           const estimators::ModelResult& m, const estimators::StationResult& s) {
+                           const estimators::ModelResult& m, const estimators::StationResult& s,
+                           bool scaled) {
   ReportCamera c;
   c.camera = camera;
   const auto interior = sensor::interior_block(m.interior);
@@ -93,7 +97,8 @@ ReportCamera report_camera(const sensor::CameraModel& camera, const scene::Camer
   const auto exterior = sensor::exterior_block(s.exterior);
   for (int i = 0; i < sensor::ExteriorBlock::kSize; ++i) {
     c.parameters.push_back({kExteriorNames[i], exterior[static_cast<size_t>(i)],
-                            s.exterior_sigma[static_cast<size_t>(i)], kExteriorUnits[i], "free"});
+                            s.exterior_sigma[static_cast<size_t>(i)],
+                            i < 3 && !scaled ? "units" : kExteriorUnits[i], "free"});
   }
   for (int i : m.estimated_interior) c.correlation_names.push_back(kInteriorNames[i]);
   c.correlation = m.interior_correlation;
@@ -164,8 +169,9 @@ void fill_report(CalibrationResult& out, const Observations& observations,
   std::map<std::string, int> camera_of_station;
   for (size_t s = 0; s < network.stations.size(); ++s) {
     camera_of_station[network.stations[s].name] = network.stations[s].camera_id;
-    report.cameras.push_back(
-        report_camera(out.cameras[s], network.models[s], r.models[s], r.stations[s]));
+    report.cameras.push_back(report_camera(out.cameras[s], network.models[s], r.models[s],
+                                           r.stations[s],
+                                           !options.wand.led || options.scale_from.has_value()));
   }
   for (size_t m = 0; m < network.measurements.size(); ++m) {
     const auto& meas = network.measurements[m];
@@ -206,6 +212,11 @@ void fill_report(CalibrationResult& out, const Observations& observations,
                               " frame groups lacked a camera");
   }
   for (const std::string& m : r.messages) report.messages.push_back(m);
+  if (options.wand.led && !options.scale_from) {
+    report.messages.push_back(
+        "no scale (one LED): positions (X0, Y0, Z0, the points) are in arbitrary units, those of "
+        "the start's first base, not mm; angles and the interior orientation are not affected");
+  }
   if (options.bootstrap_samples < 2 && (options.wand.led || frames.size() < kStableFrames)) {
     report.messages.push_back(
         "weak network (" +
@@ -246,6 +257,12 @@ sensor::CalibrationQuality quality_of(const CalibrationResult& out, const Calibr
 
 void check_options(const CalibrationOptions& options) {
   const WandSpec& wand = options.wand;
+  if (options.scale_from && !wand.led) {
+    throw CalibrationError("calibrate: --scale-from is for an LED; the wand gives the scale");
+  }
+  if (options.scale_from && !(options.scale_from->distance_mm > 0)) {
+    throw CalibrationError("calibrate: --scale-from needs a distance > 0 mm");
+  }
   if (!wand.led) {
     if (!(wand.length_mm > 0)) throw CalibrationError("calibrate: the wand length must be > 0 mm");
     if (wand.targets != 2 && wand.targets != 3) {
@@ -309,6 +326,7 @@ CalibrationOptions adjust_final(scene::Network& network, const CalibrationOption
 void add_verdict(CalibrationResult& out) {
   const std::vector<std::string> search = describe(out.start_search);
   out.report.start_search = search;
+  out.report.halves = out.halves.text;
   const CheckPointResult& c = out.check_points;
   if (c.frames > 0) {
     out.report.check_points = util::printf_string(
@@ -323,6 +341,51 @@ void add_verdict(CalibrationResult& out) {
     out.quality.verdict_reasons.push_back(f.text);
     out.report.verdict_reasons.push_back(std::string(verdict_name(f.severity)) + ": " + f.text);
   }
+}
+
+// The adjusted cameras with their standard deviations.
+std::vector<sensor::CameraModel> cameras_of(const scene::Network& network,
+                                            const estimators::BundleAdjustmentResult& r) {
+  std::vector<sensor::CameraModel> cameras;
+  for (size_t s = 0; s < network.stations.size(); ++s) {
+    const auto& m = r.models[s];
+    const auto& st = r.stations[s];
+    sensor::CameraModel camera;
+    camera.id = st.camera_id;
+    camera.sensor = network.models[s].sensor;
+    camera.interior = m.interior;
+    camera.exterior = st.exterior;
+    if (r.covariance_computed) {
+      camera.std_devs =
+          sensor::CameraStdDevs{sensor::interior_from_block(m.interior_sigma.data()),
+                                sensor::exterior_from_block(st.exterior_sigma.data())};
+    }
+    cameras.push_back(camera);
+  }
+  return cameras;
+}
+
+// The checks of verdict.hpp on a finished result: the held-out frames predicted, the two halves
+// calibrated alone (`model`: the final model's options, `nominal`: the models' start), the
+// verdict.
+void check(CalibrationResult& out, const Observations& observations,
+           const CalibrationOptions& model, const std::vector<int64_t>& frames,
+           const std::vector<scene::CameraModel>& nominal) {
+  // Held-out rays farther than this from their point are blunders, not prediction errors.
+  const double bound_px = std::max(1.0, 8.0 * out.adjustment.sigma0 * model.sigma_px);
+  out.check_points =
+      predict_check_points(out.cameras, out.identification, out.check_frames, bound_px);
+  out.check_points.fit_median_px = median_residual_px(out.adjustment, false);
+  if (model.compare_halves && frames.size() >= 2 * kStableFrames && out.adjustment.converged) {
+    say(model, "halves: calibrating the first and the second half of the frames alone ...");
+    std::vector<sensor::InteriorOrientation> start;
+    for (const scene::CameraModel& m : nominal) start.push_back(m.interior);
+    out.halves = compare_halves(observations, frames, model, start);
+    say(model, "halves: " + out.halves.text);
+  }
+  out.findings = judge(out);
+  out.verdict = worst(out.findings);
+  add_verdict(out);
 }
 
 }  // namespace
@@ -345,7 +408,9 @@ scene::Network build_network(const Observations& observations, const Identificat
     scene::CameraModel model;
     model.name = camera_name(id);
     model.sensor = {size->second.width, size->second.height, mu, mu};
-    model.interior = start_interior(model.sensor, options.field_of_view_deg);
+    model.interior = options.start_interiors.empty()
+                         ? start_interior(model.sensor, options.field_of_view_deg)
+                         : options.start_interiors.at(network.models.size());
     network.models.push_back(model);
     scene::Station station;
     station.name = camera_name(id);
@@ -428,7 +493,7 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
                    std::to_string(network.measurements.size()) + " measurements, " +
                    std::to_string(network.distances.size()) + " distances");
 
-  if (!options.start_fields_of_view_deg.empty()) {
+  if (!options.start_fields_of_view_deg.empty() && options.start_interiors.empty()) {
     // Searched with the base model: the further groups trade off against c on a weak network.
     CalibrationOptions base = options;
     if (options.select_model) base.free_interior = base_model(requested_interior(options));
@@ -450,39 +515,25 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
                    std::to_string(out.adjustment.adjustments) + " adjustments, " +
                    std::to_string(out.adjustment.rejected.size()) + " outliers removed, sigma0 " +
                    std::to_string(out.adjustment.sigma0));
+  if (options.scale_from && out.adjustment.converged) {
+    const double s = scale_for(out.adjustment, *options.scale_from);
+    apply_scale(s, out.adjustment, network);
+    say(options, util::printf_string("scale: x %.6g from cameras %d and %d, %.1f mm apart", s,
+                                     options.scale_from->camera_a, options.scale_from->camera_b,
+                                     options.scale_from->distance_mm));
+  }
   out.network = std::move(network);
 
-  for (size_t s = 0; s < out.network.stations.size(); ++s) {
-    const auto& m = out.adjustment.models[s];
-    const auto& st = out.adjustment.stations[s];
-    sensor::CameraModel camera;
-    camera.id = st.camera_id;
-    camera.sensor = out.network.models[s].sensor;
-    camera.interior = m.interior;
-    camera.exterior = st.exterior;
-    if (out.adjustment.covariance_computed) {
-      camera.std_devs =
-          sensor::CameraStdDevs{sensor::interior_from_block(m.interior_sigma.data()),
-                                sensor::exterior_from_block(st.exterior_sigma.data())};
-    }
-    out.cameras.push_back(camera);
-  }
+  out.cameras = cameras_of(out.network, out.adjustment);
   for (size_t m = 0; m < out.network.measurements.size(); ++m) {
     out.measurements_of_point[out.network.measurements[m].point].push_back(m);
   }
-  // Held-out rays farther than this from their point are blunders, not prediction errors.
-  const double bound_px = std::max(1.0, 8.0 * out.adjustment.sigma0 * options.sigma_px);
-  out.check_points =
-      predict_check_points(out.cameras, out.identification, out.check_frames, bound_px);
-  out.check_points.fit_median_px = median_residual_px(out.adjustment, false);
   fill_report(out, observations, options, frames);
   if (options.bootstrap_samples > 1 && out.adjustment.converged) {
     add_bootstrap(out, model_options, nominal);
   }
   out.quality = quality_of(out, options);
-  out.findings = judge(out);
-  out.verdict = worst(out.findings);
-  add_verdict(out);
+  check(out, observations, model_options, frames, nominal);
   say(options, std::string("verdict: ") + verdict_name(out.verdict));
   return out;
 }

@@ -33,16 +33,19 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "calibration/check_points.hpp"
+#include "calibration/halves.hpp"
 #include "calibration/model_selection.hpp"
 #include "calibration/network_start.hpp"
 #include "calibration/observations.hpp"
 #include "calibration/plausibility.hpp"
 #include "calibration/report.hpp"
+#include "calibration/scale.hpp"
 #include "calibration/start_search.hpp"
 #include "calibration/wand_identification.hpp"
 #include "estimators/bundle_adjustment.hpp"
@@ -66,6 +69,12 @@ struct CalibrationOptions {
   // This share of the frames is held out of the adjustment and predicted afterwards
   // (check_points.hpp); 0: none.
   double check_point_share = 0.1;
+  // Calibrate the two halves of the adjusted frames (first, second) too and compare them
+  // (halves.hpp); needs 2 x 40 frames.
+  bool compare_halves = true;
+  // When set (one per camera, in id order), the start interiors instead of those from
+  // field_of_view_deg, and no start search.
+  std::vector<sensor::InteriorOrientation> start_interiors;
   double sigma_px = 0.1;            // a priori standard deviation of a measured coordinate
   double wand_sigma_mm = 0.2;       // of each wand distance (the wand's manufacture, flexing)
   double critical_snooping = 3.29;  // |w| above this is a blunder
@@ -81,6 +90,9 @@ struct CalibrationOptions {
   // The principal point is observed at the image centre with this share of the sensor width as
   // its standard deviation (a soft prior: lenses sit centred on their sensor); 0: no prior.
   double principal_point_sigma_share = 0.03;
+  // LED mode: the scale from a known distance between two cameras' centres (scale.hpp); without
+  // it positions are in the arbitrary units of the start's first base.
+  std::optional<KnownCameraDistance> scale_from;
   int max_frames = 0;  // use at most this many frames, evenly spread (0: all)
   // > 1: also the interior sigmas of this many re-adjustments of measurements simulated from the
   // result (estimators/bootstrap.hpp), in the report beside the linearised ones.
@@ -103,6 +115,7 @@ struct CalibrationResult {
   ModelSelection model;               // the interior values estimated and the tests behind them
   std::vector<int64_t> check_frames;  // held out of the adjustment
   CheckPointResult check_points;
+  HalvesAgreement halves;
   // Whether the result can be trusted: every finding of the checks (verdict.hpp), worst first.
   Verdict verdict = Verdict::kGood;
   std::vector<Finding> findings;

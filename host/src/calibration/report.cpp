@@ -74,6 +74,7 @@ std::string text_summary(const CalibrationReport& r) {
         r.wand_length_mm, w.mean, w.sd, r.wand_lengths_mm.size());
   }
   if (!r.check_points.empty()) out += "check points: " + r.check_points + "\n";
+  if (!r.halves.empty()) out += "halves: " + r.halves + "\n";
   for (const std::string& line : r.start_search) out += "start search: " + line + "\n";
   return out;
 }
@@ -148,6 +149,7 @@ std::string html_summary(const CalibrationReport& r) {
         printf_string("%.4f mm / %.4f mm (nominal %.3f mm)", w.mean, w.sd, r.wand_length_mm));
   }
   if (!r.check_points.empty()) row("check points", escaped(r.check_points));
+  if (!r.halves.empty()) row("two halves", escaped(r.halves));
   for (const std::string& line : r.start_search) row("start search", escaped(line));
   for (const std::string& m : r.messages) row("note", escaped(m));
   return out + "</table>";

@@ -1,6 +1,7 @@
 #include "calibration/verdict.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "util/printf_string.hpp"
 
@@ -16,6 +17,10 @@ constexpr double kCheckRatio = 1.5;
 constexpr double kCheckSlackPx = 0.05;
 // A camera constant whose standard deviation exceeds this share of it is loosely determined.
 constexpr double kLooseC = 0.01;
+// The halves' camera constants this many of their sigmas apart, or their centres this share of
+// the centres' spread apart, disagree.
+constexpr double kHalvesZ = 3.0;
+constexpr double kHalvesCentres = 0.02;
 // More held-out rays than this share beyond the outlier bound: the cameras do not predict them.
 constexpr double kCheckOutlierShare = 0.1;
 
@@ -57,6 +62,28 @@ void judge_precision(const CalibrationResult& r, std::vector<Finding>& out) {
   }
 }
 
+void judge_halves(const HalvesAgreement& h, std::vector<Finding>& out) {
+  if (!h.failure.empty()) {
+    out.push_back({Verdict::kWeak, -1, h.text});
+    return;
+  }
+  if (!h.compared) return;
+  for (size_t i = 0; i < h.z.size(); ++i) {
+    if (std::abs(h.z[i]) <= kHalvesZ) continue;
+    out.push_back(
+        {Verdict::kWeak, h.camera_ids[i],
+         util::printf_string("camera %d: the two halves of the recording give c %.4f "
+                             "and %.4f mm, %.1f of their sigmas apart",
+                             h.camera_ids[i], h.c_a_mm[i], h.c_b_mm[i], std::abs(h.z[i]))});
+  }
+  if (h.centres_rms_mm > kHalvesCentres * h.centres_spread_mm) {
+    out.push_back({Verdict::kWeak, -1,
+                   util::printf_string("the two halves place the cameras %.1f %% of their spread "
+                                       "apart",
+                                       100.0 * h.centres_rms_mm / h.centres_spread_mm)});
+  }
+}
+
 void judge_check_points(const CalibrationResult& r, std::vector<Finding>& out) {
   const CheckPointResult& c = r.check_points;
   if (c.measurements == 0) return;
@@ -90,6 +117,7 @@ std::vector<Finding> judge(const CalibrationResult& r) {
   judge_precision(r, out);
   judge_start(r.start_search, out);
   judge_check_points(r, out);
+  judge_halves(r.halves, out);
   std::stable_sort(out.begin(), out.end(),
                    [](const Finding& a, const Finding& b) { return a.severity > b.severity; });
   return out;
