@@ -1,5 +1,7 @@
 // syncap: the command-line tool. `syncap SUBCOMMAND ARGS...`; each subcommand lives in its own
 // file and is listed in kSubcommands.
+#include <glog/logging.h>
+
 #include <unistd.h>
 
 #include <array>
@@ -99,6 +101,10 @@ const Subcommand* find_subcommand(std::string_view name) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ceres logs a failed evaluation ("Terminating: Residual and Jacobian evaluation failed") on
+  // stderr at ERROR level; the calibration expects those (a start of its search that leads
+  // nowhere) and reports every failure itself, naming what failed.
+  FLAGS_minloglevel = google::GLOG_FATAL;
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     print_usage(std::cerr);

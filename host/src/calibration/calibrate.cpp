@@ -327,6 +327,8 @@ void add_verdict(CalibrationResult& out) {
   const std::vector<std::string> search = describe(out.start_search);
   out.report.start_search = search;
   out.report.halves = out.halves.text;
+  out.report.model_selection = {"estimated " + interior_names(out.model.final)};
+  for (const GroupTest& t : out.model.tests) out.report.model_selection.push_back(t.text);
   const CheckPointResult& c = out.check_points;
   if (c.frames > 0) {
     out.report.check_points = util::printf_string(

@@ -21,8 +21,8 @@
 //      shows k1-k2 -0.97, xp-p1 -0.85 in a strong network);
 //   4. every camera stays plausible (plausibility.hpp): the principal point's prior lowers its
 //      correlation with p1, p2, but not the trade-off itself (strawlab-DATA20100906, 300
-//      frames: with p1, p2 the principal points moved 65-96 px down and c grew by 25 %, at an
-//      RMS 0.234 px against 0.237 px without them).
+//      frames: with p1, p2 camera 0's principal point moved 96-182 px down and c grew by about
+//      25 %, at an RMS 0.234 px against 0.237 px without them).
 //
 // A kept group joins the model for all cameras and the final adjustment (with data snooping) is
 // run again from the cleaned one's values. `CalibrationOptions::select_model = false` estimates

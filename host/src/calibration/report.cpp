@@ -75,6 +75,7 @@ std::string text_summary(const CalibrationReport& r) {
   }
   if (!r.check_points.empty()) out += "check points: " + r.check_points + "\n";
   if (!r.halves.empty()) out += "halves: " + r.halves + "\n";
+  for (const std::string& line : r.model_selection) out += "model: " + line + "\n";
   for (const std::string& line : r.start_search) out += "start search: " + line + "\n";
   return out;
 }
@@ -150,6 +151,7 @@ std::string html_summary(const CalibrationReport& r) {
   }
   if (!r.check_points.empty()) row("check points", escaped(r.check_points));
   if (!r.halves.empty()) row("two halves", escaped(r.halves));
+  for (const std::string& line : r.model_selection) row("model", escaped(line));
   for (const std::string& line : r.start_search) row("start search", escaped(line));
   for (const std::string& m : r.messages) row("note", escaped(m));
   return out + "</table>";

@@ -81,7 +81,8 @@ struct CalibrationReport {
   // How the start was found and how the held-out frames were predicted (one line each).
   std::vector<std::string> start_search;
   std::string check_points;
-  std::string halves;  // the two halves' agreement
+  std::string halves;                        // the two halves' agreement
+  std::vector<std::string> model_selection;  // the model estimated, then one line a group tested
 };
 
 std::string format_report_text(const CalibrationReport& report);
