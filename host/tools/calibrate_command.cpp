@@ -174,6 +174,8 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
         throw UsageError{"--image-size must be WIDTHxHEIGHT in pixels, got '" + v + "'"};
       }
       a.image_size = calibration::ImageSize{static_cast<int>(w), static_cast<int>(h)};
+    } else if (arg == "--shared-interior") {
+      o.shared_interior = true;
     } else if (arg == "--model") {
       const std::string& v = value();
       if (v != "auto" && v != "all")

@@ -40,6 +40,8 @@ inline constexpr const char* kCalibrateUsage =
     "                        (default 0.1; 0: none)\n"
     "  --interior LIST       interior values that may be estimated, of c,xp,yp,k1,k2,k3,p1,p2,\n"
     "                        sc,sh (default c,xp,yp,k1,k2,k3,p1,p2; --led without k3)\n"
+    "  --shared-interior     one interior orientation for all cameras (identical cameras and\n"
+    "                        lenses; their image and pixel sizes must agree)\n"
     "  --model auto|all      auto (default): the base model (c, xp, yp, k1, k2 of --interior)\n"
     "                        first, then each further group (p1+p2, k3, sc, sh) only where it\n"
     "                        improves the fit significantly, is significant and not too\n"

@@ -46,6 +46,11 @@ std::vector<int64_t> frames_to_use(const Identification& identification, int max
   return thinned;
 }
 
+bool same_sensor(const sensor::SensorGeometry& a, const sensor::SensorGeometry& b) {
+  return a.width_px == b.width_px && a.height_px == b.height_px &&
+         a.pixel_width_mm == b.pixel_width_mm && a.pixel_height_mm == b.pixel_height_mm;
+}
+
 // The frames the adjustment uses and those held out of it as check points.
 struct FrameSplit {
   std::vector<int64_t> adjusted;
@@ -148,12 +153,14 @@ void add_bootstrap(CalibrationResult& out, const CalibrationOptions& options,
   const estimators::BootstrapResult b =
       estimators::bootstrap_precision(out.network, out.adjustment, bootstrap);
   out.report.bootstrap_samples = b.samples;
-  for (size_t s = 0; s < out.report.cameras.size() && s < b.interior_sigma.size(); ++s) {
+  for (size_t s = 0; s < out.report.cameras.size(); ++s) {
+    const size_t m = model_index(out.network, s);
+    if (m >= b.interior_sigma.size()) continue;
     auto& parameters = out.report.cameras[s].parameters;
     for (int i = 0; i < sensor::InteriorBlock::kSize && i < static_cast<int>(parameters.size());
          ++i) {
       parameters[static_cast<size_t>(i)].bootstrap_sigma =
-          b.interior_sigma[s][static_cast<size_t>(i)];
+          b.interior_sigma[m][static_cast<size_t>(i)];
     }
   }
   say(options, "bootstrap: " + std::to_string(b.samples) + " converged, " +
@@ -169,7 +176,8 @@ void fill_report(CalibrationResult& out, const Observations& observations,
   std::map<std::string, int> camera_of_station;
   for (size_t s = 0; s < network.stations.size(); ++s) {
     camera_of_station[network.stations[s].name] = network.stations[s].camera_id;
-    report.cameras.push_back(report_camera(out.cameras[s], network.models[s], r.models[s],
+    const size_t m = model_index(network, s);
+    report.cameras.push_back(report_camera(out.cameras[s], network.models[m], r.models[m],
                                            r.stations[s],
                                            !options.wand.led || options.scale_from.has_value()));
   }
@@ -350,11 +358,11 @@ std::vector<sensor::CameraModel> cameras_of(const scene::Network& network,
                                             const estimators::BundleAdjustmentResult& r) {
   std::vector<sensor::CameraModel> cameras;
   for (size_t s = 0; s < network.stations.size(); ++s) {
-    const auto& m = r.models[s];
+    const auto& m = r.models[model_index(network, s)];
     const auto& st = r.stations[s];
     sensor::CameraModel camera;
     camera.id = st.camera_id;
-    camera.sensor = network.models[s].sensor;
+    camera.sensor = network.models[model_index(network, s)].sensor;
     camera.interior = m.interior;
     camera.exterior = st.exterior;
     if (r.covariance_computed) {
@@ -392,6 +400,15 @@ void check(CalibrationResult& out, const Observations& observations,
 
 }  // namespace
 
+size_t model_index(const scene::Network& network, size_t station) {
+  const std::string& name = network.stations.at(station).model;
+  for (size_t m = 0; m < network.models.size(); ++m) {
+    if (network.models[m].name == name) return m;
+  }
+  throw CalibrationError("calibrate: station " + network.stations[station].name +
+                         " has no camera model " + name);
+}
+
 scene::Network build_network(const Observations& observations, const Identification& identification,
                              const CalibrationOptions& options) {
   check_options(options);
@@ -408,12 +425,19 @@ scene::Network build_network(const Observations& observations, const Identificat
     const double mu =
         pixel == options.pixel_size_mm_by_camera.end() ? options.pixel_size_mm : pixel->second;
     scene::CameraModel model;
-    model.name = camera_name(id);
+    model.name = options.shared_interior ? "cameras" : camera_name(id);
     model.sensor = {size->second.width, size->second.height, mu, mu};
     model.interior = options.start_interiors.empty()
                          ? start_interior(model.sensor, options.field_of_view_deg)
                          : options.start_interiors.at(network.models.size());
-    network.models.push_back(model);
+    if (!options.shared_interior || network.models.empty()) {
+      network.models.push_back(model);
+    } else if (!same_sensor(network.models.front().sensor, model.sensor)) {
+      throw CalibrationError("calibrate: camera " + std::to_string(id) + " of " +
+                             observations.source +
+                             " has another image or pixel size than the first camera; a shared "
+                             "interior orientation needs identical cameras");
+    }
     scene::Station station;
     station.name = camera_name(id);
     station.camera_id = id;

@@ -72,7 +72,10 @@ struct CalibrationOptions {
   // Calibrate the two halves of the adjusted frames (first, second) too and compare them
   // (halves.hpp); needs 2 x 40 frames.
   bool compare_halves = true;
-  // When set (one per camera, in id order), the start interiors instead of those from
+  // One interior orientation for all cameras (identical cameras and lenses): one camera model
+  // the stations share; their sensors must be alike.
+  bool shared_interior = false;
+  // When set (one per camera model, in camera id order), the start interiors instead of those from
   // field_of_view_deg, and no start search.
   std::vector<sensor::InteriorOrientation> start_interiors;
   double sigma_px = 0.1;            // a priori standard deviation of a measured coordinate
@@ -129,6 +132,9 @@ class CalibrationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The index into network.models (and an adjustment's models) of station `s`'s camera model.
+size_t model_index(const scene::Network& network, size_t station);
 
 // The network of step 2, from identified targets (exposed for tests and for `syncap bundle`-like
 // uses that want to edit it before adjusting).

@@ -78,8 +78,8 @@ HalvesAgreement compare_halves(const Observations& observations, const std::vect
   out.compared = true;
   for (size_t i = 0; i < a.cameras.size(); ++i) {
     const double ca = a.cameras[i].interior.c, cb = b.cameras[i].interior.c;
-    const double sa = a.adjustment.models[i].interior_sigma[0];
-    const double sb = b.adjustment.models[i].interior_sigma[0];
+    const double sa = a.cameras[i].std_devs ? a.cameras[i].std_devs->interior.c : 0.0;
+    const double sb = b.cameras[i].std_devs ? b.cameras[i].std_devs->interior.c : 0.0;
     const double z = (ca - cb) / std::sqrt(std::max(sa * sa + sb * sb, 1e-30));
     out.camera_ids.push_back(a.cameras[i].id);
     out.c_a_mm.push_back(ca);

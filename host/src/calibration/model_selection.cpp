@@ -43,8 +43,8 @@ void measure_group(const estimators::BundleAdjustmentResult& r, GroupTest& test)
         const double rho = std::abs(model.interior_correlation(i, static_cast<Eigen::Index>(k)));
         if (rho > test.max_correlation) {
           test.max_correlation = rho;
-          test.correlated_with = util::printf_string("camera %d: %s-%s", r.stations[m].camera_id,
-                                                     kNames[estimated[k]], kNames[p]);
+          test.correlated_with =
+              util::printf_string("%s: %s-%s", model.name.c_str(), kNames[estimated[k]], kNames[p]);
         }
       }
     }

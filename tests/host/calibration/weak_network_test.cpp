@@ -130,5 +130,38 @@ TEST(CalibrateWeakNetwork, TheChecksFlagTheWrongMinimumOfTheOldWay) {
       std::string::npos);
 }
 
+// Four identical cameras: --shared-interior estimates one interior orientation (one model the
+// stations share), which the network determines better than four; other sensors are refused.
+TEST(CalibrateWeakNetwork, SharedInteriorForIdenticalCameras) {
+  estimators::WandSimulation sim = weak_led_network(300, 13);
+  for (auto& camera : sim.true_cameras) camera.interior = sim.true_cameras[1].interior;
+  const Simulated s = observe(sim, false, 0.05, 0.0);
+  CalibrationOptions options = led_options(60);
+  options.compare_halves = false;
+  const CalibrationResult own = calibrate(s.observations, options);
+  options.shared_interior = true;
+  const CalibrationResult shared = calibrate(s.observations, options);
+  ASSERT_TRUE(shared.adjustment.converged);
+  ASSERT_EQ(shared.network.models.size(), 1u);
+  ASSERT_EQ(shared.cameras.size(), 4u);
+  const double truth = s.truth[1].interior.c;
+  for (const sensor::CameraModel& c : shared.cameras) {
+    EXPECT_EQ(c.interior.c, shared.cameras[0].interior.c);
+    EXPECT_NEAR(c.interior.c / truth, 1.0, 0.01);
+  }
+  EXPECT_LT(shared.cameras[0].std_devs->interior.c, own.cameras[0].std_devs->interior.c);
+  EXPECT_EQ(shared.report.cameras.size(), 4u);
+  Observations mixed = s.observations;
+  mixed.image_sizes[2] = {640, 494};
+  try {
+    calibrate(mixed, options);
+    FAIL();
+  } catch (const CalibrationError& e) {
+    EXPECT_NE(std::string(e.what()).find("camera 2 of simulation has another image or pixel size"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace syncap::calibration
