@@ -23,6 +23,7 @@
 #include "subcommand.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/decode.hpp"
 #include "syncap/proto/subscriber.hpp"
 #include "syncap/trigger_t.hpp"
 
@@ -212,7 +213,7 @@ calibration::Observations read_lcm_log(const std::string& file, std::set<int> ca
     while (auto event = scan.next()) {
       if (!is_blob_channel(event->channel)) continue;
       blob_frame_t frame;
-      if (frame.decode(event->data.data(), 0, static_cast<int>(event->data.size())) >= 0) {
+      if (proto::try_decode(event->data.data(), event->data.size(), frame).ok()) {
         cameras.insert(frame.camera_id);
       }
     }
@@ -223,22 +224,29 @@ calibration::Observations read_lcm_log(const std::string& file, std::set<int> ca
   calibration::BlobFrameCollector collector("lcmlog:" + file, cameras);
   LcmLogReader reader(in);
   long undecodable = 0;
+  // A malformed record (the decoder throws on a negative array length) is skipped and named;
+  // the records around it are kept.
+  const auto decode = [&](const LogEvent& event, auto& msg) {
+    const proto::DecodeResult decoded =
+        proto::try_decode(event.data.data(), event.data.size(), msg);
+    if (!decoded.ok() && undecodable++ < 5) {
+      err << kPrefix << file << ": event " << event.event_number << " at offset " << event.offset
+          << " on " << event.channel << " is not a " << msg.getTypeName() << " (" << decoded.error
+          << "), skipped\n";
+    }
+    return decoded.ok();
+  };
   while (auto event = reader.next()) {
-    const int size = static_cast<int>(event->data.size());
     if (is_blob_channel(event->channel)) {
       blob_frame_t frame;
-      if (frame.decode(event->data.data(), 0, size) < 0) {
-        if (undecodable++ < 5) {
-          err << kPrefix << file << ": event " << event->event_number << " at offset "
-              << event->offset << " on " << event->channel << " is not a blob_frame_t\n";
-        }
-        continue;
-      }
-      collector.add_blob_frame(frame);
+      if (decode(*event, frame)) collector.add_blob_frame(frame);
     } else if (event->channel == proto::kTriggerChannel) {
       trigger_t trigger;
-      if (trigger.decode(event->data.data(), 0, size) >= 0) collector.add_trigger(trigger);
+      if (decode(*event, trigger)) collector.add_trigger(trigger);
     }
+  }
+  if (undecodable > 0) {
+    err << kPrefix << file << ": " << undecodable << " malformed records skipped\n";
   }
   for (const LogError& e : reader.take_errors())
     err << kPrefix << file << ": " << e.message << '\n';

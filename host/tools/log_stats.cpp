@@ -7,6 +7,7 @@
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/decode.hpp"
 #include "syncap/silhouette_part_t.hpp"
 
 namespace syncap::tools {
@@ -17,7 +18,7 @@ constexpr std::int64_t kLcmShortHeaderBytes = 8;
 
 template <class Msg>
 bool decode(const LogEvent& event, Msg& msg) {
-  return msg.decode(event.data.data(), 0, static_cast<int>(event.data.size())) ==
+  return proto::try_decode(event.data.data(), event.data.size(), msg).used ==
          static_cast<int>(event.data.size());
 }
 

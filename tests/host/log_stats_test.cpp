@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "lcm_log_reader.hpp"
+#include "malformed_messages.hpp"
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/contour_codec.hpp"
@@ -93,6 +94,19 @@ TEST(LogStats, UndecodableCameraMessagesAreCountedApart) {
   EXPECT_EQ(stats.undecodable, 1);
   EXPECT_TRUE(stats.cameras.empty());
   EXPECT_EQ(stats.channels.at(proto::blob_channel(1)).messages, 1);
+}
+
+// Issue 15: the decoder threw std::length_error on a negative num_blobs and ended `syncap log`.
+TEST(LogStats, NegativeArrayLengthIsCountedAndTheRestKept) {
+  auto log =
+      encode_log_record(0, 0, proto::blob_channel(1), test::blob_frame_with_negative_count(1, 0));
+  const auto good = encode_log_record(1, 0, proto::blob_channel(1), encoded(frame(1, 1, 2, 0)));
+  log.insert(log.end(), good.begin(), good.end());
+  std::istringstream in(std::string(log.begin(), log.end()));
+  const TrafficStats stats = collect_traffic(in);
+  EXPECT_EQ(stats.events, 2);
+  EXPECT_EQ(stats.undecodable, 1);
+  EXPECT_EQ(stats.cameras.at(1).frames, 1);
 }
 
 }  // namespace

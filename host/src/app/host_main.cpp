@@ -162,6 +162,9 @@ void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
             << t.blob_parts << " blob messages, " << t.silhouette_parts << " silhouette parts, "
             << sub.malformed() << " malformed, " << t.rejected << " rejected ("
             << grouper.late_messages() << " late)\n";
+  for (const auto& [channel, count] : sub.malformed_by_channel()) {
+    std::cout << "malformed on " << channel << ": " << count << "\n";
+  }
   std::cout << t.arrivals.summary();
 }
 
