@@ -122,7 +122,8 @@ int run(const syncap::edge::EdgeOptions& options) {
   if (!options.quiet) {
     std::cerr << "syncap-edge camera " << options.camera_id << ": " << node.frames_received()
               << " frames processed, " << node.frames_lost() << " lost, " << queue.stats().dropped
-              << " messages dropped from the publishing queue";
+              << " messages dropped from the publishing queue, " << node.commands()
+              << " commands obeyed";
     if (node.detection().windowed()) {
       std::cerr << "; blobs of " << node.detection().frames_in_windows() << " of "
                 << node.detection().frames() << " frames from the windows alone";
