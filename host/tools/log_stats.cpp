@@ -69,8 +69,9 @@ TrafficStats collect_traffic(std::istream& log) {
     channel.datagram_bytes += bytes;
     channel.max_datagram_bytes = std::max(channel.max_datagram_bytes, bytes);
     if (!count_camera_event(*event, bytes, stats)) ++stats.undecodable;
+    for (LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
   }
-  reader.take_errors();
+  for (LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
   return stats;
 }
 

@@ -2,10 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "lcm_log_reader.hpp"
+#include "log_command.hpp"
 #include "malformed_messages.hpp"
+#include "subcommand.hpp"
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/contour_codec.hpp"
@@ -107,6 +113,29 @@ TEST(LogStats, NegativeArrayLengthIsCountedAndTheRestKept) {
   EXPECT_EQ(stats.events, 2);
   EXPECT_EQ(stats.undecodable, 1);
   EXPECT_EQ(stats.cameras.at(1).frames, 1);
+}
+
+// Issue 15: random bytes gave exit 0 and an empty table.
+TEST(LogStats, FileWithoutAnyLogEventExitsTwoNamingFileAndOffset) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("syncap-random-" + std::to_string(getpid())))
+          .string();
+  {
+    std::ofstream file(path, std::ios::binary);
+    std::uint32_t x = 12345;
+    for (int i = 0; i < 4096; ++i) {
+      x = x * 1103515245u + 12345u;
+      file.put(static_cast<char>(x >> 24));
+    }
+  }
+  std::ostringstream out, err;
+  const std::vector<std::string> args{"--stats", path};
+  EXPECT_EQ(log_command(args, out, err), kExitUsage) << out.str();
+  EXPECT_NE(err.str().find("syncap log: " + path +
+                           ": no valid LCM log event found (damage from offset 0)"),
+            std::string::npos)
+      << err.str();
+  std::filesystem::remove(path);
 }
 
 }  // namespace
