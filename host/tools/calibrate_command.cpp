@@ -7,6 +7,8 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -155,7 +157,12 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
     } else if (arg == "--critical-w") {
       o.critical_snooping = number_arg(arg, value());
     } else if (arg == "--max-frames") {
-      o.max_frames = static_cast<int>(number_arg(arg, value()));
+      const std::string& v = value();
+      const double n = number_arg(arg, v);
+      if (!(n >= 1 && n <= 1e9 && n == std::floor(n))) {
+        throw UsageError{"--max-frames must be a whole number >= 1, got '" + v + "'"};
+      }
+      o.max_frames = static_cast<int>(n);
     } else if (arg == "--bootstrap") {
       o.bootstrap_samples = static_cast<int>(number_arg(arg, value()));
     } else if (arg == "--image-size") {
@@ -311,6 +318,20 @@ calibration::Observations read_source(const CalibrateArgs& a, std::ostream& err,
                    "' (lcm, lcmlog, csv, mcsc)"};
 }
 
+// Empty when `dir` exists (or is created) and takes a file; else why not.
+std::string unwritable_folder(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return "cannot create the folder (" + ec.message() + ")";
+  const std::filesystem::path probe = std::filesystem::path(dir) / ".syncap-write-check";
+  std::ofstream file(probe);
+  const bool written = file && (file << "x") && file.flush();
+  file.close();
+  std::filesystem::remove(probe, ec);
+  if (!written) return std::string("cannot write in it (") + std::strerror(errno) + ")";
+  return {};
+}
+
 void print_summary(const calibration::CalibrationResult& r, std::ostream& out) {
   const auto& q = r.quality;
   out << std::fixed << std::setprecision(4);
@@ -343,6 +364,11 @@ int calibrate_command(std::span<const std::string> args, std::ostream& out, std:
     a = parse_args(args);
   } catch (const UsageError& e) {
     err << kPrefix << e.message << '\n' << kCalibrateUsage;
+    return kExitUsage;
+  }
+  // Checked before the input is read: a calibration can take minutes.
+  if (const std::string problem = unwritable_folder(a.out); !problem.empty()) {
+    err << kPrefix << "--out " << a.out << ": " << problem << '\n';
     return kExitUsage;
   }
   const bool progress = a.progress || (&err == &std::cerr && ::isatty(STDERR_FILENO));

@@ -200,5 +200,21 @@ TEST(CalibrateCommand, MalformedLogRecordIsSkippedAndTheRestCalibrates) {
   fs::remove_all(dir);
 }
 
+// Issue 15: --max-frames -5 used all frames; an unwritable --out failed only after the whole
+// calibration.
+TEST(CalibrateCommand, BadMaxFramesAndUnwritableOutAreUsageErrorsBeforeReading) {
+  std::string out, err;
+  EXPECT_EQ(run({"--input", "csv:/nonexistent.csv", "--led", "--out", "d", "--max-frames", "-5"},
+                out, err),
+            kExitUsage);
+  EXPECT_NE(err.find("--max-frames must be a whole number >= 1, got '-5'"), std::string::npos)
+      << err;
+  EXPECT_EQ(
+      run({"--input", "csv:/nonexistent.csv", "--led", "--out", "/proc/syncap-out"}, out, err),
+      kExitUsage);
+  EXPECT_NE(err.find("--out /proc/syncap-out: cannot"), std::string::npos) << err;
+  EXPECT_EQ(err.find("nonexistent.csv"), std::string::npos) << "the input was read first: " << err;
+}
+
 }  // namespace
 }  // namespace syncap::tools
