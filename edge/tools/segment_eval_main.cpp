@@ -5,19 +5,21 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "segmentation/cdnet_eval.hpp"
+#include "segmentation/masking_options.hpp"
 #include "segmentation/scene_eval.hpp"
 
 namespace {
 
 constexpr int kExitOk = 0;
-constexpr int kExitFailed = 1;
-constexpr int kExitUsage = 2;
+constexpr int kExitUsage =
+    2;  // bad arguments or bad input (a folder, an image), as in every program
 
 void print_usage(std::ostream& out) {
   out << "usage: syncap segment-eval --cdnet DIR --method medipicture|mog2|knn [options]\n"
@@ -40,7 +42,9 @@ void print_usage(std::ostream& out) {
          "  --fill-holes A      fill holes of the mask up to A pixels (default 0)\n"
          "  --closing D         elliptical closing diameter, pixels, 0 = none (default 9)\n"
          "  --min-area A        smallest component kept, pixels (default 40)\n"
-         "  --update-rate R     slow model update where background (default 0)\n";
+         "  --update-rate R     slow model update where background (default 0)\n"
+         "Values out of range are refused (as syncap-edge's --mask-* options). Exit status: 0\n"
+         "scored, 2 bad arguments or bad input (a missing, undecodable or truncated image).\n";
 }
 
 struct Arguments {
@@ -51,6 +55,7 @@ struct Arguments {
 
 // Parses argv into `arguments`; throws std::invalid_argument naming the bad argument.
 Arguments parse_arguments(int argc, char** argv) {
+  using syncap::edge::parse_number;
   Arguments arguments;
   bool have_method = false;
   // --person is the base the other options change, wherever it stands.
@@ -59,51 +64,39 @@ Arguments parse_arguments(int argc, char** argv) {
       arguments.options.medi_picture = syncap::edge::person_masking_options();
     }
   }
+  static const std::set<std::string_view> kMediPictureOptions{
+      "--k",          "--min-difference", "--ncc",      "--shadow-test", "--shadow-sigmas",
+      "--fill-holes", "--closing",        "--min-area", "--update-rate"};
+  static const std::set<std::string_view> kOtherOptions{"--cdnet", "--scene", "--method",
+                                                        "--train-frames", "--frame-step"};
   for (int i = 1; i < argc; ++i) {
-    const std::string_view flag = argv[i];
+    const std::string flag = argv[i];
     if (flag == "--no-shadows") {
       arguments.options.medi_picture.remove_shadows = false;
       continue;
     }
     if (flag == "--person") continue;
-    if (i + 1 >= argc) throw std::invalid_argument("missing value after " + std::string(flag));
+    if (!kMediPictureOptions.contains(flag) && !kOtherOptions.contains(flag)) {
+      throw std::invalid_argument("unknown option '" + flag + "'");
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
     const std::string value = argv[++i];
-    auto& medi = arguments.options.medi_picture;
-    if (flag == "--cdnet" || flag == "--scene") {
-      arguments.folder = value;
-      arguments.scene = flag == "--scene";
-    } else if (flag == "--method") {
-      arguments.options.method = syncap::edge::parse_segmentation_method(value);
-      have_method = true;
-    } else if (flag == "--train-frames") {
-      arguments.options.train_frames = std::stoi(value);
-    } else if (flag == "--frame-step") {
-      arguments.options.frame_step = std::stoi(value);
-    } else if (flag == "--k") {
-      medi.k = std::stof(value);
-    } else if (flag == "--min-difference") {
-      medi.min_difference = std::stof(value);
-    } else if (flag == "--ncc") {
-      medi.ncc_threshold = std::stof(value);
-    } else if (flag == "--closing") {
-      medi.closing_diameter = std::stoi(value);
-    } else if (flag == "--min-area") {
-      medi.min_component_area = std::stoi(value);
-    } else if (flag == "--update-rate") {
-      medi.update_rate = std::stof(value);
-    } else if (flag == "--shadow-test") {
-      if (value != "correlation" && value != "common-ratio") {
-        throw std::invalid_argument("--shadow-test '" + value +
-                                    "': expected correlation or common-ratio");
+    try {
+      if (kMediPictureOptions.contains(flag)) {
+        syncap::edge::apply_masking_option(arguments.options.medi_picture, flag.substr(2), value);
+      } else if (flag == "--cdnet" || flag == "--scene") {
+        arguments.folder = value;
+        arguments.scene = flag == "--scene";
+      } else if (flag == "--method") {
+        arguments.options.method = syncap::edge::parse_segmentation_method(value);
+        have_method = true;
+      } else if (flag == "--train-frames") {
+        arguments.options.train_frames = parse_number<int>(value, 1, 1 << 24);
+      } else if (flag == "--frame-step") {
+        arguments.options.frame_step = parse_number<int>(value, 1, 1 << 24);
       }
-      medi.shadow_test = value == "correlation" ? syncap::edge::ShadowTest::kCorrelation
-                                                : syncap::edge::ShadowTest::kCommonRatio;
-    } else if (flag == "--shadow-sigmas") {
-      medi.shadow_ratio_sigmas = std::stof(value);
-    } else if (flag == "--fill-holes") {
-      medi.max_hole_area = std::stoi(value);
-    } else {
-      throw std::invalid_argument("unknown argument " + std::string(flag));
+    } catch (const syncap::edge::BadValue& e) {
+      throw std::invalid_argument(flag + " " + e.what());
     }
   }
   if (arguments.folder.empty())
@@ -149,7 +142,7 @@ int main(int argc, char** argv) {
   Arguments arguments;
   try {
     arguments = parse_arguments(argc, argv);
-  } catch (const std::exception& e) {  // std::stoi throws its own types for bad numbers
+  } catch (const std::exception& e) {
     std::cerr << "syncap-segment-eval: " << e.what() << "\n";
     print_usage(std::cerr);
     return kExitUsage;
@@ -166,9 +159,9 @@ int main(int argc, char** argv) {
       if (std::string_view(argv[i]) == "--method") method = argv[i + 1];
     }
     print_scores(method, scores);
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // a missing or undecodable input file
     std::cerr << "syncap-segment-eval: " << e.what() << "\n";
-    return kExitFailed;
+    return kExitUsage;
   }
   return kExitOk;
 }

@@ -243,6 +243,12 @@ bool emit_table(const BundleArgs& args, const std::string& name, const std::stri
 
 int run_bundle(const BundleArgs& args, std::ostream& out, std::ostream& err) {
   scene::Network network = sdl::parse_file(args.file);
+  if (network.stations.empty() && network.points.empty()) {
+    // An empty (or comment-only) file parses as the default network: nothing was adjusted.
+    err << kErrorPrefix << args.file
+        << ": the scene has no station and no point: nothing to adjust\n";
+    return kExitUsage;
+  }
   const auto& design = network.design;
   if (design.sort) sort_by_name(network);
   if (design.simulate) simulate_observations(network);

@@ -7,6 +7,8 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -23,6 +25,7 @@
 #include "subcommand.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/decode.hpp"
 #include "syncap/proto/subscriber.hpp"
 #include "syncap/trigger_t.hpp"
 
@@ -162,7 +165,12 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
     } else if (arg == "--critical-w") {
       o.critical_snooping = number_arg(arg, value());
     } else if (arg == "--max-frames") {
-      o.max_frames = static_cast<int>(number_arg(arg, value()));
+      const std::string& v = value();
+      const double n = number_arg(arg, v);
+      if (!(n >= 1 && n <= 1e9 && n == std::floor(n))) {
+        throw UsageError{"--max-frames must be a whole number >= 1, got '" + v + "'"};
+      }
+      o.max_frames = static_cast<int>(n);
     } else if (arg == "--bootstrap") {
       o.bootstrap_samples = static_cast<int>(number_arg(arg, value()));
     } else if (arg == "--image-size") {
@@ -222,7 +230,7 @@ calibration::Observations read_lcm_log(const std::string& file, std::set<int> ca
     while (auto event = scan.next()) {
       if (!is_blob_channel(event->channel)) continue;
       blob_frame_t frame;
-      if (frame.decode(event->data.data(), 0, static_cast<int>(event->data.size())) >= 0) {
+      if (proto::try_decode(event->data.data(), event->data.size(), frame).ok()) {
         cameras.insert(frame.camera_id);
       }
     }
@@ -233,22 +241,29 @@ calibration::Observations read_lcm_log(const std::string& file, std::set<int> ca
   calibration::BlobFrameCollector collector("lcmlog:" + file, cameras);
   LcmLogReader reader(in);
   long undecodable = 0;
+  // A malformed record (the decoder throws on a negative array length) is skipped and named;
+  // the records around it are kept.
+  const auto decode = [&](const LogEvent& event, auto& msg) {
+    const proto::DecodeResult decoded =
+        proto::try_decode(event.data.data(), event.data.size(), msg);
+    if (!decoded.ok() && undecodable++ < 5) {
+      err << kPrefix << file << ": event " << event.event_number << " at offset " << event.offset
+          << " on " << event.channel << " is not a " << msg.getTypeName() << " (" << decoded.error
+          << "), skipped\n";
+    }
+    return decoded.ok();
+  };
   while (auto event = reader.next()) {
-    const int size = static_cast<int>(event->data.size());
     if (is_blob_channel(event->channel)) {
       blob_frame_t frame;
-      if (frame.decode(event->data.data(), 0, size) < 0) {
-        if (undecodable++ < 5) {
-          err << kPrefix << file << ": event " << event->event_number << " at offset "
-              << event->offset << " on " << event->channel << " is not a blob_frame_t\n";
-        }
-        continue;
-      }
-      collector.add_blob_frame(frame);
+      if (decode(*event, frame)) collector.add_blob_frame(frame);
     } else if (event->channel == proto::kTriggerChannel) {
       trigger_t trigger;
-      if (trigger.decode(event->data.data(), 0, size) >= 0) collector.add_trigger(trigger);
+      if (decode(*event, trigger)) collector.add_trigger(trigger);
     }
+  }
+  if (undecodable > 0) {
+    err << kPrefix << file << ": " << undecodable << " malformed records skipped\n";
   }
   for (const LogError& e : reader.take_errors())
     err << kPrefix << file << ": " << e.message << '\n';
@@ -313,6 +328,20 @@ calibration::Observations read_source(const CalibrateArgs& a, std::ostream& err,
                    "' (lcm, lcmlog, csv, mcsc)"};
 }
 
+// Empty when `dir` exists (or is created) and takes a file; else why not.
+std::string unwritable_folder(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return "cannot create the folder (" + ec.message() + ")";
+  const std::filesystem::path probe = std::filesystem::path(dir) / ".syncap-write-check";
+  std::ofstream file(probe);
+  const bool written = file && (file << "x") && file.flush();
+  file.close();
+  std::filesystem::remove(probe, ec);
+  if (!written) return std::string("cannot write in it (") + std::strerror(errno) + ")";
+  return {};
+}
+
 void print_summary(const calibration::CalibrationResult& r, std::ostream& out) {
   const auto& q = r.quality;
   out << std::fixed << std::setprecision(4);
@@ -345,6 +374,11 @@ int calibrate_command(std::span<const std::string> args, std::ostream& out, std:
     a = parse_args(args);
   } catch (const UsageError& e) {
     err << kPrefix << e.message << '\n' << kCalibrateUsage;
+    return kExitUsage;
+  }
+  // Checked before the input is read: a calibration can take minutes.
+  if (const std::string problem = unwritable_folder(a.out); !problem.empty()) {
+    err << kPrefix << "--out " << a.out << ": " << problem << '\n';
     return kExitUsage;
   }
   const bool progress = a.progress || (&err == &std::cerr && ::isatty(STDERR_FILENO));

@@ -56,12 +56,17 @@ std::optional<std::string> parse_clip_args(std::span<const std::string> args, Cl
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     const bool has_value = i + 1 < args.size();
+    static const std::set<std::string> kWithValue{"--cameras", "--volume", "--margin", "--camera",
+                                                  "--lcm-url"};
     if (arg == "--remove") {
       parsed.remove = true;
     } else if (arg == "--publish") {
       parsed.publish = true;
+    } else if (!kWithValue.contains(arg)) {
+      return arg.starts_with("-") ? "unknown option '" + arg + "'"
+                                  : "unexpected argument '" + arg + "'";
     } else if (!has_value) {
-      return arg.starts_with("--") ? arg + " needs a value" : "unexpected argument '" + arg + "'";
+      return arg + " needs a value";
     } else if (arg == "--cameras") {
       parsed.cameras = args[++i];
     } else if (arg == "--volume") {
@@ -78,10 +83,8 @@ std::optional<std::string> parse_clip_args(std::span<const std::string> args, Cl
       if (!id || *id < 0 || *id > proto::kMaxCameraId || *id != static_cast<int>(*id))
         return "--camera '" + args[i] + "': a camera id 0..99";
       parsed.only.insert(static_cast<int>(*id));
-    } else if (arg == "--lcm-url") {
-      parsed.lcm_url = args[++i];
     } else {
-      return "unknown option '" + arg + "'";
+      parsed.lcm_url = args[++i];
     }
   }
   if (parsed.cameras.empty()) return "--cameras FILE is required";

@@ -133,8 +133,16 @@ int log_command(std::span<const std::string> args, std::ostream& out, std::ostre
     return kExitUsage;
   }
   if (parsed.stats) {
-    print_traffic(collect_traffic(log), out);
-    return kExitOk;
+    const TrafficStats stats = collect_traffic(log);
+    for (const LogError& e : stats.damage)
+      err << kErrorPrefix << parsed.file << ": " << e.message << '\n';
+    if (stats.events == 0 && !stats.damage.empty()) {
+      err << kErrorPrefix << parsed.file << ": no valid LCM log event found (damage from offset "
+          << stats.damage.front().offset << "): not an LCM log?\n";
+      return kExitUsage;
+    }
+    print_traffic(stats, out);
+    return stats.damage.empty() ? kExitOk : kExitReportedErrors;
   }
   return print_log(log, parsed.channel_filter, out, err);
 }

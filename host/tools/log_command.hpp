@@ -22,7 +22,8 @@ inline constexpr const char* kLogUsage =
     "  --channel REGEX  only events whose whole channel name matches REGEX (ECMAScript)\n"
     "  --stats          instead: messages and bytes per channel, and per camera the bytes per\n"
     "                   frame of blobs and silhouettes against the raw frame\n"
-    "Exit status: 0 all decoded, 1 damage reported, 2 usage error or unreadable FILE.\n";
+    "Exit status: 0 all decoded, 1 damage reported, 2 usage error, unreadable FILE, or (--stats)\n"
+    "no valid LCM log event in FILE.\n";
 
 // Decodes the log in `log` and prints its events to `out`, damage to `err` (each line prefixed
 // "syncap log: "). Only events whose whole channel matches `channel_filter` are printed and

@@ -7,6 +7,7 @@
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/decode.hpp"
 #include "syncap/silhouette_part_t.hpp"
 
 namespace syncap::tools {
@@ -17,7 +18,7 @@ constexpr std::int64_t kLcmShortHeaderBytes = 8;
 
 template <class Msg>
 bool decode(const LogEvent& event, Msg& msg) {
-  return msg.decode(event.data.data(), 0, static_cast<int>(event.data.size())) ==
+  return proto::try_decode(event.data.data(), event.data.size(), msg).used ==
          static_cast<int>(event.data.size());
 }
 
@@ -68,8 +69,9 @@ TrafficStats collect_traffic(std::istream& log) {
     channel.datagram_bytes += bytes;
     channel.max_datagram_bytes = std::max(channel.max_datagram_bytes, bytes);
     if (!count_camera_event(*event, bytes, stats)) ++stats.undecodable;
+    for (LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
   }
-  reader.take_errors();
+  for (LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
   return stats;
 }
 

@@ -9,6 +9,9 @@
 #include <map>
 #include <ostream>
 #include <string>
+#include <vector>
+
+#include "lcm_log_reader.hpp"
 
 namespace syncap::tools {
 
@@ -31,13 +34,14 @@ struct TrafficStats {
   std::map<std::string, ChannelTraffic> channels;
   std::map<int, CameraTraffic> cameras;
   long events = 0;
-  long undecodable = 0;  // syncap messages that did not decode (not counted per camera)
+  long undecodable = 0;          // syncap messages that did not decode (not counted per camera)
+  std::vector<LogError> damage;  // what the reader skipped, in file order
 };
 
 // The bytes one message takes on the wire as a single LCM datagram.
 std::int64_t datagram_bytes(const std::string& channel, std::size_t payload_bytes);
 
-// Reads the whole log; damage is skipped as `syncap log` skips it.
+// Reads the whole log; damage is skipped as `syncap log` skips it, and kept in `damage`.
 TrafficStats collect_traffic(std::istream& log);
 
 // The two tables (channels, then cameras with bytes per frame and the reduction against raw).

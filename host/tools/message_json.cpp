@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "syncap/proto/decode.hpp"
 // Declared here rather than in message_json.hpp: the log decodes it by fingerprint below.
 #include "syncap/trigger_status_t.hpp"
 
@@ -120,10 +121,11 @@ DecodedMessage decode_as(std::span<const std::uint8_t> payload) {
   decoded.type = std::string("syncap.") + Message::getTypeName();
   Message msg;
   const int size = static_cast<int>(payload.size());
-  const int used = msg.decode(payload.data(), 0, size);
-  if (used < 0) {
-    decoded.error =
-        "payload of " + std::to_string(size) + " bytes does not decode as " + *decoded.type;
+  const proto::DecodeResult result = proto::try_decode(payload.data(), payload.size(), msg);
+  const int used = result.used;
+  if (!result.ok()) {
+    decoded.error = "payload of " + std::to_string(size) + " bytes does not decode as " +
+                    *decoded.type + ": " + result.error;
     return decoded;
   }
   decoded.fields = nlohmann::ordered_json(msg);

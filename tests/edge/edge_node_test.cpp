@@ -218,6 +218,35 @@ TEST_F(EdgeNodeTest, StopIgnoresTriggersUntilStart) {
   EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ACQUIRING);
 }
 
+// Issue 15: any process on the segment could stop an edge and it obeyed without a word.
+TEST_F(EdgeNodeTest, EveryCommandIsLoggedAndCounted) {
+  edge_command_t c{};
+  c.camera_id = edge_command_t::ALL_CAMERAS;
+  c.sequence = 17;
+  c.command = edge_command_t::STOP;
+  options_.quiet = true;  // the command log is written even then
+  node_ = std::make_unique<EdgeNode>(options_, source_, EdgePublisher{});
+  testing::internal::CaptureStderr();
+  node_->on_command(c);
+  c.camera_id = 4;
+  c.sequence = 18;
+  c.command = edge_command_t::SET_THRESHOLD;
+  c.int_value = 40;
+  node_->on_command(c);
+  c.camera_id = 5;  // another camera's: neither logged nor counted
+  node_->on_command(c);
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_NE(log.find("syncap-edge camera 4: command STOP (sequence 17, to all cameras) at 20"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("command SET_THRESHOLD 40 (sequence 18, to this camera) at "),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("sender unknown"), std::string::npos) << log;
+  EXPECT_EQ(log.find("sequence 18", log.find("sequence 18") + 1), std::string::npos) << log;
+  EXPECT_EQ(node_->commands(), 2);
+}
+
 TEST_F(EdgeNodeTest, ExposureAndGainGoToTheCameraAndRefusalsAreReported) {
   edge_command_t c{};
   c.camera_id = 4;

@@ -7,12 +7,16 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "calibration/simulated_observations.hpp"
 #include "estimators/bundle_adjustment_simulation.hpp"
+#include "lcm_log_reader.hpp"
+#include "malformed_messages.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
+#include "syncap/proto/channels.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -139,6 +143,77 @@ TEST(CalibrateCommand, UsageErrorsNameTheOption) {
   EXPECT_NE(err.find("lcm: needs --cameras"), std::string::npos) << err;
   EXPECT_EQ(run({"--help"}, out, err), kExitOk);
   EXPECT_NE(out.find("usage: syncap calibrate"), std::string::npos);
+}
+
+// Issue 15: one record whose num_blobs reads -1 made the decoder throw, and `syncap calibrate`
+// dropped the whole log ("vector::_M_default_append", exit 2). Now it is skipped and named.
+TEST(CalibrateCommand, MalformedLogRecordIsSkippedAndTheRestCalibrates) {
+  const fs::path dir = fs::temp_directory_path() / ("syncap-callog-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  estimators::WandSimulation sim;
+  sim.frames = 60;
+  const auto net = estimators::simulate_wand_network(sim);
+  std::map<std::pair<int64_t, int>, blob_frame_t> frames;
+  for (const auto& m : net.network.measurements) {
+    const int camera = std::stoi(m.station.substr(6));
+    blob_frame_t& f = frames[{m.frame_number, camera}];
+    f.camera_id = static_cast<int16_t>(camera);
+    f.frame_number = m.frame_number;
+    f.image_width = 1280;
+    f.image_height = 1024;
+    f.part_count = 1;
+    blob_t blob{};
+    blob.x = static_cast<float>(m.u);
+    blob.y = static_cast<float>(m.v);
+    f.blobs.push_back(blob);
+    f.num_blobs = f.total_blobs = static_cast<int16_t>(f.blobs.size());
+  }
+  std::vector<std::uint8_t> log;
+  std::int64_t event = 0;
+  std::uint64_t bad_offset = 0;
+  for (const auto& [key, frame] : frames) {
+    if (event == 40) {
+      bad_offset = log.size();
+      const auto bad = encode_log_record(event++, 0, proto::blob_channel(key.second),
+                                         test::blob_frame_with_negative_count(key.second, 1000));
+      log.insert(log.end(), bad.begin(), bad.end());
+    }
+    const auto record =
+        encode_log_record(event++, 0, proto::blob_channel(key.second), test::encoded(frame));
+    log.insert(log.end(), record.begin(), record.end());
+  }
+  {
+    std::ofstream file(dir / "wand.lcmlog", std::ios::binary);
+    file.write(reinterpret_cast<const char*>(log.data()), static_cast<std::streamsize>(log.size()));
+  }
+  std::string out, err;
+  EXPECT_EQ(run({"--input", "lcmlog:" + (dir / "wand.lcmlog").string(), "--wand-length", "1000",
+                 "--pixel-size", "0.0067", "--sigma-px", "0.2", "--out", (dir / "out").string()},
+                out, err),
+            kExitOk)
+      << err;
+  EXPECT_NE(err.find("event 40 at offset " + std::to_string(bad_offset) + " on SYNCAP_BLOBS_0"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("1 malformed records skipped"), std::string::npos) << err;
+  EXPECT_NE(out.find("calibrated 3 cameras"), std::string::npos) << out;
+  fs::remove_all(dir);
+}
+
+// Issue 15: --max-frames -5 used all frames; an unwritable --out failed only after the whole
+// calibration.
+TEST(CalibrateCommand, BadMaxFramesAndUnwritableOutAreUsageErrorsBeforeReading) {
+  std::string out, err;
+  EXPECT_EQ(run({"--input", "csv:/nonexistent.csv", "--led", "--out", "d", "--max-frames", "-5"},
+                out, err),
+            kExitUsage);
+  EXPECT_NE(err.find("--max-frames must be a whole number >= 1, got '-5'"), std::string::npos)
+      << err;
+  EXPECT_EQ(
+      run({"--input", "csv:/nonexistent.csv", "--led", "--out", "/proc/syncap-out"}, out, err),
+      kExitUsage);
+  EXPECT_NE(err.find("--out /proc/syncap-out: cannot"), std::string::npos) << err;
+  EXPECT_EQ(err.find("nonexistent.csv"), std::string::npos) << "the input was read first: " << err;
 }
 
 }  // namespace

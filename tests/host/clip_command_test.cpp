@@ -106,5 +106,16 @@ TEST_F(ClipCommandTest, BadArgumentsAndFilesAreNamed) {
   EXPECT_NE(r.err.find("none of the cameras"), std::string::npos) << r.err;
 }
 
+// Issue 15: an unknown last option said "needs a value".
+TEST_F(ClipCommandTest, UnknownOptionIsNamedAsUnknownWherever) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--cameras", file_.string(), "--remove", "--x"},
+        std::vector<std::string>{"--x", "1", "--cameras", file_.string(), "--remove"}}) {
+    const ClipRun r = run(args);
+    EXPECT_EQ(r.status, kExitUsage);
+    EXPECT_EQ(r.err.rfind("syncap clip: unknown option '--x'\n", 0), 0u) << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace syncap::tools

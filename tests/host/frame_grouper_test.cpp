@@ -198,5 +198,122 @@ TEST(FrameGrouper, BlobFrameWithoutSilhouettePartsDoesNotWaitForOne) {
   EXPECT_TRUE(ready[0].silhouettes.empty());
 }
 
+// Issue 15: one forged trigger with frame number 10^15 made every later record late (0 of 30
+// groups complete afterwards): the newest frame number only grew.
+TEST(FrameGrouper, OneForgedFarFrameNumberDoesNotMakeLaterRecordsLate) {
+  FrameGrouper grouper({0}, 2);
+  for (int64_t k = 1; k <= 3; ++k) {
+    grouper.add_trigger(trigger(k));
+    grouper.add_blob_part(blobs(0, k));
+  }
+  EXPECT_EQ(grouper.pop_ready().size(), 3u);
+  grouper.add_trigger(trigger(1'000'000'000'000'000));
+  // As syncap-host does: groups are popped after every message handled.
+  long complete = 0;
+  const auto pop = [&] {
+    for (const FrameGroup& g : grouper.pop_ready()) complete += g.complete() ? 1 : 0;
+  };
+  pop();
+  for (int64_t k = 4; k < 34; ++k) {
+    EXPECT_TRUE(grouper.add_trigger(trigger(k))) << grouper.error();
+    pop();
+    EXPECT_TRUE(grouper.add_blob_part(blobs(0, k))) << grouper.error();
+    pop();
+  }
+  EXPECT_EQ(complete, 30);
+  EXPECT_EQ(grouper.late_messages(), 0);
+  EXPECT_EQ(grouper.far_ahead_messages(), 1);
+  // Nothing received is dropped: the forged trigger comes out, alone, at the end.
+  const auto rest = grouper.flush();
+  ASSERT_EQ(rest.size(), 1u);
+  EXPECT_EQ(rest[0].frame_number, 1'000'000'000'000'000);
+  EXPECT_FALSE(rest[0].complete());
+}
+
+// A real jump (a trigger restarted further on) is confirmed by the next record near it.
+TEST(FrameGrouper, FarJumpConfirmedByAnotherSourceMovesTheNewestFrame) {
+  FrameGrouper grouper({0}, 2);
+  grouper.add_trigger(trigger(1));
+  grouper.add_blob_part(blobs(0, 1));
+  EXPECT_EQ(grouper.pop_ready().size(), 1u);
+  const int64_t far = 1 + FrameGrouper::kJumpWindowFrames + 100;
+  grouper.add_trigger(trigger(2));  // its camera's record is lost
+  grouper.add_trigger(trigger(far));
+  EXPECT_TRUE(grouper.pop_ready().empty());  // frame 2 still waits: the jump is not confirmed
+  grouper.add_trigger(trigger(far));         // the same datagram twice confirms nothing
+  EXPECT_TRUE(grouper.pop_ready().empty());
+  grouper.add_blob_part(blobs(0, far));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 2u);
+  EXPECT_EQ(ready[0].frame_number, 2);
+  EXPECT_FALSE(ready[0].complete());
+  EXPECT_EQ(ready[1].frame_number, far);
+  EXPECT_TRUE(ready[1].complete());
+  EXPECT_EQ(grouper.duplicate_messages(), 1);
+}
+
+// A forged first record does not become the newest frame either.
+TEST(FrameGrouper, ForgedFirstRecordWaitsForConfirmation) {
+  FrameGrouper grouper({0}, 2);
+  grouper.add_trigger(trigger(1'000'000'000'000'000));
+  EXPECT_TRUE(grouper.pop_ready().empty());
+  grouper.add_trigger(trigger(5));
+  EXPECT_TRUE(grouper.pop_ready().empty());
+  grouper.add_blob_part(blobs(0, 5));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_EQ(ready[0].frame_number, 5);
+  EXPECT_TRUE(ready[0].complete());
+}
+
+TEST(FrameGrouper, CameraOutsideTheExpectedSetIsRejectedAndCounted) {
+  FrameGrouper grouper({0, 1}, 5);
+  grouper.add_trigger(trigger(1));
+  EXPECT_FALSE(grouper.add_blob_part(blobs(7, 1)));
+  EXPECT_EQ(grouper.error(),
+            "blob frame of camera 7 for frame 1 rejected: camera 7 is not one of the expected "
+            "cameras 0,1");
+  EXPECT_FALSE(grouper.add_silhouette_part(silhouette(7, 1, 10)[0]));
+  EXPECT_EQ(grouper.foreign_messages(), 2);
+  grouper.add_blob_part(blobs(0, 1));
+  grouper.add_blob_part(blobs(1, 1));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_EQ(ready[0].blobs.size(), 2u);
+  EXPECT_FALSE(ready[0].blobs.contains(7));
+}
+
+TEST(FrameGrouper, RecordOnAnotherCamerasChannelIsRejectedAndCounted) {
+  FrameGrouper grouper({0, 1}, 5);
+  grouper.add_trigger(trigger(1));
+  EXPECT_FALSE(grouper.add_blob_part(blobs(1, 1), "SYNCAP_BLOBS_00"));
+  EXPECT_EQ(grouper.error(),
+            "blob frame of camera 1 for frame 1 rejected: it came on channel "
+            "SYNCAP_BLOBS_00");
+  EXPECT_FALSE(grouper.add_silhouette_part(silhouette(0, 1, 10)[0], "SYNCAP_SIL_01"));
+  EXPECT_EQ(grouper.wrong_channel_messages(), 2);
+  EXPECT_TRUE(grouper.add_blob_part(blobs(0, 1), "SYNCAP_BLOBS_00"));
+  EXPECT_TRUE(grouper.add_blob_part(blobs(1, 1), "SYNCAP_BLOBS_01"));
+  EXPECT_EQ(grouper.pop_ready().size(), 1u);
+}
+
+// Before issue 15 the second record silently replaced the first.
+TEST(FrameGrouper, DuplicateRecordKeepsTheFirstAndIsCounted) {
+  FrameGrouper grouper({0}, 5);
+  grouper.add_trigger(trigger(1));
+  grouper.add_trigger(trigger(2));
+  EXPECT_TRUE(grouper.add_blob_part(blobs(0, 2, 3)));
+  EXPECT_FALSE(grouper.add_blob_part(blobs(0, 2, 1)));
+  EXPECT_EQ(grouper.error(), "blob frame of camera 0 for frame 2 arrived twice: the first is kept");
+  trigger_t second = trigger(2);
+  second.monotonic_ns = 99;
+  EXPECT_FALSE(grouper.add_trigger(second));
+  EXPECT_EQ(grouper.duplicate_messages(), 2);
+  const auto all = grouper.flush();
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[1].blobs.at(0).blobs.size(), 3u);
+  EXPECT_EQ(all[1].trigger->monotonic_ns, 0);
+}
+
 }  // namespace
 }  // namespace syncap::host

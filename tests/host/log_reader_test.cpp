@@ -16,6 +16,7 @@
 
 #include "lcm_log_reader.hpp"
 #include "log_command.hpp"
+#include "malformed_messages.hpp"
 #include "message_json.hpp"
 #include "subcommand.hpp"
 #include "syncap/trigger_status_t.hpp"
@@ -533,6 +534,29 @@ TEST(LogCommand, LcmSelfTestProbeIsShownAndNotAnError) {
   EXPECT_EQ(run.lines[0]["type"], "lcm.self_test");
   EXPECT_EQ(run.lines[0]["fields"]["text"], probe);
   EXPECT_EQ(run.lines[1]["type"], "syncap.trigger_t");
+}
+
+// Issue 15: a negative num_blobs made the decoder throw std::length_error out of `syncap log`.
+TEST(LogJson, NegativeArrayLengthIsReportedWithEventAndOffsetAndTheLogGoesOn) {
+  Bytes log = record(0, "SYNCAP_TRIGGER", encode(sample_trigger(0)));
+  const std::size_t bad_offset = log.size();
+  append(log, record(1, "SYNCAP_BLOBS_02", test::blob_frame_with_negative_count(2, 0)));
+  append(log, record(2, "SYNCAP_STATUS_02", test::camera_status_with_zero_string_length(2)));
+  append(log, record(3, "SYNCAP_TRIGGER", encode(sample_trigger(1))));
+
+  const LogRun run = run_print_log(log);
+
+  EXPECT_EQ(run.status, kExitReportedErrors);
+  ASSERT_EQ(run.lines.size(), 4u);
+  EXPECT_EQ(run.lines[1]["type"], "syncap.blob_frame_t");
+  EXPECT_FALSE(run.lines[1].contains("fields"));
+  EXPECT_TRUE(run.lines[3].contains("fields"));
+  EXPECT_NE(run.errors.find("event 1 on channel SYNCAP_BLOBS_02 at offset " +
+                            std::to_string(bad_offset) + ": payload of 48 bytes does not decode"),
+            std::string::npos)
+      << run.errors;
+  EXPECT_NE(run.errors.find("event 2 on channel SYNCAP_STATUS_02"), std::string::npos)
+      << run.errors;
 }
 
 }  // namespace

@@ -2,9 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "lcm_log_reader.hpp"
+#include "log_command.hpp"
+#include "malformed_messages.hpp"
+#include "subcommand.hpp"
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/contour_codec.hpp"
@@ -93,6 +100,42 @@ TEST(LogStats, UndecodableCameraMessagesAreCountedApart) {
   EXPECT_EQ(stats.undecodable, 1);
   EXPECT_TRUE(stats.cameras.empty());
   EXPECT_EQ(stats.channels.at(proto::blob_channel(1)).messages, 1);
+}
+
+// Issue 15: the decoder threw std::length_error on a negative num_blobs and ended `syncap log`.
+TEST(LogStats, NegativeArrayLengthIsCountedAndTheRestKept) {
+  auto log =
+      encode_log_record(0, 0, proto::blob_channel(1), test::blob_frame_with_negative_count(1, 0));
+  const auto good = encode_log_record(1, 0, proto::blob_channel(1), encoded(frame(1, 1, 2, 0)));
+  log.insert(log.end(), good.begin(), good.end());
+  std::istringstream in(std::string(log.begin(), log.end()));
+  const TrafficStats stats = collect_traffic(in);
+  EXPECT_EQ(stats.events, 2);
+  EXPECT_EQ(stats.undecodable, 1);
+  EXPECT_EQ(stats.cameras.at(1).frames, 1);
+}
+
+// Issue 15: random bytes gave exit 0 and an empty table.
+TEST(LogStats, FileWithoutAnyLogEventExitsTwoNamingFileAndOffset) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("syncap-random-" + std::to_string(getpid())))
+          .string();
+  {
+    std::ofstream file(path, std::ios::binary);
+    std::uint32_t x = 12345;
+    for (int i = 0; i < 4096; ++i) {
+      x = x * 1103515245u + 12345u;
+      file.put(static_cast<char>(x >> 24));
+    }
+  }
+  std::ostringstream out, err;
+  const std::vector<std::string> args{"--stats", path};
+  EXPECT_EQ(log_command(args, out, err), kExitUsage) << out.str();
+  EXPECT_NE(err.str().find("syncap log: " + path +
+                           ": no valid LCM log event found (damage from offset 0)"),
+            std::string::npos)
+      << err.str();
+  std::filesystem::remove(path);
 }
 
 }  // namespace

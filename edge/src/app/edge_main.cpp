@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstring>
 #include <iostream>
 #include <memory>
 
@@ -109,7 +111,10 @@ int run(const syncap::edge::EdgeOptions& options) {
   auto next_heartbeat = std::chrono::steady_clock::now();
   while (!g_stop && !shutdown && !(options.exit_after_last && node.saw_last_pulse())) {
     if (lcm.handleTimeout(100) < 0) {
-      std::cerr << "syncap-edge: LCM receive failed\n";
+      // SIGTERM (systemd's stop) or SIGINT interrupts the wait: the loop ends on g_stop, with
+      // the final status and exit 0. Another signal's interruption is no failure either.
+      if (g_stop || errno == EINTR) continue;
+      std::cerr << "syncap-edge: LCM receive failed: " << std::strerror(errno) << "\n";
       return 1;
     }
     if (std::chrono::steady_clock::now() >= next_heartbeat) {
@@ -122,7 +127,8 @@ int run(const syncap::edge::EdgeOptions& options) {
   if (!options.quiet) {
     std::cerr << "syncap-edge camera " << options.camera_id << ": " << node.frames_received()
               << " frames processed, " << node.frames_lost() << " lost, " << queue.stats().dropped
-              << " messages dropped from the publishing queue";
+              << " messages dropped from the publishing queue, " << node.commands()
+              << " commands obeyed";
     if (node.detection().windowed()) {
       std::cerr << "; blobs of " << node.detection().frames_in_windows() << " of "
                 << node.detection().frames() << " frames from the windows alone";

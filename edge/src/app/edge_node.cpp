@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <iostream>
 
 #include "detection/blob_detector.hpp"
@@ -14,6 +16,66 @@ int64_t now_ns(clockid_t clock) {
   timespec ts{};
   clock_gettime(clock, &ts);
   return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
+}
+
+const char* command_name(int8_t command) {
+  switch (command) {
+    case edge_command_t::START:
+      return "START";
+    case edge_command_t::STOP:
+      return "STOP";
+    case edge_command_t::SET_EXPOSURE:
+      return "SET_EXPOSURE";
+    case edge_command_t::SET_GAIN:
+      return "SET_GAIN";
+    case edge_command_t::SET_THRESHOLD:
+      return "SET_THRESHOLD";
+    case edge_command_t::SET_ROI:
+      return "SET_ROI";
+    case edge_command_t::TRAIN_BACKGROUND:
+      return "TRAIN_BACKGROUND";
+    case edge_command_t::SHUTDOWN:
+      return "SHUTDOWN";
+    default:
+      return nullptr;
+  }
+}
+
+// What a command asks, with the value it carries: "SET_THRESHOLD 40".
+std::string command_text(const edge_command_t& c) {
+  const char* name = command_name(c.command);
+  if (name == nullptr) return "unknown command code " + std::to_string(c.command) + " (ignored)";
+  std::string text = name;
+  switch (c.command) {
+    case edge_command_t::SET_THRESHOLD:
+    case edge_command_t::TRAIN_BACKGROUND:
+      text += " " + std::to_string(c.int_value);
+      break;
+    case edge_command_t::SET_EXPOSURE:
+    case edge_command_t::SET_GAIN:
+      text += " " + std::to_string(c.real_value);
+      break;
+    case edge_command_t::SET_ROI:
+      text += " " + std::to_string(c.roi_width) + "x" + std::to_string(c.roi_height) + " at (" +
+              std::to_string(c.roi_x) + ", " + std::to_string(c.roi_y) + ")";
+      break;
+    default:
+      break;
+  }
+  return text;
+}
+
+// UTC wall-clock time with microseconds, for the command log.
+std::string utc_now() {
+  const int64_t ns = now_ns(CLOCK_REALTIME);
+  const std::time_t seconds = static_cast<std::time_t>(ns / 1'000'000'000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char text[40];
+  const std::size_t n = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(text + n, sizeof text - n, ".%06lldZ",
+                static_cast<long long>((ns % 1'000'000'000) / 1000));
+  return text;
 }
 
 }  // namespace
@@ -36,6 +98,15 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
 
 bool EdgeNode::on_command(const edge_command_t& c) {
   if (c.camera_id != edge_command_t::ALL_CAMERAS && c.camera_id != options_.camera_id) return false;
+  // Any process on the segment can send commands (unauthenticated until issue 15's keys): each
+  // one is logged, also with --quiet, and counted (camera_status_t has no field for the count:
+  // the process' last line says it). LCM does not tell who sent a message; the sequence number
+  // is what the sender put in it.
+  ++commands_;
+  std::cerr << "syncap-edge camera " << options_.camera_id << ": command " << command_text(c)
+            << " (sequence " << c.sequence << ", "
+            << (c.camera_id == edge_command_t::ALL_CAMERAS ? "to all cameras" : "to this camera")
+            << ") at " << utc_now() << ", sender unknown (LCM names none)" << std::endl;
   switch (c.command) {
     case edge_command_t::SHUTDOWN:
       return true;

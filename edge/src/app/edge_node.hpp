@@ -39,7 +39,8 @@ class EdgeNode {
   // Obeys a command meant for this camera: TRAIN_BACKGROUND (int_value frames), SET_THRESHOLD,
   // SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor), SET_EXPOSURE
   // (real_value us), SET_GAIN (real_value dB), STOP (triggers are ignored, heartbeat IDLE) and
-  // START. Returns true for SHUTDOWN.
+  // START. Returns true for SHUTDOWN. Every command for this camera is logged on stderr (what,
+  // sequence, when) and counted (commands()).
   bool on_command(const edge_command_t& command);
   // The host's clip polygon for this camera's masking (others' are ignored); a malformed one is
   // reported in the heartbeat and changes nothing.
@@ -50,6 +51,7 @@ class EdgeNode {
   bool saw_last_pulse() const { return saw_last_pulse_; }
   int64_t frames_received() const { return frames_received_; }
   int64_t frames_lost() const { return frames_lost_; }
+  int64_t commands() const { return commands_; }
   const DetectionStage& detection() const { return detection_; }
 
  private:
@@ -70,6 +72,7 @@ class EdgeNode {
   int64_t interval_start_ns_ = 0;
   bool saw_last_pulse_ = false;
   bool acquiring_ = true;  // STOP / START commands
+  int64_t commands_ = 0;   // commands for this camera
   DetectionStage detection_;
   cv::Rect sensor_roi_;  // the window last applied by follow_windows (empty: the whole sensor)
   std::optional<SilhouetteStage> silhouettes_;

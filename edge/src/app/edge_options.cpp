@@ -7,27 +7,11 @@
 #include <optional>
 #include <set>
 
+#include "segmentation/masking_options.hpp"
 #include "syncap/proto/channels.hpp"
 
 namespace syncap::edge {
 namespace {
-
-// A value an option cannot take; what() is "'TEXT': expected ...", the caller names the option.
-class BadValue : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-template <class T>
-T parse_number(const std::string& text, T low, T high) {
-  T value{};
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value < low || value > high) {
-    throw BadValue("'" + text + "': expected a number in " + std::to_string(low) + ".." +
-                   std::to_string(high));
-  }
-  return value;
-}
 
 bool parse_bool(const std::string& text) {
   if (text == "true" || text == "yes" || text == "on") return true;
@@ -95,35 +79,6 @@ bool takes_value(const std::string& option) {
   return kOptions.contains(option);
 }
 
-// One --mask-* option onto the medi-picture options (docs/segmentation.md has what each does).
-bool apply_masking_option(MediPictureOptions& m, const std::string& a, const std::string& v) {
-  if (a == "--mask-k") {
-    m.k = parse_number<float>(v, 0.1f, 100.0f);
-  } else if (a == "--mask-min-difference") {
-    m.min_difference = parse_number<float>(v, 0.0f, 255.0f);
-  } else if (a == "--mask-shadow-test") {
-    if (v != "correlation" && v != "common-ratio") {
-      throw BadValue("'" + v + "': expected correlation or common-ratio");
-    }
-    m.shadow_test = v == "correlation" ? ShadowTest::kCorrelation : ShadowTest::kCommonRatio;
-  } else if (a == "--mask-shadow-sigmas") {
-    m.shadow_ratio_sigmas = parse_number<float>(v, 0.1f, 100.0f);
-  } else if (a == "--mask-ncc") {
-    m.ncc_threshold = parse_number<float>(v, -1.0f, 1.0f);
-  } else if (a == "--mask-fill-holes") {
-    m.max_hole_area = parse_number<int>(v, 0, 1 << 24);
-  } else if (a == "--mask-closing") {
-    m.closing_diameter = parse_number<int>(v, 0, 255);
-  } else if (a == "--mask-min-area") {
-    m.min_component_area = parse_number<int>(v, 0, 1 << 24);
-  } else if (a == "--mask-update-rate") {
-    m.update_rate = parse_number<float>(v, 0.0f, 1.0f);
-  } else {
-    return false;
-  }
-  return true;
-}
-
 // Applies one option. `value` is its argument (nullopt for a flag given on the command line,
 // "true"/"false" for a flag from the config file). Returns false for an unknown option; throws
 // BadValue.
@@ -138,7 +93,9 @@ bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std:
     if (a == "--mask-no-shadows") o.masking.remove_shadows = !on;
     return true;
   }
-  if (a.rfind("--mask-", 0) == 0) return apply_masking_option(o.masking, a, value.value());
+  // --mask-K: the medi-picture option K (docs/segmentation.md has what each does).
+  if (a.rfind("--mask-", 0) == 0)
+    return apply_masking_option(o.masking, a.substr(7), value.value());
   const std::string& v = value.value();
   if (a == "--camera-id") {
     o.camera_id = parse_number<int>(v, 0, proto::kMaxCameraId);

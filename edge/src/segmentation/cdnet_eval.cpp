@@ -45,8 +45,26 @@ std::string numbered(const char* prefix, int frame, const char* suffix) {
   return name;
 }
 
+// A JPEG ends with its EOI marker (FF D9), which entropy-coded data never holds. OpenCV decodes a
+// truncated JPEG with only a libjpeg warning on stderr, grey where the data ended; scoring it
+// would count that grey silently.
+bool jpeg_ends(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail = std::min<std::streamoff>(size, 1024);
+  std::string bytes(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(bytes.data(), tail);
+  return in && bytes.find("\xff\xd9") != std::string::npos;
+}
+
 cv::Mat read_image(const std::filesystem::path& path, int flags, int frame) {
   require_exists(path);
+  const std::string extension = path.extension().string();
+  if ((extension == ".jpg" || extension == ".jpeg") && !jpeg_ends(path)) {
+    throw std::runtime_error("CDnet: frame " + std::to_string(frame) + " (" + path.string() +
+                             ") is a truncated JPEG: no end-of-image marker");
+  }
   cv::Mat image = cv::imread(path.string(), flags);
   if (image.empty()) {
     throw std::runtime_error("CDnet: cannot decode frame " + std::to_string(frame) + " (" +

@@ -78,14 +78,16 @@ Options parse(int argc, char** argv) {
       o.thresholds.require_silhouettes = true;
       continue;
     }
+    const auto p = paths.find(option);
+    const auto n = numbers.find(option);
+    // Known before its value is looked for: an unknown last option is no missing value.
+    if (p == paths.end() && n == numbers.end()) usage_error("unknown option '" + option + "'");
     if (i + 1 >= argc) usage_error("option '" + option + "' needs a value");
     const std::string value = argv[++i];
-    if (auto p = paths.find(option); p != paths.end()) {
+    if (p != paths.end()) {
       *p->second = value;
-    } else if (auto n = numbers.find(option); n != numbers.end()) {
-      *n->second = positive_number(option, value);
     } else {
-      usage_error("unknown option '" + option + "'");
+      *n->second = positive_number(option, value);
     }
   }
   if (o.truth.empty() || (o.groups.empty() && o.cameras.empty())) {

@@ -1,6 +1,7 @@
 #include "body_source.hpp"
 
 #include <memory>
+#include <stdexcept>
 
 #include "body/bvh.hpp"
 #include "body/hanim_model.hpp"
@@ -10,6 +11,9 @@
 namespace syncap::sim {
 
 BodySource open_bvh_body(const PersonSpec& person, const Scenario& scenario) {
+  if (!person.bvh_not_found.empty()) {
+    throw std::runtime_error(scenario.file.string() + ": motion " + person.bvh_not_found);
+  }
   body::RetargetOptions options;
   options.volume = body::CaptureVolume{scenario.volume_min_mm, scenario.volume_max_mm};
   options.loop = true;

@@ -234,16 +234,22 @@ PhaseSpec read_phase(Section& s, const std::filesystem::path& file) {
   return ph;
 }
 
-// A relative BVH path is looked for beside the scenario, then under $SYNCAP_DATA.
+// A relative BVH path is looked for beside the scenario, then under $SYNCAP_DATA (unset: the
+// default ../shared/data, as the tests'). Not found: the path beside the scenario, and
+// `not_found` naming both places.
 std::filesystem::path resolve_data_path(const std::filesystem::path& p,
-                                        const std::filesystem::path& scenario_file) {
+                                        const std::filesystem::path& scenario_file,
+                                        std::string& not_found) {
   if (p.is_absolute()) return p;
   const auto beside = scenario_file.parent_path() / p;
   if (std::filesystem::exists(beside)) return beside;
-  if (const char* data = std::getenv("SYNCAP_DATA"); data != nullptr && *data != '\0') {
-    const auto in_data = std::filesystem::path(data) / p;
-    if (std::filesystem::exists(in_data)) return in_data;
-  }
+  const char* env = std::getenv("SYNCAP_DATA");
+  const bool set = env != nullptr && *env != '\0';
+  const auto in_data = std::filesystem::path(set ? env : "../shared/data") / p;
+  if (std::filesystem::exists(in_data)) return in_data;
+  not_found = p.string() + " is neither beside the scenario (" + beside.string() + ") nor under " +
+              (set ? "$SYNCAP_DATA" : "$SYNCAP_DATA's default") + " (" + in_data.string() +
+              "): set SYNCAP_DATA to the data folder holding it";
   return beside;
 }
 
@@ -290,7 +296,9 @@ Scenario parse_scenario(const std::string& text, const std::filesystem::path& fi
     Section ph(phases[i], file, "phases[" + std::to_string(i) + "]");
     sc.phases.push_back(read_phase(ph, file));
     auto& person = sc.phases.back().person;
-    if (sc.phases.back().type == "person") person.bvh = resolve_data_path(person.bvh, file);
+    if (sc.phases.back().type == "person") {
+      person.bvh = resolve_data_path(person.bvh, file, person.bvh_not_found);
+    }
   }
   top.finish();
   return sc;

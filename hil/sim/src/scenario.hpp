@@ -60,7 +60,10 @@ struct LedSpec {
 };
 
 struct PersonSpec {
-  std::filesystem::path bvh;  // resolved against the scenario's folder, then $SYNCAP_DATA
+  // Resolved against the scenario's folder, then $SYNCAP_DATA (default ../shared/data, as the
+  // tests'); when found in neither, `bvh_not_found` says where it was looked for.
+  std::filesystem::path bvh;
+  std::string bvh_not_found;
   double start_s = 0;
   double speed = 1.0;
   Eigen::Vector3d light_dir{0.3, 0.2, -1.0};  // direction the light travels, for the shadow

@@ -24,7 +24,10 @@ const char* kUsage =
     "  --scenario FILE         scenario (YAML, docs/scenario.md)\n"
     "  --out DIR               output folder: cameraNN/frame_*.pgm, cameras.json, truth/\n"
     "  --max-phase-frames N    render at most N frames of each phase (short runs, CI)\n"
-    "  --quiet                 only errors\n";
+    "  --quiet                 only errors\n"
+    "A relative motion (bvh) path is looked for beside the scenario, then under $SYNCAP_DATA\n"
+    "(default ../shared/data). Exit status: 0 rendered, 1 writing failed, 2 usage error or a\n"
+    "bad scenario or motion file.\n";
 
 struct Options {
   std::filesystem::path scenario, out;
@@ -74,7 +77,8 @@ uint64_t noise_seed(unsigned seed, int frame, int camera) {
          static_cast<uint64_t>(camera);
 }
 
-int run(const Options& o) {
+// `input_read` is set once the scenario and its motion are read: errors before are bad input.
+int run(const Options& o, bool& input_read) {
   syncap::sim::Scenario scenario = syncap::sim::load_scenario(o.scenario);
   if (o.max_phase_frames > 0) {
     for (auto& phase : scenario.phases) phase.frames = std::min(phase.frames, o.max_phase_frames);
@@ -84,6 +88,7 @@ int run(const Options& o) {
   std::vector<syncap::sim::View> views;
   for (const auto& camera : rig) views.push_back(syncap::sim::make_view(camera, scenario));
   syncap::sim::Sequence sequence(scenario, syncap::sim::open_bvh_body);
+  input_read = true;
   syncap::sim::TruthWriter writer(o.out, static_cast<int>(rig.size()));
   syncap::sensor::write_cameras(o.out / "cameras.json", rig);
   std::filesystem::copy_file(o.scenario, o.out / "scenario.yaml",
@@ -113,10 +118,11 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
+  bool input_read = false;
   try {
-    return run(options);
+    return run(options, input_read);
   } catch (const std::exception& e) {
     std::cerr << "syncap-sim: " << e.what() << "\n";
-    return 1;
+    return input_read ? 1 : 2;  // 2: a bad scenario or motion file, as usage errors everywhere
   }
 }

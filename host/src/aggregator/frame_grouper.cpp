@@ -4,14 +4,93 @@
 #include <limits>
 
 #include "syncap/proto/blob_parts.hpp"
+#include "syncap/proto/channels.hpp"
 
 namespace syncap::host {
+namespace {
+
+// Far-ahead records remembered for confirming a jump; a flood of forgeries pushes out the oldest
+// (their records stay held).
+constexpr std::size_t kMaxUnconfirmed = 64;
+
+// |a - b| without overflow: frame numbers come from the wire and may be anything.
+uint64_t distance(int64_t a, int64_t b) {
+  return a >= b ? static_cast<uint64_t>(a) - static_cast<uint64_t>(b)
+                : static_cast<uint64_t>(b) - static_cast<uint64_t>(a);
+}
+
+bool within_jump_window(int64_t a, int64_t b) {
+  return distance(a, b) <= static_cast<uint64_t>(FrameGrouper::kJumpWindowFrames);
+}
+
+std::string camera_list(const std::set<int>& cameras) {
+  std::string list;
+  for (int id : cameras) list += (list.empty() ? "" : ",") + std::to_string(id);
+  return list;
+}
+
+}  // namespace
 
 FrameGrouper::FrameGrouper(std::set<int> expected_cameras, int max_lag_frames)
     : expected_(std::move(expected_cameras)), max_lag_frames_(max_lag_frames) {}
 
-void FrameGrouper::note_frame(int64_t frame_number) {
-  newest_ = newest_ ? std::max(*newest_, frame_number) : frame_number;
+void FrameGrouper::note_frame(int64_t frame_number, int source) {
+  // Unconfirmed records the newest frame has come within reach of need no confirmation any more
+  // (and must not confirm a far record later).
+  const auto forget_reached = [this] {
+    std::erase_if(unconfirmed_, [&](const Unconfirmed& u) {
+      return u.frame_number <= *newest_ || within_jump_window(u.frame_number, *newest_);
+    });
+  };
+  if (newest_ && (frame_number <= *newest_ || within_jump_window(frame_number, *newest_))) {
+    if (frame_number > *newest_) {
+      newest_ = frame_number;
+      if (!unconfirmed_.empty()) forget_reached();
+    }
+    return;
+  }
+  // Far ahead (or among the first records): the newest frame moves only when a second record
+  // confirms it, another source's or another frame's (not the same datagram sent twice).
+  for (const Unconfirmed& u : unconfirmed_) {
+    if (within_jump_window(u.frame_number, frame_number) &&
+        (u.frame_number != frame_number || u.source != source)) {
+      newest_ = std::max({newest_.value_or(frame_number), u.frame_number, frame_number});
+      forget_reached();
+      return;
+    }
+  }
+  if (newest_) ++far_ahead_;
+  unconfirmed_.push_back({frame_number, source});
+  if (unconfirmed_.size() > kMaxUnconfirmed) unconfirmed_.erase(unconfirmed_.begin());
+}
+
+bool FrameGrouper::reject_camera(int camera_id, int64_t frame_number, std::string_view channel,
+                                 const std::string& what) {
+  const std::string where = what + " for frame " + std::to_string(frame_number) + " rejected: ";
+  if (!expected_.empty() && !expected_.contains(camera_id)) {
+    ++foreign_;
+    error_ = where + "camera " + std::to_string(camera_id) +
+             " is not one of the expected cameras " + camera_list(expected_);
+    return true;
+  }
+  if (!channel.empty() && proto::camera_of_channel(channel) != camera_id) {
+    ++wrong_channel_;
+    error_ = where + "it came on channel " + std::string(channel);
+    return true;
+  }
+  return false;
+}
+
+bool FrameGrouper::keep_first_blobs(int64_t frame_number, int camera_id, blob_frame_t frame) {
+  auto& blobs = pending_[frame_number].blobs;
+  if (blobs.contains(camera_id)) {
+    ++duplicates_;
+    error_ = "blob frame of camera " + std::to_string(camera_id) + " for frame " +
+             std::to_string(frame_number) + " arrived twice: the first is kept";
+    return false;
+  }
+  blobs.emplace(camera_id, std::move(frame));
+  return true;
 }
 
 bool FrameGrouper::reject_late(int64_t frame_number, const std::string& what) {
@@ -24,13 +103,22 @@ bool FrameGrouper::reject_late(int64_t frame_number, const std::string& what) {
 
 bool FrameGrouper::add_trigger(const trigger_t& trigger) {
   if (reject_late(trigger.frame_number, "trigger")) return false;
-  pending_[trigger.frame_number].trigger = trigger;
-  note_frame(trigger.frame_number);
+  note_frame(trigger.frame_number, kTriggerSource);
+  std::optional<trigger_t>& held = pending_[trigger.frame_number].trigger;
+  if (held) {
+    ++duplicates_;
+    error_ = "trigger for frame " + std::to_string(trigger.frame_number) +
+             " arrived twice: the first is kept";
+    return false;
+  }
+  held = trigger;
   return true;
 }
 
-bool FrameGrouper::add_blob_part(const blob_frame_t& part) {
-  if (reject_late(part.frame_number, "blob frame of camera " + std::to_string(part.camera_id))) {
+bool FrameGrouper::add_blob_part(const blob_frame_t& part, std::string_view channel) {
+  const std::string what = "blob frame of camera " + std::to_string(part.camera_id);
+  if (reject_late(part.frame_number, what) ||
+      reject_camera(part.camera_id, part.frame_number, channel, what)) {
     return false;
   }
   const proto::AddResult result = parts_.add(part);
@@ -38,16 +126,16 @@ bool FrameGrouper::add_blob_part(const blob_frame_t& part) {
     error_ = parts_.error();
     return false;
   }
-  note_frame(part.frame_number);
-  if (result == proto::AddResult::kComplete) {
-    auto set = parts_.take({part.camera_id, part.frame_number});
-    pending_[part.frame_number].blobs[part.camera_id] = proto::join_blob_parts(set.parts);
-  }
-  return true;
+  note_frame(part.frame_number, part.camera_id);
+  if (result != proto::AddResult::kComplete) return true;
+  auto set = parts_.take({part.camera_id, part.frame_number});
+  return keep_first_blobs(part.frame_number, part.camera_id, proto::join_blob_parts(set.parts));
 }
 
-bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part) {
-  if (reject_late(part.frame_number, "silhouette of camera " + std::to_string(part.camera_id))) {
+bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part, std::string_view channel) {
+  const std::string what = "silhouette of camera " + std::to_string(part.camera_id);
+  if (reject_late(part.frame_number, what) ||
+      reject_camera(part.camera_id, part.frame_number, channel, what)) {
     return false;
   }
   const proto::AddResult result = silhouette_parts_.add(part);
@@ -55,7 +143,7 @@ bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part) {
     error_ = silhouette_parts_.error();
     return false;
   }
-  note_frame(part.frame_number);
+  note_frame(part.frame_number, part.camera_id);
   if (result != proto::AddResult::kComplete) return true;
   return keep_silhouette(silhouette_parts_.take({part.camera_id, part.frame_number}));
 }
@@ -63,9 +151,15 @@ bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part) {
 // Decodes a silhouette's parts (all, or what came) into the frame's pending group. Data that does
 // not decode is reported and dropped; the rest of the frame is unaffected.
 bool FrameGrouper::keep_silhouette(const proto::PartSet<silhouette_part_t>& set) {
+  auto& silhouettes = pending_[set.key.frame_number].silhouettes;
+  if (silhouettes.contains(set.key.camera_id)) {
+    ++duplicates_;
+    error_ = "silhouette of camera " + std::to_string(set.key.camera_id) + " for frame " +
+             std::to_string(set.key.frame_number) + " arrived twice: the first is kept";
+    return false;
+  }
   try {
-    pending_[set.key.frame_number].silhouettes[set.key.camera_id] =
-        proto::decode_silhouette(set.parts);
+    silhouettes[set.key.camera_id] = proto::decode_silhouette(set.parts);
     return true;
   } catch (const proto::ContourDecodeError& e) {
     error_ = std::string("silhouette dropped: ") + e.what();
@@ -116,7 +210,7 @@ FrameGroup FrameGrouper::finish(int64_t frame_number, Pending pending) {
 // Blob frames whose parts did not all arrive are joined from what came, so their blobs are kept.
 void FrameGrouper::absorb_expired_parts(int64_t before_frame) {
   for (auto& set : parts_.expire_before(before_frame)) {
-    pending_[set.key.frame_number].blobs[set.key.camera_id] = proto::join_blob_parts(set.parts);
+    keep_first_blobs(set.key.frame_number, set.key.camera_id, proto::join_blob_parts(set.parts));
   }
   for (auto& set : silhouette_parts_.expire_before(before_frame)) keep_silhouette(set);
 }
@@ -124,7 +218,10 @@ void FrameGrouper::absorb_expired_parts(int64_t before_frame) {
 std::vector<FrameGroup> FrameGrouper::pop_ready() {
   std::vector<FrameGroup> ready;
   if (!newest_) return ready;
-  const int64_t give_up_before = *newest_ - max_lag_frames_;
+  // Saturated: a confirmed newest frame may still be any int64 from the wire.
+  const int64_t give_up_before = *newest_ < std::numeric_limits<int64_t>::min() + max_lag_frames_
+                                     ? std::numeric_limits<int64_t>::min()
+                                     : *newest_ - max_lag_frames_;
   absorb_expired_parts(give_up_before);
   // In order: a complete frame waits behind an older incomplete one that may still fill up.
   while (!pending_.empty()) {

@@ -5,6 +5,19 @@
 // incomplete, once newer frames show that the missing messages will not come: when the newest frame
 // number seen is `max_lag_frames` ahead of it. Groups come out in frame-number order. Nothing that
 // arrived is dropped: an incomplete group carries what it has and names what it lacks.
+//
+// What one bad sender can do is bounded (issue 15):
+// - A record whose frame number is more than kJumpWindowFrames ahead of the newest frame (a
+//   forged or corrupted trigger with frame number 10^15) is held with its frame, counted
+//   (far_ahead_messages()), and does not move the newest frame: alone it would make every later
+//   record late. A second record within kJumpWindowFrames of it, from another source (the trigger
+//   or another camera) or for another frame, confirms the jump: the newest frame moves then. The
+//   first records after start are confirmed the same way. An unconfirmed record comes out, in an
+//   incomplete group, at flush().
+// - A record of a camera outside the expected set, or on another camera's channel, is rejected
+//   and counted (foreign_messages(), wrong_channel_messages()).
+// - A second record for the same camera (or trigger) and frame is rejected and counted
+//   (duplicate_messages()); the first is kept.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +25,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "syncap/blob_frame_t.hpp"
@@ -38,13 +52,20 @@ struct FrameGroup {
 
 class FrameGrouper {
  public:
+  // How far ahead of the newest frame a frame number may be without a second record confirming
+  // it: 10 s at 30 Hz, beyond any lag a host waits for.
+  static constexpr int64_t kJumpWindowFrames = 300;
+
+  // `expected_cameras` empty: every camera is accepted and none waited for.
   FrameGrouper(std::set<int> expected_cameras, int max_lag_frames);
 
-  // Both return false and set error() for a message they cannot use: a part inconsistent with
-  // earlier ones, or a message for a frame whose group was already handed out (counted as late).
+  // All return false and set error() for a message they cannot use: a part inconsistent with
+  // earlier ones, a message for a frame whose group was already handed out (counted as late), a
+  // camera outside the expected set, a duplicate. `channel`, when given, is the LCM channel the
+  // message came on: a camera's record on another camera's channel is rejected.
   bool add_trigger(const trigger_t& trigger);
-  bool add_blob_part(const blob_frame_t& part);
-  bool add_silhouette_part(const silhouette_part_t& part);
+  bool add_blob_part(const blob_frame_t& part, std::string_view channel = {});
+  bool add_silhouette_part(const silhouette_part_t& part, std::string_view channel = {});
 
   // Groups that are complete, or that waited max_lag_frames; in frame-number order.
   std::vector<FrameGroup> pop_ready();
@@ -53,6 +74,10 @@ class FrameGrouper {
 
   const std::string& error() const { return error_; }
   long late_messages() const { return late_; }
+  long foreign_messages() const { return foreign_; }
+  long wrong_channel_messages() const { return wrong_channel_; }
+  long duplicate_messages() const { return duplicates_; }
+  long far_ahead_messages() const { return far_ahead_; }
 
  private:
   struct Pending {
@@ -61,8 +86,18 @@ class FrameGrouper {
     std::map<int, proto::Silhouette> silhouettes;
   };
 
-  void note_frame(int64_t frame_number);
+  // A record's source for confirming jumps: the trigger or a camera id.
+  static constexpr int kTriggerSource = -1;
+  struct Unconfirmed {
+    int64_t frame_number;
+    int source;
+  };
+
+  void note_frame(int64_t frame_number, int source);
   bool reject_late(int64_t frame_number, const std::string& what);
+  bool reject_camera(int camera_id, int64_t frame_number, std::string_view channel,
+                     const std::string& what);
+  bool keep_first_blobs(int64_t frame_number, int camera_id, blob_frame_t frame);
   bool is_complete(const Pending& p) const;
   FrameGroup finish(int64_t frame_number, Pending pending);
   void absorb_expired_parts(int64_t before_frame);
@@ -75,8 +110,13 @@ class FrameGrouper {
   proto::PartCollector<blob_frame_t> parts_;
   proto::PartCollector<silhouette_part_t> silhouette_parts_;
   std::optional<int64_t> newest_;
+  std::vector<Unconfirmed> unconfirmed_;  // the latest far-ahead records, waiting for a second
   std::optional<int64_t> last_handed_out_;
   long late_ = 0;
+  long foreign_ = 0;
+  long wrong_channel_ = 0;
+  long duplicates_ = 0;
+  long far_ahead_ = 0;
   std::string error_;
 };
 

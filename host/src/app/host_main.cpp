@@ -161,7 +161,13 @@ void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
             << t.groups - t.complete << " incomplete), " << t.triggers << " triggers, "
             << t.blob_parts << " blob messages, " << t.silhouette_parts << " silhouette parts, "
             << sub.malformed() << " malformed, " << t.rejected << " rejected ("
-            << grouper.late_messages() << " late)\n";
+            << grouper.late_messages() << " late, " << grouper.foreign_messages()
+            << " from cameras not expected, " << grouper.wrong_channel_messages()
+            << " on another camera's channel, " << grouper.duplicate_messages() << " duplicates), "
+            << grouper.far_ahead_messages() << " far ahead of the newest frame\n";
+  for (const auto& [channel, count] : sub.malformed_by_channel()) {
+    std::cout << "malformed on " << channel << ": " << count << "\n";
+  }
   std::cout << t.arrivals.summary();
 }
 
@@ -206,16 +212,16 @@ int main(int argc, char** argv) {
                                      reject(grouper.add_trigger(t));
                                    });
   sub.subscribe<syncap::blob_frame_t>(std::string(syncap::proto::kBlobChannelPrefix) + ".*",
-                                      [&](const syncap::blob_frame_t& f, const std::string&) {
+                                      [&](const syncap::blob_frame_t& f, const std::string& c) {
                                         ++tally.blob_parts;
                                         tally.arrivals.add_record(f);
-                                        reject(grouper.add_blob_part(f));
+                                        reject(grouper.add_blob_part(f, c));
                                       });
   sub.subscribe<syncap::silhouette_part_t>(
       std::string(syncap::proto::kSilhouetteChannelPrefix) + ".*",
-      [&](const syncap::silhouette_part_t& p, const std::string&) {
+      [&](const syncap::silhouette_part_t& p, const std::string& c) {
         ++tally.silhouette_parts;
-        reject(grouper.add_silhouette_part(p));
+        reject(grouper.add_silhouette_part(p, c));
       });
   sub.subscribe<syncap::camera_status_t>(
       std::string(syncap::proto::kStatusChannelPrefix) + ".*",

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,9 @@ using scene::ParameterMode;
 using scene::ParameterPrior;
 
 constexpr size_t kMaxIncludeDepth = 64;
+// Includes read in all, over the whole scene. Files that each include the next twice fan out:
+// 40 levels are 2^40 reads, a hang (issue 15); a real scene reads a few dozen.
+constexpr size_t kMaxIncludes = 1000;
 constexpr int kMaxExpressionDepth = 200;
 constexpr int64_t kMaxExactInteger = int64_t{1} << 53;  // doubles hold every integer up to here
 
@@ -113,6 +117,8 @@ class Parser {
 
   const FileReader& reader_;
   std::vector<Source> sources_;
+  size_t includes_ = 0;                           // read so far
+  std::map<std::string, size_t> times_included_;  // by identity
   Token current_;
   int depth_ = 0;
   scene::Network network_;
@@ -156,12 +162,24 @@ void Parser::include(const Token& keyword) {
   if (sources_.size() >= kMaxIncludeDepth) {
     fail(keyword.position, "includes nested deeper than " + std::to_string(kMaxIncludeDepth));
   }
+  if (++includes_ > kMaxIncludes) {
+    std::string most;
+    size_t most_times = 0;
+    for (const auto& [identity, times] : times_included_) {
+      if (times > most_times) std::tie(most, most_times) = std::tie(identity, times);
+    }
+    fail(keyword.position, "include " + in_quotes(name.text) + ": more than " +
+                               std::to_string(kMaxIncludes) + " includes in all (" + most +
+                               " was included " + std::to_string(most_times) +
+                               " times: do the files include each other more than once?)");
+  }
   SourceFile file;
   try {
     file = reader_(path);
   } catch (const std::exception& error) {
     fail(name.position, "include " + in_quotes(name.text) + ": " + error.what());
   }
+  ++times_included_[file.identity];
   for (size_t i = 0; i < sources_.size(); ++i) {
     if (sources_[i].identity != file.identity) continue;
     std::string cycle;

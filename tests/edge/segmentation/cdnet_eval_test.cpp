@@ -6,6 +6,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "segmentation/masking_options.hpp"
+
 namespace syncap::edge {
 namespace {
 
@@ -65,6 +67,40 @@ TEST(CdnetEval, CorruptImageIsNamedWithItsFrame) {
     EXPECT_NE(std::string(e.what()).find("frame 5"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("in000005.jpg"), std::string::npos) << e.what();
   }
+}
+
+// Issue 15: OpenCV decodes a truncated JPEG with only a warning; it was scored silently.
+TEST(CdnetEval, TruncatedJpegIsNamedWithItsFrame) {
+  const auto folder = make_folder("cdnet_truncated");
+  const auto path = folder / "input" / "in000006.jpg";
+  // The last bytes lost: OpenCV still decodes it, grey where the data ended.
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 20);
+  try {
+    evaluate_cdnet(folder, CdnetEvalOptions{});
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 6 (" + path.string() + ") is a truncated JPEG"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Issue 15: segment-eval took --k nan, --frame-step 2xyz and --closing 99999 (28 s, then a
+// failure); its medi-picture options are now the edge's, checked alike.
+TEST(MaskingOptions, RefuseNanTrailingTextAndOutOfRange) {
+  MediPictureOptions m;
+  EXPECT_THROW(apply_masking_option(m, "k", "nan"), BadValue);
+  EXPECT_THROW(apply_masking_option(m, "closing", "99999"), BadValue);
+  EXPECT_THROW(apply_masking_option(m, "min-area", "2xyz"), BadValue);
+  try {
+    apply_masking_option(m, "closing", "99999");
+  } catch (const BadValue& e) {
+    EXPECT_STREQ(e.what(), "'99999': expected a number in 0..255");
+  }
+  EXPECT_THROW(parse_number<int>("2xyz", 1, 100), BadValue);
+  EXPECT_TRUE(apply_masking_option(m, "k", "2.5"));
+  EXPECT_FLOAT_EQ(m.k, 2.5f);
+  EXPECT_FALSE(apply_masking_option(m, "x", "1"));
 }
 
 TEST(CdnetEval, ParsesMethodNames) {

@@ -1,11 +1,10 @@
 // syncap-hil-compare end to end on hand-written truth and frame groups.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "program_run.hpp"
 #include "scratch_files.hpp"
 
 namespace syncap::compare {
@@ -13,22 +12,10 @@ namespace {
 
 using testing::ScratchDir;
 
-struct ProgramRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using syncap::test::ProgramRun;
 
 ProgramRun run_compare(const std::string& arguments) {
-  const std::string command = std::string(SYNCAP_COMPARE_PATH) + " " + arguments + " 2>&1";
-  ProgramRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  char buffer[4096];
-  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;)
-    run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  return syncap::test::run_program(std::string(SYNCAP_COMPARE_PATH) + " " + arguments);
 }
 
 std::string last_line(const std::string& text) {
@@ -127,6 +114,17 @@ TEST(Program, RejectsBadOptions) {
   EXPECT_EQ(run_compare("--truth x --groups y --max-rms-px fast").exit_code, 2);
   EXPECT_EQ(run_compare("--truth x --groups y --min-detection 98").exit_code, 2);
   EXPECT_EQ(run_compare("--help").exit_code, 0);
+}
+
+// Issue 15: an unknown last option said "needs a value".
+TEST(Program, UnknownOptionIsNamedAsUnknownWherever) {
+  for (const char* arguments : {"--truth x --groups y --x", "--x 1 --truth x --groups y"}) {
+    const ProgramRun run = run_compare(arguments);
+    EXPECT_EQ(run.exit_code, 2) << arguments;
+    EXPECT_EQ(run.output.rfind("syncap-hil-compare: unknown option '--x'\n", 0), 0u)
+        << arguments << "\n"
+        << run.output;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // syncap-sim end to end: what it writes is deterministic, its truth projections are the camera
 // model's, and its person silhouettes are exact.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -137,6 +138,25 @@ TEST_F(SimOutput, BrokenScenarioIsReportedWithFileAndLine) {
   EXPECT_NE(read(dir / "err.txt").find("bad.yaml:3: phases[0].frames = 0 is outside"),
             std::string::npos)
       << read(dir / "err.txt");
+}
+
+// Issue 15: the README's `syncap sim --scenario hil/scenarios/ring-6cam-person.yaml` failed
+// (exit 1) unless SYNCAP_DATA was set, and the error did not mention it.
+TEST_F(SimOutput, MissingMotionNamesSyncapDataAndThePathTriedAndExitsTwo) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("syncap_sim_nomotion_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "person.yaml")
+      << "cameras: {count: 1}\nphases:\n  - {type: person, frames: 1, bvh: motion/none.bvh}\n";
+  const std::string command = "SYNCAP_DATA=/nonexistent-data " + std::string(SYNCAP_SIM_EXE) +
+                              " --scenario " + (dir / "person.yaml").string() + " --out " +
+                              (dir / "out").string() + " 2> " + (dir / "err.txt").string();
+  const int status = std::system(command.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << status;
+  const std::string err = read(dir / "err.txt");
+  EXPECT_NE(err.find("$SYNCAP_DATA (/nonexistent-data/motion/none.bvh)"), std::string::npos) << err;
+  EXPECT_NE(err.find("set SYNCAP_DATA"), std::string::npos) << err;
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <unistd.h>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -276,6 +277,39 @@ TEST(BundleCommand, ErrorsNameTheFileAndThePlace) {
   run = run_bundle({"--help"});
   EXPECT_EQ(run.status, kExitOk);
   EXPECT_EQ(run.out, kBundleUsage);
+  std::filesystem::remove_all(dir);
+}
+
+// Issue 15: an empty scene file exited 0 saying "converged".
+TEST(BundleCommand, EmptySceneIsAnErrorNamingTheFile) {
+  const auto dir = fresh_dir();
+  std::ofstream(dir / "empty.sdl") << "# nothing yet\n";
+  const BundleRun run = run_bundle({(dir / "empty.sdl").string()});
+  EXPECT_EQ(run.status, kExitUsage);
+  EXPECT_EQ(run.err, "syncap bundle: " + (dir / "empty.sdl").string() +
+                         ": the scene has no station and no point: nothing to adjust\n");
+  std::filesystem::remove_all(dir);
+}
+
+// Issue 15: each file including the next twice, 40 levels deep, hung `syncap bundle` (the time
+// quadrupled every two levels). Now it stops at the include that goes beyond the limit.
+TEST(BundleCommand, IncludesThatFanOutAreAnErrorNamingFileAndLine) {
+  const auto dir = fresh_dir();
+  for (int level = 0; level < 40; ++level) {
+    std::ofstream file(dir / ("level" + std::to_string(level) + ".sdl"));
+    file << "# level " << level << "\n";
+    if (level + 1 < 40) {
+      const std::string next = "level" + std::to_string(level + 1) + ".sdl";
+      file << "include \"" << next << "\"\ninclude \"" << next << "\"\n";
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const BundleRun run = run_bundle({(dir / "level0.sdl").string()});
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  EXPECT_EQ(run.status, kExitUsage);
+  EXPECT_EQ(run.err.rfind("syncap bundle: " + (dir / "level").string(), 0), 0u) << run.err;
+  EXPECT_NE(run.err.find(":1: include \"level"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("more than 1000 includes in all"), std::string::npos) << run.err;
   std::filesystem::remove_all(dir);
 }
 

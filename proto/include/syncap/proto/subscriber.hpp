@@ -1,8 +1,10 @@
 // Typed LCM subscriptions with std::function handlers and named decode errors.
 //
 // LCM 1.3's C++ API takes member-function handlers only, and reports an undecodable message by a
-// bare line on stderr. Subscriber decodes each message itself, so a malformed one reaches the
-// error handler with its channel, type and size, and never stops the messages after it.
+// bare line on stderr. Subscriber decodes each message itself (proto::try_decode: the generated
+// decoders throw on a negative array length), so a malformed one is counted for its channel,
+// reaches the error handler with its channel, type and size, and never stops the messages after
+// it. A flood of them is reported at most once a second per channel, with the count meanwhile.
 //
 // LCM's receive thread queues what arrives until handle() takes it, at most 30 messages a
 // subscription by default, and drops the rest without a word. One regex subscription for the blob
@@ -13,10 +15,14 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "syncap/proto/decode.hpp"
 
 namespace syncap::proto {
 
@@ -28,7 +34,11 @@ class Subscriber {
   // 30 Hz. A held message costs its own size; more than this means the process cannot keep up.
   static constexpr int kDefaultQueueCapacity = 2000;
 
-  // `on_error` gets one line per malformed message; by default such messages are counted only.
+  // A channel's malformed messages are reported to `on_error` at most this often.
+  static constexpr std::chrono::seconds kReportInterval{1};
+
+  // `on_error` gets a line for the first malformed message of a channel, then at most one a
+  // kReportInterval per channel; by default such messages are counted only.
   explicit Subscriber(lcm::LCM& lcm, ErrorHandler on_error = {},
                       int queue_capacity = kDefaultQueueCapacity)
       : lcm_(lcm), on_error_(std::move(on_error)), queue_capacity_(queue_capacity) {}
@@ -49,6 +59,8 @@ class Subscriber {
   }
 
   long malformed() const { return malformed_; }
+  // Malformed messages by channel.
+  const std::map<std::string, long>& malformed_by_channel() const { return by_channel_; }
 
  private:
   struct HandlerBase {
@@ -62,9 +74,11 @@ class Subscriber {
         : owner(subscriber), fn(std::move(handler)) {}
     void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
       Msg msg;
-      if (msg.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) {
-        owner->report("malformed " + std::string(Msg::getTypeName()) + " on channel " + channel +
-                      " (" + std::to_string(rbuf->data_size) + " bytes): decode failed");
+      const DecodeResult decoded = try_decode(rbuf->data, rbuf->data_size, msg);
+      if (!decoded.ok()) {
+        owner->report(channel, "malformed " + std::string(Msg::getTypeName()) + " on channel " +
+                                   channel + " (" + std::to_string(rbuf->data_size) +
+                                   " bytes): " + decoded.error);
         return;
       }
       fn(msg, channel);
@@ -73,9 +87,28 @@ class Subscriber {
     std::function<void(const Msg&, const std::string&)> fn;
   };
 
-  void report(const std::string& message) {
+  struct ChannelReports {
+    std::chrono::steady_clock::time_point last;
+    long unreported = 0;  // malformed since the last report
+  };
+
+  void report(const std::string& channel, const std::string& message) {
     ++malformed_;
-    if (on_error_) on_error_(message);
+    const long count = ++by_channel_[channel];
+    ChannelReports& r = reports_[channel];
+    const auto now = std::chrono::steady_clock::now();
+    if (count > 1 && now - r.last < kReportInterval) {
+      ++r.unreported;
+      return;
+    }
+    std::string line = message;
+    if (r.unreported > 0) {
+      line +=
+          " (and " + std::to_string(r.unreported) + " more on this channel since the last report)";
+    }
+    r.last = now;
+    r.unreported = 0;
+    if (on_error_) on_error_(line);
   }
 
   lcm::LCM& lcm_;
@@ -83,6 +116,8 @@ class Subscriber {
   int queue_capacity_;
   std::vector<std::unique_ptr<HandlerBase>> handlers_;
   long malformed_ = 0;
+  std::map<std::string, long> by_channel_;
+  std::map<std::string, ChannelReports> reports_;
 };
 
 }  // namespace syncap::proto

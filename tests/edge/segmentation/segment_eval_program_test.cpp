@@ -1,0 +1,40 @@
+// The built syncap-segment-eval on bad arguments and bad input: exit 2, the option and value named.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "program_run.hpp"
+
+namespace {
+
+using syncap::test::ProgramRun;
+
+ProgramRun run_segment_eval(const std::string& arguments) {
+  return syncap::test::run_program(std::string(SYNCAP_SEGMENT_EVAL_PATH) + " " + arguments);
+}
+
+void expect_usage_error(const std::string& arguments, const std::string& message) {
+  const ProgramRun run = run_segment_eval(arguments);
+  EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
+  EXPECT_EQ(run.output.rfind("syncap-segment-eval: " + message + "\n", 0), 0u) << arguments << "\n"
+                                                                               << run.output;
+}
+
+// Issue 15: --k nan and --frame-step 2xyz were taken, a bad number said only "stoi",
+// --closing 99999 failed after 28 s, an unknown last option "needed a value", and a missing
+// folder exited 1.
+TEST(SegmentEvalProgram, BadValuesUnknownOptionsAndBadInputExitTwoNamingThem) {
+  const std::string scene = "--scene /nonexistent/scene";
+  expect_usage_error(scene + " --k nan", "--k 'nan': expected a number in 0.100000..100.000000");
+  expect_usage_error(scene + " --frame-step 2xyz",
+                     "--frame-step '2xyz': expected a number in 1..16777216");
+  expect_usage_error(scene + " --min-area x", "--min-area 'x': expected a number in 0..16777216");
+  expect_usage_error(scene + " --closing 99999", "--closing '99999': expected a number in 0..255");
+  expect_usage_error(scene + " --x", "unknown option '--x'");
+  expect_usage_error(scene + " --x 1", "unknown option '--x'");
+  const ProgramRun missing = run_segment_eval(scene);
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("/nonexistent/scene"), std::string::npos) << missing.output;
+}
+
+}  // namespace
