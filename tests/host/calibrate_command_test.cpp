@@ -31,19 +31,22 @@ int run(const std::vector<std::string>& args, std::string& out, std::string& err
   return status;
 }
 
+// A simulated network's measurements as the CSV `syncap calibrate --input csv:` reads.
+void write_csv(const fs::path& file, const scene::Network& network) {
+  std::ofstream csv(file);
+  csv << "frame,camera,x,y\n";
+  for (const auto& m : network.measurements) {
+    csv << m.frame_number << ',' << m.station.substr(6) << ',' << m.u << ',' << m.v << '\n';
+  }
+}
+
 TEST(CalibrateCommand, CsvWandRecordingGivesTheCalibrationFolder) {
   const fs::path dir = fs::temp_directory_path() / ("syncap-calcmd-" + std::to_string(getpid()));
   fs::create_directories(dir);
   estimators::WandSimulation sim;
   sim.frames = 60;
   const auto net = estimators::simulate_wand_network(sim);
-  {
-    std::ofstream csv(dir / "wand.csv");
-    csv << "frame,camera,x,y\n";
-    for (const auto& m : net.network.measurements) {
-      csv << m.frame_number << ',' << m.station.substr(6) << ',' << m.u << ',' << m.v << '\n';
-    }
-  }
+  write_csv(dir / "wand.csv", net.network);
   // A CSV carries no image sizes: without --image-size the camera is named.
   std::string out, err;
   EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length", "1000", "--out",
@@ -83,13 +86,7 @@ TEST(CalibrateCommand, AFailedVerdictExitsWithStatusOne) {
       fs::temp_directory_path() / ("syncap-calverdict-" + std::to_string(getpid()));
   fs::create_directories(dir);
   const auto net = estimators::simulate_wand_network(calibration::weak_led_network(400, 11));
-  {
-    std::ofstream csv(dir / "led.csv");
-    csv << "frame,camera,x,y\n";
-    for (const auto& m : net.network.measurements) {
-      csv << m.frame_number << ',' << m.station.substr(6) << ',' << m.u << ',' << m.v << '\n';
-    }
-  }
+  write_csv(dir / "led.csv", net.network);
   const std::vector<std::string> common{"--input", "csv:" + (dir / "led.csv").string(),
                                         "--led",   "--image-size",
                                         "659x494", "--pixel-size",
