@@ -150,7 +150,7 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
           calibration::KnownCameraDistance{static_cast<int>(v[0]), static_cast<int>(v[1]), v[2]};
     } else if (arg == "--principal-point-sigma") {
       o.principal_point_sigma_share = number_arg(arg, value());
-      if (!(o.principal_point_sigma_share >= 0)) {
+      if (!(*o.principal_point_sigma_share >= 0)) {
         throw UsageError{"--principal-point-sigma must be >= 0"};
       }
     } else if (arg == "--check-share") {

@@ -315,11 +315,11 @@ CalibrationOptions adjust_final(scene::Network& network, const CalibrationOption
                                 CalibrationResult& out) {
   CalibrationOptions model = options;
   const std::vector<int> requested = requested_interior(options);
-  model.free_interior = options.select_model ? base_model(requested) : requested;
+  model.free_interior = selects_model(options) ? base_model(requested) : requested;
   out.adjustment = adjust_stage(network, model, {true, true});
   out.model.base = model.free_interior;
   out.model.final = model.free_interior;
-  if (!options.select_model || !out.adjustment.converged) return model;
+  if (!selects_model(options) || !out.adjustment.converged) return model;
   out.model = select_model(network, out.adjustment, options);
   for (const GroupTest& t : out.model.tests) say(options, "model: " + t.text);
   if (out.model.final == out.model.base) return model;
@@ -399,6 +399,14 @@ void check(CalibrationResult& out, const Observations& observations,
 }
 
 }  // namespace
+
+bool selects_model(const CalibrationOptions& options) {
+  return options.select_model.value_or(options.wand.led);
+}
+
+double principal_point_sigma(const CalibrationOptions& options) {
+  return options.principal_point_sigma_share.value_or(options.wand.led ? 0.03 : 0.0);
+}
 
 size_t model_index(const scene::Network& network, size_t station) {
   const std::string& name = network.stations.at(station).model;
@@ -522,7 +530,7 @@ CalibrationResult calibrate(const Observations& observations, const CalibrationO
   if (!options.start_fields_of_view_deg.empty() && options.start_interiors.empty()) {
     // Searched with the base model: the further groups trade off against c on a weak network.
     CalibrationOptions base = options;
-    if (options.select_model) base.free_interior = base_model(requested_interior(options));
+    if (selects_model(options)) base.free_interior = base_model(requested_interior(options));
     choose_start(network, base, out);
   }
   const std::vector<scene::CameraModel> nominal = network.models;  // the bootstrap restarts there

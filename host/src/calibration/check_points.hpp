@@ -38,7 +38,7 @@ struct CheckPointResult {
 double median_residual_px(const estimators::BundleAdjustmentResult& adjusted, bool count_lost);
 
 // The held-out frames: every `1 / share`-th of `frames` (sorted), starting with the middle of the
-// first stride; none when share <= 0 or fewer than 20 frames would stay.
+// first stride; none when share <= 0 or fewer than 100 frames would stay.
 std::vector<int64_t> check_frames(const std::vector<int64_t>& frames, double share);
 
 // Predicts the identified targets of `frames` with `cameras`. Rays farther than

@@ -123,9 +123,9 @@ void prepare_stage(scene::Network& network, const CalibrationOptions& options, S
     // images) the prior hardly counts; where they do not (one LED in a small volume: a shift of
     // the principal point and a turn of the camera look alike) it holds the point where lenses
     // are. Observed at the approximation, so the approximation is the centre.
-    if (options.principal_point_sigma_share > 0) {
+    if (principal_point_sigma(options) > 0) {
       const double sigma =
-          options.principal_point_sigma_share * model.sensor.width_px * model.sensor.pixel_width_mm;
+          principal_point_sigma(options) * model.sensor.width_px * model.sensor.pixel_width_mm;
       for (int i : {sensor::InteriorBlock::kXp, sensor::InteriorBlock::kYp}) {
         if (free.count(i) == 0) continue;
         observed(i, sigma);

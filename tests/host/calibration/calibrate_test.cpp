@@ -199,7 +199,7 @@ TEST(Calibrate, AWeakNetworkPointsToTheBootstrap) {
             std::string::npos);
   options.bootstrap_samples = 3;
   EXPECT_FALSE(says_weak(calibrate(weak.observations, options)));
-  sim.frames = 45;  // 41 adjusted, 4 held out as check points
+  sim.frames = 40;
   options.bootstrap_samples = 0;
   EXPECT_FALSE(says_weak(calibrate(observe(sim, false, 0.0, 0.0).observations, options)));
 }

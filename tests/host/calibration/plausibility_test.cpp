@@ -94,13 +94,15 @@ TEST(Plausibility, PointsBehindTheCameraFail) {
 
 TEST(CheckPoints, EveryTenthFrameIsHeldOutWhenEnoughStay) {
   std::vector<int64_t> frames;
-  for (int64_t f = 100; f < 200; ++f) frames.push_back(f);
+  for (int64_t f = 100; f < 300; ++f) frames.push_back(f);
   const std::vector<int64_t> held = check_frames(frames, 0.1);
-  ASSERT_EQ(held.size(), 10u);
+  ASSERT_EQ(held.size(), 20u);
   EXPECT_EQ(held.front(), 105);
   EXPECT_EQ(held[1], 115);
   EXPECT_TRUE(check_frames(frames, 0.0).empty());
-  frames.resize(21);  // 19 would stay: too few
+  frames.resize(111);  // 100 would stay
+  EXPECT_EQ(check_frames(frames, 0.1).size(), 11u);
+  frames.resize(110);  // 99 would stay: too few
   EXPECT_TRUE(check_frames(frames, 0.1).empty());
 }
 
