@@ -84,13 +84,17 @@ bool FrameGrouper::reject_camera(int camera_id, int64_t frame_number, std::strin
 bool FrameGrouper::keep_first_blobs(int64_t frame_number, int camera_id, blob_frame_t frame) {
   auto& blobs = pending_[frame_number].blobs;
   if (blobs.contains(camera_id)) {
-    ++duplicates_;
-    error_ = "blob frame of camera " + std::to_string(camera_id) + " for frame " +
-             std::to_string(frame_number) + " arrived twice: the first is kept";
-    return false;
+    return reject_duplicate("blob frame of camera " + std::to_string(camera_id), frame_number);
   }
   blobs.emplace(camera_id, std::move(frame));
   return true;
+}
+
+bool FrameGrouper::reject_duplicate(const std::string& what, int64_t frame_number) {
+  ++duplicates_;
+  error_ =
+      what + " for frame " + std::to_string(frame_number) + " arrived twice: the first is kept";
+  return false;
 }
 
 bool FrameGrouper::reject_late(int64_t frame_number, const std::string& what) {
@@ -105,12 +109,7 @@ bool FrameGrouper::add_trigger(const trigger_t& trigger) {
   if (reject_late(trigger.frame_number, "trigger")) return false;
   note_frame(trigger.frame_number, kTriggerSource);
   std::optional<trigger_t>& held = pending_[trigger.frame_number].trigger;
-  if (held) {
-    ++duplicates_;
-    error_ = "trigger for frame " + std::to_string(trigger.frame_number) +
-             " arrived twice: the first is kept";
-    return false;
-  }
+  if (held) return reject_duplicate("trigger", trigger.frame_number);
   held = trigger;
   return true;
 }
@@ -153,10 +152,8 @@ bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part, std::strin
 bool FrameGrouper::keep_silhouette(const proto::PartSet<silhouette_part_t>& set) {
   auto& silhouettes = pending_[set.key.frame_number].silhouettes;
   if (silhouettes.contains(set.key.camera_id)) {
-    ++duplicates_;
-    error_ = "silhouette of camera " + std::to_string(set.key.camera_id) + " for frame " +
-             std::to_string(set.key.frame_number) + " arrived twice: the first is kept";
-    return false;
+    return reject_duplicate("silhouette of camera " + std::to_string(set.key.camera_id),
+                            set.key.frame_number);
   }
   try {
     silhouettes[set.key.camera_id] = proto::decode_silhouette(set.parts);

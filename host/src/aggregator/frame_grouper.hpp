@@ -98,6 +98,9 @@ class FrameGrouper {
   bool reject_camera(int camera_id, int64_t frame_number, std::string_view channel,
                      const std::string& what);
   bool keep_first_blobs(int64_t frame_number, int camera_id, blob_frame_t frame);
+  // Counts a second record of `what` ("trigger", "silhouette of camera 2") for a frame that has
+  // one already, says so in error(); false (the first is kept).
+  bool reject_duplicate(const std::string& what, int64_t frame_number);
   bool is_complete(const Pending& p) const;
   FrameGroup finish(int64_t frame_number, Pending pending);
   void absorb_expired_parts(int64_t before_frame);
