@@ -85,12 +85,12 @@ std::set<int> camera_list(const std::string& text) {
 }
 
 std::vector<int> interior_list(const std::string& text) {
-  static const char* names[] = {"c", "xp", "yp", "k1", "k2", "k3", "p1", "p2", "sc", "sh"};
+  const auto& names = sensor::InteriorBlock::kNames;
   std::vector<int> free;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
     int index = -1;
-    for (int i = 0; i < 10; ++i) {
+    for (int i = 0; i < sensor::InteriorBlock::kSize; ++i) {
       if (item == names[i]) index = i;
     }
     if (index < 0) {

@@ -37,13 +37,7 @@ std::vector<int64_t> frames_to_use(const Identification& identification, int max
   for (const auto& [frame, cameras] : identification.frames) {
     if (cameras.size() >= 2) frames.push_back(frame);
   }
-  if (max_frames <= 0 || static_cast<int>(frames.size()) <= max_frames) return frames;
-  std::vector<int64_t> thinned;
-  const double step = static_cast<double>(frames.size()) / max_frames;
-  for (int i = 0; i < max_frames; ++i) {
-    thinned.push_back(frames[static_cast<size_t>(std::floor(i * step))]);
-  }
-  return thinned;
+  return evenly_spread(std::move(frames), max_frames);
 }
 
 bool same_sensor(const sensor::SensorGeometry& a, const sensor::SensorGeometry& b) {
@@ -68,10 +62,10 @@ FrameSplit split_frames(const Identification& identification, const CalibrationO
   return out;
 }
 
-const char* kInteriorNames[] = {"c", "xp", "yp", "k1", "k2", "k3", "p1", "p2", "sc", "sh"};
+const auto& kInteriorNames = sensor::InteriorBlock::kNames;
 const char* kInteriorUnits[] = {"mm",    "mm",    "mm",    "mm^-2", "mm^-4",
                                 "mm^-6", "mm^-1", "mm^-1", "1",     "1"};
-const char* kExteriorNames[] = {"X0", "Y0", "Z0", "omega", "phi", "kappa"};
+const auto& kExteriorNames = sensor::ExteriorBlock::kNames;
 const char* kExteriorUnits[] = {"mm", "mm", "mm", "rad", "rad", "rad"};
 
 const char* mode_name(scene::ParameterMode mode) {

@@ -19,7 +19,7 @@ using sensor::InteriorBlock;
 constexpr double kAlpha = 0.001;
 constexpr double kSignificantT = 3.0;
 constexpr double kMaxCorrelation = 0.95;
-const char* kNames[] = {"c", "xp", "yp", "k1", "k2", "k3", "p1", "p2", "sc", "sh"};
+const auto& kNames = InteriorBlock::kNames;
 
 bool contains(const std::vector<int>& v, int x) {
   return std::find(v.begin(), v.end(), x) != v.end();

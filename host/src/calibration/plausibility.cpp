@@ -131,6 +131,9 @@ std::vector<CameraEvidence> camera_evidence(const scene::Network& network,
   for (size_t m = 0; m < network.models.size(); ++m) model_index[network.models[m].name] = m;
   for (size_t p = 0; p < network.points.size(); ++p) point_index[network.points[p].name] = p;
   std::vector<CameraEvidence> out;
+  // Per station its centre and its z' axis: in front when z' . (X - X0) < 0 (the camera looks
+  // along -z').
+  std::vector<Eigen::Vector3d> centre, back;
   for (size_t s = 0; s < network.stations.size(); ++s) {
     const scene::Station& station = network.stations[s];
     station_index[station.name] = s;
@@ -140,6 +143,8 @@ std::vector<CameraEvidence> camera_evidence(const scene::Network& network,
     e.camera.sensor = network.models[m].sensor;
     e.camera.interior = result.models[m].interior;
     e.camera.exterior = result.stations[s].exterior;
+    centre.push_back(e.camera.projection_centre());
+    back.push_back(e.camera.rotation().col(2));
     out.push_back(e);
   }
   for (size_t i = 0; i < network.measurements.size(); ++i) {
@@ -147,12 +152,10 @@ std::vector<CameraEvidence> camera_evidence(const scene::Network& network,
     const scene::ImageMeasurement& meas = network.measurements[i];
     const auto p = point_index.find(meas.point);
     if (p == point_index.end() || !result.points[p->second].adjusted) continue;
-    CameraEvidence& e = out[station_index.at(meas.station)];
-    e.pixels.emplace_back(meas.u, meas.v);
+    const size_t s = station_index.at(meas.station);
+    out[s].pixels.emplace_back(meas.u, meas.v);
     const Eigen::Vector3d point(result.points[p->second].xyz.data());
-    // In front when the sensor z' of (X - X0) is negative (the camera looks along -z').
-    const double depth = e.camera.rotation().col(2).dot(point - e.camera.projection_centre());
-    if (depth >= 0) ++e.behind;
+    if (back[s].dot(point - centre[s]) >= 0) ++out[s].behind;
   }
   return out;
 }

@@ -56,6 +56,15 @@ Eigen::Vector3d vertical_of(const std::vector<scene::Station>& stations) {
 }  // namespace
 
 // Start interior: centred principal point, no distortion, c from the typical field of view.
+std::vector<int64_t> evenly_spread(std::vector<int64_t> frames, int count) {
+  if (count <= 0 || static_cast<int>(frames.size()) <= count) return frames;
+  std::vector<int64_t> spread;
+  const double step = static_cast<double>(frames.size()) / count;
+  for (int i = 0; i < count; ++i)
+    spread.push_back(frames[static_cast<size_t>(std::floor(i * step))]);
+  return spread;
+}
+
 sensor::InteriorOrientation start_interior(const sensor::SensorGeometry& sensor,
                                            double field_of_view_deg) {
   sensor::InteriorOrientation interior;

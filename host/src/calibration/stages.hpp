@@ -11,6 +11,9 @@ namespace syncap::calibration {
 sensor::InteriorOrientation start_interior(const sensor::SensorGeometry& sensor,
                                            double field_of_view_deg);
 
+// `count` of `frames` (ordered), evenly spread; all of them when count <= 0 or they are fewer.
+std::vector<int64_t> evenly_spread(std::vector<int64_t> frames, int count);
+
 // Moves the network (stations and points, rigidly) into the levelled frame documented in
 // calibrate.hpp.
 void level_network(scene::Network& network);

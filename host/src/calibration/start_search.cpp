@@ -37,10 +37,8 @@ scene::Network thinned(const scene::Network& network, int frames) {
   std::set<int64_t> all;
   for (const scene::ImageMeasurement& m : network.measurements) all.insert(m.frame_number);
   if (frames <= 0 || static_cast<int>(all.size()) <= frames) return network;
-  const std::vector<int64_t> ordered(all.begin(), all.end());
-  std::set<int64_t> kept;
-  const double step = static_cast<double>(ordered.size()) / frames;
-  for (int i = 0; i < frames; ++i) kept.insert(ordered[static_cast<size_t>(std::floor(i * step))]);
+  const std::vector<int64_t> spread = evenly_spread({all.begin(), all.end()}, frames);
+  const std::set<int64_t> kept(spread.begin(), spread.end());
   std::set<std::string> points;
   for (const scene::ImageMeasurement& m : network.measurements) {
     if (kept.count(m.frame_number)) points.insert(m.point);

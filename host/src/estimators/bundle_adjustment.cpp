@@ -73,9 +73,8 @@ double w_of_log_p(double log_p) {
 // The convergence tolerance of the re-adjustments between rejections (Ceres' default).
 constexpr double kRelaxedTolerance = 1e-6;
 
-const char* const kInteriorNames[kInteriorSize] = {"c",  "xp", "yp", "k1", "k2",
-                                                   "k3", "p1", "p2", "sc", "sh"};
-const char* const kExteriorNames[kExteriorSize] = {"X0", "Y0", "Z0", "omega", "phi", "kappa"};
+const auto& kInteriorNames = sensor::InteriorBlock::kNames;
+const auto& kExteriorNames = sensor::ExteriorBlock::kNames;
 const char* const kPointNames[3] = {"X", "Y", "Z"};
 
 std::string quoted(const std::string& s) { return "\"" + s + "\""; }

@@ -58,6 +58,9 @@ struct InteriorBlock {
   static constexpr int kSc = 8;
   static constexpr int kSh = 9;
   static constexpr int kSize = 10;
+  // The values' names in reports, scene files and options, in block order.
+  static constexpr const char* kNames[kSize] = {"c",  "xp", "yp", "k1", "k2",
+                                                "k3", "p1", "p2", "sc", "sh"};
 };
 
 struct ExteriorBlock {
@@ -68,6 +71,7 @@ struct ExteriorBlock {
   static constexpr int kPhi = 4;
   static constexpr int kKappa = 5;
   static constexpr int kSize = 6;
+  static constexpr const char* kNames[kSize] = {"X0", "Y0", "Z0", "omega", "phi", "kappa"};
 };
 
 inline std::array<double, InteriorBlock::kSize> interior_block(const InteriorOrientation& i) {
