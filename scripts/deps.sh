@@ -12,10 +12,14 @@ PACKAGES=(
   libaravis-dev libusb-1.0-0-dev aravis-tools-cli libv4l-dev
   # messaging: LCM library, lcm-gen, lcm-logger, lcm-logplayer
   liblcm-dev liblcm-bin
+  # authenticated commands to the edges (crypto_auth, docs/security.md)
+  libsodium-dev
   # trigger GPIO
   libgpiod-dev gpiod
   # vision and geometry
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
+  # command-line options (CLI11)
+  libcli11-dev
   # tests and benchmarks
   libcmocka-dev libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing the SDL parser (scripts/fuzz-sdl.sh): clang with libFuzzer and the sanitizer runtimes

@@ -13,6 +13,7 @@
 #include "sensor/volume_outline.hpp"
 #include "subcommand.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/command_auth.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -26,6 +27,7 @@ struct ClipArgs {
   std::set<int> only;
   bool remove = false;
   bool publish = false;
+  std::string key_path;
   std::string lcm_url = proto::kDefaultLcmUrl;
 };
 
@@ -56,8 +58,8 @@ std::optional<std::string> parse_clip_args(std::span<const std::string> args, Cl
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     const bool has_value = i + 1 < args.size();
-    static const std::set<std::string> kWithValue{"--cameras", "--volume", "--margin", "--camera",
-                                                  "--lcm-url"};
+    static const std::set<std::string> kWithValue{"--cameras", "--volume",  "--margin",
+                                                  "--camera",  "--lcm-url", "--key"};
     if (arg == "--remove") {
       parsed.remove = true;
     } else if (arg == "--publish") {
@@ -83,12 +85,16 @@ std::optional<std::string> parse_clip_args(std::span<const std::string> args, Cl
       if (!id || *id < 0 || *id > proto::kMaxCameraId || *id != static_cast<int>(*id))
         return "--camera '" + args[i] + "': a camera id 0..99";
       parsed.only.insert(static_cast<int>(*id));
+    } else if (arg == "--key") {
+      parsed.key_path = args[++i];
     } else {
       parsed.lcm_url = args[++i];
     }
   }
   if (parsed.cameras.empty()) return "--cameras FILE is required";
   if (parsed.volume.has_value() == parsed.remove) return "give either --volume or --remove";
+  if (parsed.publish && parsed.key_path.empty())
+    return "--publish needs --key FILE: an edge applies only signed polygons";
   return std::nullopt;
 }
 
@@ -158,14 +164,22 @@ int clip_command(std::span<const std::string> args, std::ostream& out, std::ostr
   const ClipPolygons clips = clip_polygons(cameras, parsed.volume.value_or(std::array<double, 6>{}),
                                            parsed.margin_px, parsed.remove);
   std::optional<lcm::LCM> lcm;
+  std::optional<proto::CommandSigner> signer;
   if (parsed.publish) {
+    try {
+      signer.emplace(proto::CommandKey::load(parsed.key_path));
+    } catch (const proto::CommandKeyError& e) {
+      err << kErrorPrefix << "--key " << e.what() << '\n';
+      return kExitUsage;
+    }
     lcm.emplace(parsed.lcm_url);
     if (!lcm->good()) {
       err << kErrorPrefix << "cannot open LCM at " << parsed.lcm_url << '\n';
       return kExitUsage;
     }
   }
-  for (const clip_polygon_t& m : clips.messages) {
+  for (clip_polygon_t m : clips.messages) {
+    if (signer) signer->sign(m);
     out << nlohmann::ordered_json(m).dump() << '\n';
     if (lcm) lcm->publish(proto::kEdgeClipChannel, &m);
   }

@@ -23,7 +23,9 @@ inline constexpr const char* kClipUsage =
     "  --margin PX     grow each outline by PX pixels (default 8)\n"
     "  --camera ID     only this camera (repeatable)\n"
     "  --remove        clip nothing: polygons of no points\n"
-    "  --publish       send clip_polygon_t on SYNCAP_EDGE_CLIP\n"
+    "  --publish       send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key\n"
+    "  --key FILE      the installation's command key (syncap keygen; needed by --publish:\n"
+    "                  an edge applies only signed polygons, docs/security.md)\n"
     "  --lcm-url URL   LCM provider for --publish (default udpm://239.255.76.67:7667?ttl=0)\n"
     "Exit status: 0 done, 1 a camera could not be clipped (named; the others are sent),\n"
     "2 usage error or unreadable FILE.\n";

@@ -17,6 +17,7 @@
 #include "bundle_command.hpp"
 #include "calibrate_command.hpp"
 #include "clip_command.hpp"
+#include "ctl_command.hpp"
 #include "log_command.hpp"
 #include "subcommand.hpp"
 
@@ -39,6 +40,10 @@ constexpr std::array kSubcommands{
                &syncap::tools::calibrate_command},
     Subcommand{"clip", "send each camera the capture volume's outline as its masking's clip",
                &syncap::tools::clip_command},
+    Subcommand{"ctl", "command the edges (start, stop, background, threshold, ROI, ...), signed",
+               &syncap::tools::ctl_command},
+    Subcommand{"keygen", "create the installation's key that signs the edges' commands",
+               &syncap::tools::keygen_command},
 };
 
 // Subcommands that are programs of their own, `syncap-NAME`, looked for beside this program,

@@ -67,6 +67,11 @@ void to_json(nlohmann::ordered_json& json, const camera_status_t& msg) {
       {"frames_incomplete", msg.frames_incomplete},
       {"frame_rate_hz", msg.frame_rate_hz},
       {"processing_us_mean", msg.processing_us_mean},
+      {"commands_accepted", msg.commands_accepted},
+      {"commands_rejected", msg.commands_rejected},
+      {"last_command_sender", msg.last_command_sender},
+      {"last_command_sequence", msg.last_command_sequence},
+      {"last_command_result", msg.last_command_result},
       {"message", msg.message},
   };
 }
@@ -88,23 +93,45 @@ void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg) {
   };
 }
 
+namespace {
+
+// A command's MAC as 64 hexadecimal digits.
+std::string mac_hex(const int8_t (&mac)[32]) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string hex;
+  for (const int8_t byte : mac) {
+    const auto b = static_cast<uint8_t>(byte);
+    hex += kDigits[b >> 4];
+    hex += kDigits[b & 15];
+  }
+  return hex;
+}
+
+}  // namespace
+
 void to_json(nlohmann::ordered_json& json, const edge_command_t& msg) {
   json = {
-      {"camera_id", msg.camera_id}, {"sequence", msg.sequence},     {"command", msg.command},
-      {"int_value", msg.int_value}, {"real_value", msg.real_value}, {"roi_x", msg.roi_x},
-      {"roi_y", msg.roi_y},         {"roi_width", msg.roi_width},   {"roi_height", msg.roi_height},
+      {"camera_id", msg.camera_id},   {"sender", msg.sender},
+      {"sequence", msg.sequence},     {"sent_realtime_ns", msg.sent_realtime_ns},
+      {"command", msg.command},       {"int_value", msg.int_value},
+      {"real_value", msg.real_value}, {"roi_x", msg.roi_x},
+      {"roi_y", msg.roi_y},           {"roi_width", msg.roi_width},
+      {"roi_height", msg.roi_height}, {"mac", mac_hex(msg.mac)},
   };
 }
 
 void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg) {
   json = {
       {"camera_id", msg.camera_id},
+      {"sender", msg.sender},
       {"sequence", msg.sequence},
+      {"sent_realtime_ns", msg.sent_realtime_ns},
       {"image_width", msg.image_width},
       {"image_height", msg.image_height},
       {"num_points", msg.num_points},
       {"x", msg.x},
       {"y", msg.y},
+      {"mac", mac_hex(msg.mac)},
   };
 }
 

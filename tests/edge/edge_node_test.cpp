@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstring>
 #include <map>
 #include <thread>
 #include <vector>
@@ -67,7 +68,8 @@ class EdgeNodeTest : public ::testing::Test {
         EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
                       [this](const camera_status_t& s) { statuses_.push_back(s); },
                       [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
-                      {}});
+                      {}},
+        key_);
   }
   trigger_t trigger(int64_t k, bool last = false) {
     trigger_t t{};
@@ -75,6 +77,14 @@ class EdgeNodeTest : public ::testing::Test {
     t.flags = last ? trigger_t::FLAG_LAST : 0;
     return t;
   }
+  // As the host does: every command and clip polygon signed with the installation's key.
+  template <class Message>
+  Message signed_(Message message) {
+    signer_.sign(message);
+    return message;
+  }
+  proto::CommandKey key_ = proto::CommandKey::generate();
+  proto::CommandSigner signer_{key_};
   EdgeOptions options_;
   FakeSource source_;
   std::vector<blob_frame_t> frames_;
@@ -135,7 +145,7 @@ TEST_F(EdgeNodeTest, SetRoiKeepsBlobsInSensorCoordinates) {
   roi.roi_y = 128;
   roi.roi_width = 96;
   roi.roi_height = 64;
-  EXPECT_FALSE(node_->on_command(roi));
+  EXPECT_FALSE(node_->on_command(signed_(roi)));
   EXPECT_EQ(source_.roi, cv::Rect(160, 128, 96, 64));
   node_->on_trigger(trigger(1));
   const blob_frame_t& f = frames_.back();
@@ -147,12 +157,11 @@ TEST_F(EdgeNodeTest, SetRoiKeepsBlobsInSensorCoordinates) {
   EXPECT_EQ(f.image_width, 320);  // the sensor, not the window
   EXPECT_EQ(f.image_height, 240);
   roi.roi_width = 0;  // back to the whole sensor
-  node_->on_command(roi);
+  node_->on_command(signed_(roi));
   EXPECT_TRUE(source_.roi.empty());
   roi.roi_x = -5;
   roi.roi_width = 10;
-  node_->on_command(roi);
-  node_->publish_status();
+  node_->on_command(signed_(roi));  // its acknowledgement carries the refusal
   EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
   EXPECT_NE(statuses_.back().message.find("SET_ROI refused: fake: region refused"),
             std::string::npos)
@@ -187,7 +196,8 @@ TEST_F(EdgeNodeTest, HeartbeatCarriesThePublishingQueue) {
                     [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
                     [] {
                       return PublishQueueStats{5, 64, 17, 1000};
-                    }});
+                    }},
+      key_);
   node_->publish_status();
   EXPECT_EQ(statuses_.back().message, "queue 5/64, 17 dropped");
   node_->on_trigger(trigger(1));  // lost
@@ -202,7 +212,7 @@ TEST_F(EdgeNodeTest, StopIgnoresTriggersUntilStart) {
   edge_command_t stop{};
   stop.camera_id = edge_command_t::ALL_CAMERAS;
   stop.command = edge_command_t::STOP;
-  EXPECT_FALSE(node_->on_command(stop));
+  EXPECT_FALSE(node_->on_command(signed_(stop)));
   node_->on_trigger(trigger(0));
   EXPECT_TRUE(frames_.empty());
   node_->publish_status();
@@ -210,7 +220,7 @@ TEST_F(EdgeNodeTest, StopIgnoresTriggersUntilStart) {
   EXPECT_EQ(statuses_.back().frames_lost, 0) << "a stopped camera loses nothing";
   edge_command_t start = stop;
   start.command = edge_command_t::START;
-  node_->on_command(start);
+  node_->on_command(signed_(start));
   node_->on_trigger(trigger(1));
   ASSERT_EQ(frames_.size(), 1u);
   EXPECT_EQ(frames_[0].frame_number, 1);
@@ -219,32 +229,92 @@ TEST_F(EdgeNodeTest, StopIgnoresTriggersUntilStart) {
 }
 
 // Issue 15: any process on the segment could stop an edge and it obeyed without a word.
-TEST_F(EdgeNodeTest, EveryCommandIsLoggedAndCounted) {
+TEST_F(EdgeNodeTest, EveryCommandIsLoggedCountedAndAcknowledged) {
   edge_command_t c{};
   c.camera_id = edge_command_t::ALL_CAMERAS;
-  c.sequence = 17;
   c.command = edge_command_t::STOP;
   options_.quiet = true;  // the command log is written even then
-  node_ = std::make_unique<EdgeNode>(options_, source_, EdgePublisher{});
+  node_ = std::make_unique<EdgeNode>(
+      options_, source_,
+      EdgePublisher{{}, [this](const camera_status_t& s) { statuses_.push_back(s); }, {}, {}},
+      key_);
   testing::internal::CaptureStderr();
-  node_->on_command(c);
+  node_->on_command(signed_(c));
   c.camera_id = 4;
-  c.sequence = 18;
   c.command = edge_command_t::SET_THRESHOLD;
   c.int_value = 40;
-  node_->on_command(c);
+  node_->on_command(signed_(c));
   c.camera_id = 5;  // another camera's: neither logged nor counted
-  node_->on_command(c);
+  node_->on_command(signed_(c));
   const std::string log = testing::internal::GetCapturedStderr();
-  EXPECT_NE(log.find("syncap-edge camera 4: command STOP (sequence 17, to all cameras) at 20"),
+  const std::string sender = "(sender " + std::to_string(signer_.sender());
+  EXPECT_NE(log.find("syncap-edge camera 4: command STOP to all cameras " + sender +
+                     ", sequence 1) at 20"),
             std::string::npos)
       << log;
-  EXPECT_NE(log.find("command SET_THRESHOLD 40 (sequence 18, to this camera) at "),
+  EXPECT_NE(log.find("command SET_THRESHOLD 40 to this camera " + sender + ", sequence 2) at "),
             std::string::npos)
       << log;
-  EXPECT_NE(log.find("sender unknown"), std::string::npos) << log;
-  EXPECT_EQ(log.find("sequence 18", log.find("sequence 18") + 1), std::string::npos) << log;
-  EXPECT_EQ(node_->commands(), 2);
+  EXPECT_NE(log.find(": accepted"), std::string::npos) << log;
+  EXPECT_EQ(log.find("sequence 3"), std::string::npos) << log;
+  EXPECT_EQ(node_->commands_accepted(), 2);
+  // Each obeyed command is acknowledged at once by a status naming it.
+  ASSERT_EQ(statuses_.size(), 2u);
+  EXPECT_EQ(statuses_[0].state, camera_status_t::STATE_IDLE);
+  EXPECT_EQ(statuses_[1].last_command_sender, signer_.sender());
+  EXPECT_EQ(statuses_[1].last_command_sequence, 2);
+  EXPECT_EQ(statuses_[1].last_command_result, camera_status_t::COMMAND_ACCEPTED);
+  EXPECT_EQ(statuses_[1].commands_accepted, 2);
+}
+
+// Anyone on the segment can publish on SYNCAP_EDGE_CMD: only the installation's key commands.
+TEST_F(EdgeNodeTest, ForgedReplayedAndStaleCommandsAreRefusedAndReported) {
+  source_.images[1] = image_with_spots(2);
+  edge_command_t stop{};
+  stop.camera_id = 4;
+  stop.command = edge_command_t::STOP;
+  proto::CommandSigner attacker(proto::CommandKey::generate());  // another key
+  edge_command_t forged = stop;
+  attacker.sign(forged);
+  EXPECT_FALSE(node_->on_command(forged));
+  edge_command_t unsigned_stop = stop;  // no MAC at all
+  unsigned_stop.sequence = 99;
+  node_->on_command(unsigned_stop);
+  edge_command_t tampered = signed_(stop);  // signed, then its value changed
+  tampered.command = edge_command_t::SHUTDOWN;
+  EXPECT_FALSE(node_->on_command(tampered));
+  node_->on_trigger(trigger(1));
+  ASSERT_EQ(frames_.size(), 1u) << "a refused STOP stopped the camera";
+
+  const edge_command_t genuine = signed_(stop);
+  node_->on_command(genuine);
+  node_->on_command(genuine);  // captured and sent again
+  edge_command_t stale = stop;
+  stale.sender = signer_.sender();
+  stale.sequence = 1000;
+  stale.sent_realtime_ns = proto::realtime_now_ns() - 60'000'000'000;  // a minute old
+  const proto::CommandMac mac = proto::mac_of_encoding(proto::encoding_without_mac(stale), key_);
+  std::memcpy(stale.mac, mac.data(), mac.size());
+  node_->on_command(stale);
+  node_->publish_status();
+  const camera_status_t& s = statuses_.back();
+  EXPECT_EQ(s.commands_accepted, 1);
+  EXPECT_EQ(s.commands_rejected, 5);
+  EXPECT_EQ(s.last_command_result, camera_status_t::COMMAND_OUTSIDE_WINDOW);
+  EXPECT_EQ(node_->commands_rejected(), 5);
+}
+
+TEST_F(EdgeNodeTest, WithoutAKeyEveryCommandIsRefused) {
+  node_ = std::make_unique<EdgeNode>(
+      options_, source_,
+      EdgePublisher{{}, [this](const camera_status_t& s) { statuses_.push_back(s); }, {}, {}});
+  edge_command_t shutdown{};
+  shutdown.camera_id = 4;
+  shutdown.command = edge_command_t::SHUTDOWN;
+  EXPECT_FALSE(node_->on_command(signed_(shutdown)));
+  node_->publish_status();
+  EXPECT_EQ(statuses_.back().last_command_result, camera_status_t::COMMAND_NO_KEY);
+  EXPECT_EQ(statuses_.back().commands_rejected, 1);
 }
 
 TEST_F(EdgeNodeTest, ExposureAndGainGoToTheCameraAndRefusalsAreReported) {
@@ -252,23 +322,21 @@ TEST_F(EdgeNodeTest, ExposureAndGainGoToTheCameraAndRefusalsAreReported) {
   c.camera_id = 4;
   c.command = edge_command_t::SET_EXPOSURE;
   c.real_value = 2500;
-  node_->on_command(c);
+  node_->on_command(signed_(c));
   c.command = edge_command_t::SET_GAIN;
   c.real_value = 6;
-  node_->on_command(c);
+  node_->on_command(signed_(c));
   EXPECT_EQ(source_.exposures, std::vector<double>{2500});
   EXPECT_EQ(source_.gains, std::vector<double>{6});
   c.command = edge_command_t::SET_EXPOSURE;
-  c.real_value = -1;  // out of range: never reaches the camera
-  node_->on_command(c);
+  c.real_value = -1;              // out of range: never reaches the camera
+  node_->on_command(signed_(c));  // its acknowledgement carries the refusal
   EXPECT_EQ(source_.exposures.size(), 1u);
-  node_->publish_status();
   EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
   EXPECT_NE(statuses_.back().message.find("SET_EXPOSURE refused"), std::string::npos)
       << statuses_.back().message;
   c.real_value = 5e6;  // the camera refuses
-  node_->on_command(c);
-  node_->publish_status();
+  node_->on_command(signed_(c));
   EXPECT_NE(statuses_.back().message.find("fake: exposure refused"), std::string::npos)
       << statuses_.back().message;
 }
@@ -305,7 +373,8 @@ class EdgeNodeMaskTest : public EdgeNodeTest {
         EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
                       [this](const camera_status_t& s) { statuses_.push_back(s); },
                       [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
-                      {}});
+                      {}},
+        key_);
   }
 };
 
@@ -318,7 +387,7 @@ TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
   train.camera_id = 4;
   train.command = edge_command_t::TRAIN_BACKGROUND;
   train.int_value = 8;
-  EXPECT_FALSE(node_->on_command(train));
+  EXPECT_FALSE(node_->on_command(signed_(train)));
   for (int k = 1; k <= 8; ++k) node_->on_trigger(trigger(k));
   node_->publish_status();
   EXPECT_EQ(statuses_.back().message, "masking");
@@ -354,7 +423,7 @@ TEST_F(EdgeNodeMaskTest, TheHostsClipPolygonLimitsTheSilhouette) {
   train.camera_id = 4;
   train.command = edge_command_t::TRAIN_BACKGROUND;
   train.int_value = 8;
-  node_->on_command(train);
+  node_->on_command(signed_(train));
   for (int k = 0; k < 8; ++k) node_->on_trigger(trigger(k));
   auto x_range = [&] {
     const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
@@ -372,7 +441,7 @@ TEST_F(EdgeNodeMaskTest, TheHostsClipPolygonLimitsTheSilhouette) {
   clip.num_points = 4;
   clip.x = {0, 129, 129, 0};
   clip.y = {0, 0, 239, 239};
-  node_->on_clip(clip);
+  node_->on_clip(signed_(clip));
   node_->on_trigger(trigger(8));
   auto [x0, x1] = x_range();
   EXPECT_NEAR(x0, 100, 2);
@@ -384,14 +453,14 @@ TEST_F(EdgeNodeMaskTest, TheHostsClipPolygonLimitsTheSilhouette) {
   clip.x = {0, 1, 1};
   clip.y = {0, 0, 1};
   clip.num_points = 3;
-  node_->on_clip(clip);
+  node_->on_clip(signed_(clip));
   node_->on_trigger(trigger(9));
   EXPECT_NEAR(x_range().second, 129, 2);
 
   clip.camera_id = 4;  // for another sensor size: not applied, and said so
   clip.image_width = 640;
   clip.image_height = 480;
-  node_->on_clip(clip);
+  node_->on_clip(signed_(clip));
   node_->on_trigger(trigger(10));
   EXPECT_NEAR(x_range().second, 159, 2);
   node_->publish_status();
@@ -403,7 +472,7 @@ TEST_F(EdgeNodeMaskTest, TheHostsClipPolygonLimitsTheSilhouette) {
   clip.y.clear();
   clip.image_width = 320;
   clip.image_height = 240;
-  node_->on_clip(clip);
+  node_->on_clip(signed_(clip));
   node_->on_trigger(trigger(11));
   EXPECT_NEAR(x_range().second, 159, 2);
 }
@@ -417,10 +486,12 @@ TEST_F(EdgeNodeMaskTest, AMalformedClipPolygonIsReported) {
   clip.num_points = 2;
   clip.x = {0, 5};
   clip.y = {0, 5};
-  node_->on_clip(clip);
+  node_->on_clip(signed_(clip));
   node_->publish_status();
   EXPECT_EQ(statuses_.back().state, camera_status_t::STATE_ERROR);
-  EXPECT_NE(statuses_.back().message.find("clip polygon 17 refused"), std::string::npos)
+  EXPECT_NE(statuses_.back().message.find("clip polygon " +
+                                          std::to_string(signer_.last_sequence()) + " refused"),
+            std::string::npos)
       << statuses_.back().message;
 }
 
@@ -435,7 +506,8 @@ TEST_F(EdgeNodeMaskTest, RetrainingInTheBackgroundNeverHoldsUpAFrame) {
       EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
                     [this](const camera_status_t& s) { statuses_.push_back(s); },
                     [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
-                    {}});
+                    {}},
+      key_);
   for (int k = 0; k < 8; ++k) source_.images[k] = scene(k, false);
   for (int k = 0; k < 30; ++k) source_.images[8 + k] = scene(8 + k, true);
   for (int k = 0; k < 9; ++k) node_->on_trigger(trigger(k));
@@ -445,7 +517,7 @@ TEST_F(EdgeNodeMaskTest, RetrainingInTheBackgroundNeverHoldsUpAFrame) {
   train.camera_id = 4;
   train.command = edge_command_t::TRAIN_BACKGROUND;
   train.int_value = 8;
-  node_->on_command(train);
+  node_->on_command(signed_(train));
   for (int k = 9; k < 17; ++k) node_->on_trigger(trigger(k));
   int64_t k = 17;
   bool old_model_served = false, new_model_served = false;
@@ -471,18 +543,18 @@ TEST_F(EdgeNodeMaskTest, ReportsTrainingProgressAndIgnoresOtherCameras) {
   train.camera_id = 7;  // another camera's
   train.command = edge_command_t::TRAIN_BACKGROUND;
   train.int_value = 5;
-  node_->on_command(train);
+  node_->on_command(signed_(train));
   node_->publish_status();
   EXPECT_EQ(statuses_.back().message, "no background model");
   train.camera_id = edge_command_t::ALL_CAMERAS;
-  node_->on_command(train);
+  node_->on_command(signed_(train));
   for (int k = 0; k < 3; ++k) node_->on_trigger(trigger(k));
   node_->publish_status();
   EXPECT_EQ(statuses_.back().message, "training background 3/5");
   edge_command_t stop{};
   stop.camera_id = 4;
   stop.command = edge_command_t::SHUTDOWN;
-  EXPECT_TRUE(node_->on_command(stop));
+  EXPECT_TRUE(node_->on_command(signed_(stop)));
 }
 
 TEST_F(EdgeNodeMaskTest, TrainsOnTheFramesFromTheGivenNumber) {
@@ -493,7 +565,8 @@ TEST_F(EdgeNodeMaskTest, TrainsOnTheFramesFromTheGivenNumber) {
       EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
                     [this](const camera_status_t& s) { statuses_.push_back(s); },
                     [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
-                    {}});
+                    {}},
+      key_);
   // Frames 0..19 show the person: trained on them, the model would hide it.
   for (int k = 0; k < 20; ++k) source_.images[k] = scene(k, true);
   for (int k = 20; k < 26; ++k) source_.images[k] = scene(k, false);
@@ -526,7 +599,7 @@ TEST_F(EdgeNodeMaskTest, SilhouettesInAWindowAreInSensorPixels) {
   train.camera_id = 4;
   train.command = edge_command_t::TRAIN_BACKGROUND;
   train.int_value = 4;
-  node_->on_command(train);
+  node_->on_command(signed_(train));
   for (int k = 0; k <= 4; ++k) node_->on_trigger(trigger(k));
   ASSERT_FALSE(silhouettes_.empty());
   const proto::Silhouette s = proto::decode_silhouette(silhouettes_);

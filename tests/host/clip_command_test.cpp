@@ -1,6 +1,7 @@
 // `syncap clip`: per camera of a cameras.json, the capture volume's outline as a clip polygon
 // message; --remove sends polygons of no points; bad arguments and files are named.
 #include "clip_command.hpp"
+#include "syncap/proto/command_auth.hpp"
 
 #include <gtest/gtest.h>
 
@@ -104,6 +105,25 @@ TEST_F(ClipCommandTest, BadArgumentsAndFilesAreNamed) {
   r = run({"--cameras", file_.string(), "--remove", "--camera", "7"});
   EXPECT_EQ(r.status, kExitUsage);
   EXPECT_NE(r.err.find("none of the cameras"), std::string::npos) << r.err;
+}
+
+// Edges apply only signed polygons: --publish needs the installation's key, and every published
+// polygon carries a MAC of it (memq://: LCM's in-process provider, no network).
+TEST_F(ClipCommandTest, PublishedPolygonsAreSignedWithTheKey) {
+  ClipRun r = run({"--cameras", file_.string(), "--remove", "--publish", "--lcm-url", "memq://"});
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("--publish needs --key FILE"), std::string::npos) << r.err;
+  const std::string key_file = file_.string() + ".key";
+  const proto::CommandKey key = proto::CommandKey::generate();
+  key.save(key_file, /*replace=*/true);
+  r = run({"--cameras", file_.string(), "--remove", "--publish", "--lcm-url", "memq://", "--key",
+           key_file});
+  std::filesystem::remove(key_file);
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  ASSERT_EQ(r.lines.size(), 2u);
+  EXPECT_NE(r.lines[0]["sender"], 0);
+  EXPECT_NE(r.lines[0]["mac"], std::string(64, '0'));
+  EXPECT_LT(r.lines[0]["sequence"].get<int64_t>(), r.lines[1]["sequence"].get<int64_t>());
 }
 
 // Issue 15: an unknown last option said "needs a value".

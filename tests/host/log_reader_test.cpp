@@ -291,7 +291,9 @@ TEST(LogJson, TriggerStatusRoundTrips) {
 TEST(LogJson, EdgeCommandRoundTrips) {
   edge_command_t msg{};
   msg.camera_id = edge_command_t::ALL_CAMERAS;
+  msg.sender = -5;
   msg.sequence = 9'000'000'000;
+  msg.sent_realtime_ns = 1'800'000'000'000'000'000;
   msg.command = edge_command_t::SET_ROI;
   msg.int_value = -7;
   msg.real_value = 0.125;
@@ -299,11 +301,15 @@ TEST(LogJson, EdgeCommandRoundTrips) {
   msg.roi_y = 16;
   msg.roi_width = 320;
   msg.roi_height = 240;
+  msg.mac[0] = 0x0f;
+  msg.mac[31] = -1;
 
   const nlohmann::json fields = fields_of(msg);
 
-  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":-1,"sequence":9000000000,"command":6,
-      "int_value":-7,"real_value":0.125,"roi_x":8,"roi_y":16,"roi_width":320,"roi_height":240})"));
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":-1,"sender":-5,"sequence":9000000000,
+      "sent_realtime_ns":1800000000000000000,"command":6,
+      "int_value":-7,"real_value":0.125,"roi_x":8,"roi_y":16,"roi_width":320,"roi_height":240,
+      "mac":"0f000000000000000000000000000000000000000000000000000000000000ff"})"));
 }
 
 TEST(LogJson, ClipPolygonRoundTrips) {
@@ -318,8 +324,9 @@ TEST(LogJson, ClipPolygonRoundTrips) {
 
   const nlohmann::json fields = fields_of(msg);
 
-  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":3,"sequence":12,"image_width":640,
-      "image_height":480,"num_points":3,"x":[10,600,300],"y":[470,470,200]})"));
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":3,"sender":0,"sequence":12,
+      "sent_realtime_ns":0,"image_width":640,"image_height":480,"num_points":3,
+      "x":[10,600,300],"y":[470,470,200],"mac":"0000000000000000000000000000000000000000000000000000000000000000"})"));
 }
 
 TEST(LogJson, InvalidUtf8InStringsIsReplacedNotFatal) {

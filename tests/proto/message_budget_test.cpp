@@ -62,7 +62,7 @@ TEST(MessageBudget, SilhouettePartAtMaxDataFitsAndRoundTrips) {
 
 TEST(MessageBudget, CameraStatusWithLongestMessageFitsAndRoundTrips) {
   const camera_status_t status = test::max_camera_status();
-  expect_fits_and_round_trips(status, 8 + 63 + camera_status_t::MAX_MESSAGE + 1);
+  expect_fits_and_round_trips(status, 8 + 88 + camera_status_t::MAX_MESSAGE + 1);
   EXPECT_EQ(decode<camera_status_t>(encode(status)).message, status.message);
 }
 
@@ -76,12 +76,12 @@ TEST(MessageBudget, TriggerStatusWithLongestMessageFitsAndRoundTrips) {
 }
 
 TEST(MessageBudget, EdgeCommandFitsAndRoundTrips) {
-  expect_fits_and_round_trips(test::max_edge_command(), 43);
+  expect_fits_and_round_trips(test::max_edge_command(), 91);
 }
 
 TEST(MessageBudget, ClipPolygonWithMostPointsFitsAndRoundTrips) {
   const clip_polygon_t clip = test::max_clip_polygon();
-  expect_fits_and_round_trips(clip, 8 + 16 + 4 * clip_polygon_t::MAX_POINTS);
+  expect_fits_and_round_trips(clip, 8 + 64 + 4 * clip_polygon_t::MAX_POINTS);
   EXPECT_EQ(8 + 16 + 4 * clip_polygon_t::MAX_POINTS, 1048);  // as documented in the .lcm file
   const clip_polygon_t back = decode<clip_polygon_t>(encode(clip));
   EXPECT_EQ(back.x, clip.x);

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "app/edge_node.hpp"
 #include "app/edge_options.hpp"
@@ -21,6 +22,7 @@
 #include "sensor/v4l2/v4l2_source.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/command_auth.hpp"
 #include "syncap/proto/subscriber.hpp"
 
 namespace {
@@ -65,7 +67,25 @@ std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeO
   return std::make_unique<ReconnectingSource>(std::move(factory), reconnect);
 }
 
+// The key named by --command-key; without one the edge obeys no command (and says so).
+std::optional<syncap::proto::CommandKey> load_command_key(const syncap::edge::EdgeOptions& o) {
+  if (o.command_key_path.empty()) {
+    std::cerr << "syncap-edge camera " << o.camera_id
+              << ": no --command-key: every command and clip polygon will be refused "
+                 "(docs/security.md)\n";
+    return std::nullopt;
+  }
+  return syncap::proto::CommandKey::load(o.command_key_path);
+}
+
 int run(const syncap::edge::EdgeOptions& options) {
+  std::optional<syncap::proto::CommandKey> command_key;
+  try {
+    command_key = load_command_key(options);
+  } catch (const syncap::proto::CommandKeyError& e) {
+    std::cerr << "syncap-edge: --command-key " << e.what() << "\n";
+    return 2;
+  }
   auto source = open_source(options);
   const std::string lcm_url = syncap::proto::receiving_lcm_url(options.lcm_url);
   lcm::LCM lcm(lcm_url);
@@ -87,7 +107,8 @@ int run(const syncap::edge::EdgeOptions& options) {
       {[&](const syncap::blob_frame_t& m) { send(blob_channel, m); },
        [&](const syncap::camera_status_t& m) { send(status_channel, m); },
        [&](const syncap::silhouette_part_t& m) { send(silhouette_channel, m); },
-       [&] { return queue.stats(); }});
+       [&] { return queue.stats(); }},
+      command_key);
 
   bool shutdown = false;
   syncap::proto::Subscriber subscriber(
@@ -127,8 +148,8 @@ int run(const syncap::edge::EdgeOptions& options) {
   if (!options.quiet) {
     std::cerr << "syncap-edge camera " << options.camera_id << ": " << node.frames_received()
               << " frames processed, " << node.frames_lost() << " lost, " << queue.stats().dropped
-              << " messages dropped from the publishing queue, " << node.commands()
-              << " commands obeyed";
+              << " messages dropped from the publishing queue, " << node.commands_accepted()
+              << " commands obeyed, " << node.commands_rejected() << " refused";
     if (node.detection().windowed()) {
       std::cerr << "; blobs of " << node.detection().frames_in_windows() << " of "
                 << node.detection().frames() << " frames from the windows alone";

@@ -1,6 +1,8 @@
 #include "app/edge_node.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -80,11 +82,16 @@ std::string utc_now() {
 
 }  // namespace
 
-EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher)
+EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher,
+                   std::optional<proto::CommandKey> command_key)
     : options_(options),
       source_(source),
       publish_(std::move(publisher)),
       interval_start_ns_(now_ns(CLOCK_MONOTONIC)),
+      command_guard_(command_key, static_cast<int64_t>(options.command_window_s * 1e9),
+                     now_ns(CLOCK_REALTIME)),
+      clip_guard_(command_key, static_cast<int64_t>(options.command_window_s * 1e9),
+                  now_ns(CLOCK_REALTIME)),
       detection_({options.detection, options.detector, options.full_scan_every,
                   options.roi_follows_windows}) {
   if (options_.mask) {
@@ -96,17 +103,39 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
   if (!options_.roi.empty()) source_.set_roi(options_.roi);
 }
 
+template <class Message>
+bool EdgeNode::admit(const Message& message, proto::CommandGuard& guard, const std::string& what) {
+  const proto::CommandCheck check = guard.check(message, now_ns(CLOCK_REALTIME));
+  const bool accepted = check == proto::CommandCheck::kAccepted;
+  last_command_sender_ = message.sender;
+  last_command_sequence_ = message.sequence;
+  last_command_result_ = static_cast<int8_t>(check);
+  // Every command is logged, also with --quiet; refusals only the first ten and then one in a
+  // thousand, so that a flood of forgeries cannot fill the journal (the heartbeat counts them).
+  const int64_t count = accepted ? ++commands_accepted_ : ++commands_rejected_;
+  if (accepted || count <= 10 || count % 1000 == 0) {
+    std::cerr << "syncap-edge camera " << options_.camera_id << ": " << what << " (sender "
+              << message.sender << ", sequence " << message.sequence << ") at " << utc_now() << ": "
+              << proto::describe(check);
+    if (!accepted) std::cerr << " [" << count << " refused so far]";
+    std::cerr << std::endl;
+  }
+  return accepted;
+}
+
 bool EdgeNode::on_command(const edge_command_t& c) {
   if (c.camera_id != edge_command_t::ALL_CAMERAS && c.camera_id != options_.camera_id) return false;
-  // Any process on the segment can send commands (unauthenticated until issue 15's keys): each
-  // one is logged, also with --quiet, and counted (camera_status_t has no field for the count:
-  // the process' last line says it). LCM does not tell who sent a message; the sequence number
-  // is what the sender put in it.
-  ++commands_;
-  std::cerr << "syncap-edge camera " << options_.camera_id << ": command " << command_text(c)
-            << " (sequence " << c.sequence << ", "
-            << (c.camera_id == edge_command_t::ALL_CAMERAS ? "to all cameras" : "to this camera")
-            << ") at " << utc_now() << ", sender unknown (LCM names none)" << std::endl;
+  const std::string what =
+      "command " + command_text(c) +
+      (c.camera_id == edge_command_t::ALL_CAMERAS ? " to all cameras" : " to this camera");
+  if (!admit(c, command_guard_, what)) return false;
+  const bool shutdown = obey(c);
+  // The sender's acknowledgement (syncap ctl); SHUTDOWN's is the final status.
+  if (!shutdown) publish_status();
+  return shutdown;
+}
+
+bool EdgeNode::obey(const edge_command_t& c) {
   switch (c.command) {
     case edge_command_t::SHUTDOWN:
       return true;
@@ -227,6 +256,8 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
 
 void EdgeNode::on_clip(const clip_polygon_t& clip) {
   if (clip.camera_id != options_.camera_id) return;
+  if (!admit(clip, clip_guard_, "clip polygon of " + std::to_string(clip.num_points) + " points"))
+    return;
   const auto points = static_cast<std::size_t>(std::max<int16_t>(clip.num_points, 0));
   if ((clip.num_points != 0 && clip.num_points < 3) || clip.x.size() != points ||
       clip.y.size() != points || clip.image_width <= 0 || clip.image_height <= 0) {
@@ -294,7 +325,12 @@ void EdgeNode::publish_status(bool final) {
     note = note.empty() ? queue : note.substr(0, room) + "; " + queue;
   }
   s.message = note.substr(0, camera_status_t::MAX_MESSAGE);
-  publish_.status(s);
+  s.commands_accepted = static_cast<int32_t>(std::min<int64_t>(commands_accepted_, INT32_MAX));
+  s.commands_rejected = static_cast<int32_t>(std::min<int64_t>(commands_rejected_, INT32_MAX));
+  s.last_command_sender = last_command_sender_;
+  s.last_command_sequence = last_command_sequence_;
+  s.last_command_result = last_command_result_;
+  if (publish_.status) publish_.status(s);
   interval_frames_ = 0;
   interval_processing_us_ = 0;
   interval_start_ns_ = now;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "app/detection_stage.hpp"
@@ -15,6 +16,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/proto/command_auth.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
 
@@ -30,20 +32,24 @@ struct EdgePublisher {
 
 class EdgeNode {
  public:
-  // Applies options.roi to the source (FrameSourceError when it refuses).
-  EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher);
+  // Applies options.roi to the source (FrameSourceError when it refuses). Commands and clip
+  // polygons are obeyed only when signed with `command_key` (none: every one is refused).
+  EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublisher publisher,
+           std::optional<proto::CommandKey> command_key = std::nullopt);
 
   // Grabs and processes the exposure of this trigger; publishes its blob frame (in parts). Blob
   // coordinates are sensor pixels whatever the region of interest.
   void on_trigger(const trigger_t& trigger);
-  // Obeys a command meant for this camera: TRAIN_BACKGROUND (int_value frames), SET_THRESHOLD,
-  // SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor), SET_EXPOSURE
-  // (real_value us), SET_GAIN (real_value dB), STOP (triggers are ignored, heartbeat IDLE) and
-  // START. Returns true for SHUTDOWN. Every command for this camera is logged on stderr (what,
-  // sequence, when) and counted (commands()).
+  // Obeys an authentic command meant for this camera (proto::CommandGuard: signed with the key,
+  // sent within the time window, not replayed): TRAIN_BACKGROUND (int_value frames),
+  // SET_THRESHOLD, SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor),
+  // SET_EXPOSURE (real_value us), SET_GAIN (real_value dB), STOP (triggers are ignored, heartbeat
+  // IDLE) and START, then publishes a status as the acknowledgement. Returns true for SHUTDOWN.
+  // Every command for this camera is logged on stderr (what, sender, sequence, when, verdict) and
+  // counted (commands_accepted(), commands_rejected(), and in the heartbeat).
   bool on_command(const edge_command_t& command);
-  // The host's clip polygon for this camera's masking (others' are ignored); a malformed one is
-  // reported in the heartbeat and changes nothing.
+  // The host's clip polygon for this camera's masking (others' are ignored), authenticated as a
+  // command; a malformed one is reported in the heartbeat and changes nothing.
   void on_clip(const clip_polygon_t& clip);
   // Publishes a heartbeat; `final` marks the last one before the process exits.
   void publish_status(bool final = false);
@@ -51,11 +57,18 @@ class EdgeNode {
   bool saw_last_pulse() const { return saw_last_pulse_; }
   int64_t frames_received() const { return frames_received_; }
   int64_t frames_lost() const { return frames_lost_; }
-  int64_t commands() const { return commands_; }
+  int64_t commands_accepted() const { return commands_accepted_; }
+  int64_t commands_rejected() const { return commands_rejected_; }
   const DetectionStage& detection() const { return detection_; }
 
  private:
   void note_error(const std::string& message);
+  // Checks a command or clip polygon with `guard`; logs, counts and remembers the verdict for
+  // the heartbeat. True when it may be obeyed.
+  template <class Message>
+  bool admit(const Message& message, proto::CommandGuard& guard, const std::string& what);
+  // Applies an admitted command; true for SHUTDOWN.
+  bool obey(const edge_command_t& command);
   // SET_EXPOSURE / SET_GAIN: range-checked, passed to the source; a refusal goes in the heartbeat.
   void set_camera_control(const edge_command_t& command);
   // Windowed mode with --roi-follows-windows: moves the sensor window to the next search windows.
@@ -72,7 +85,13 @@ class EdgeNode {
   int64_t interval_start_ns_ = 0;
   bool saw_last_pulse_ = false;
   bool acquiring_ = true;  // STOP / START commands
-  int64_t commands_ = 0;   // commands for this camera
+  proto::CommandGuard command_guard_;
+  proto::CommandGuard clip_guard_;  // clip polygons count their sequences apart from commands
+  int64_t commands_accepted_ = 0;   // commands and clip polygons for this camera
+  int64_t commands_rejected_ = 0;
+  int64_t last_command_sender_ = 0;
+  int64_t last_command_sequence_ = 0;
+  int8_t last_command_result_ = camera_status_t::COMMAND_NONE;
   DetectionStage detection_;
   cv::Rect sensor_roi_;  // the window last applied by follow_windows (empty: the whole sensor)
   std::optional<SilhouetteStage> silhouettes_;

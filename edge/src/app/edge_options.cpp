@@ -45,6 +45,8 @@ bool is_flag(const std::string& option) {
 
 bool takes_value(const std::string& option) {
   static const std::set<std::string> kOptions{"--config",
+                                              "--command-key",
+                                              "--command-window-s",
                                               "--camera-id",
                                               "--source",
                                               "--trigger-source",
@@ -134,6 +136,10 @@ bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std:
     o.detector.max_area = static_cast<float>(parse_number<int>(v, 1, 1 << 24));
   } else if (a == "--lcm-url") {
     o.lcm_url = v;
+  } else if (a == "--command-key") {
+    o.command_key_path = v;
+  } else if (a == "--command-window-s") {
+    o.command_window_s = parse_number<double>(v, 0.1, 3600);
   } else if (a == "--heartbeat-s") {
     o.heartbeat_s = parse_number<int>(v, 1, 3600);
   } else if (a == "--publish-queue") {
@@ -225,6 +231,11 @@ std::string edge_usage() {
          "  --lcm-url URL       LCM provider (default " +
          std::string(proto::kDefaultLcmUrl) +
          ")\n"
+         "  --command-key FILE  the installation's key (syncap keygen): only commands and clip\n"
+         "                      polygons signed with it are obeyed; without it none are\n"
+         "                      (docs/security.md)\n"
+         "  --command-window-s S  a command is obeyed only when sent within S s of this\n"
+         "                      board's clock (default 5; the clocks must agree that well)\n"
          "  --heartbeat-s S     status period in seconds (default 1)\n"
          "  --publish-queue N   messages waiting to be sent before the oldest is dropped (64)\n"
          "  --camera-silent-s S aravis, v4l2: no frame for S s while triggered = camera lost\n"

@@ -32,6 +32,8 @@ struct EdgeOptions {
   MediPictureOptions masking = person_masking_options();
   cv::Rect roi;  // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;
+  std::string command_key_path;  // the installation's key; empty: every command is refused
+  double command_window_s = 5;   // a command sent longer ago (or ahead) than this is refused
   BlobDetectorConfig detector;
   DetectionMode detection = DetectionMode::kFull;  // --detection full|windowed
   int full_scan_every = 30;                        // windowed: frames between full scans
