@@ -12,6 +12,7 @@
 #include "estimators/bootstrap.hpp"
 #include "estimators/bundle_adjustment.hpp"
 #include "sensor/camera_model.hpp"
+#include "geometry/triangulation.hpp"
 
 namespace syncap::study {
 namespace {
@@ -52,24 +53,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 bool triangulate(const std::vector<const sensor::CameraModel*>& cameras,
                  const std::vector<Eigen::Vector2d>& pixels, Eigen::Vector3d& point) {
   if (cameras.size() < 2) return false;
-  sensor::NearestPoint nearest;
+  geometry::NearestPoint nearest;
   for (size_t i = 0; i < cameras.size(); ++i) nearest.add(cameras[i]->back_project(pixels[i]));
-  point = nearest.solve();
-  for (int iteration = 0; iteration < 5; ++iteration) {
-    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < cameras.size(); ++i) {
-      const sensor::ProjectionJacobians j = cameras[i]->project_with_jacobians(point);
-      if (!j.projection.ok()) return false;
-      const Eigen::Vector2d residual = pixels[i] - j.projection.pixel;
-      normal += j.d_point.transpose() * j.d_point;
-      gradient += j.d_point.transpose() * residual;
-    }
-    const Eigen::Vector3d step = normal.ldlt().solve(gradient);
-    point += step;
-    if (step.norm() < 1e-6) break;
-  }
-  return point.allFinite();
+  const auto refined = geometry::refine_by_reprojection(cameras, pixels, nearest.solve());
+  if (refined) point = *refined;
+  return refined.has_value();
 }
 
 // The estimated cameras by station name.

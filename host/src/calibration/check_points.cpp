@@ -1,4 +1,5 @@
 #include "calibration/check_points.hpp"
+#include "geometry/triangulation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +21,7 @@ struct Ray2d {
 };
 
 Eigen::Vector3d triangulate(const std::vector<Ray2d>& rays) {
-  sensor::NearestPoint nearest;
+  geometry::NearestPoint nearest;
   for (const Ray2d& r : rays) nearest.add(r.camera->back_project(r.pixel));
   return nearest.solve();
 }

@@ -10,6 +10,7 @@
 
 #include "sensor/camera_model.hpp"
 #include "sensor/rotation.hpp"
+#include "geometry/triangulation.hpp"
 
 namespace syncap::calibration {
 namespace {
@@ -180,42 +181,18 @@ std::vector<std::pair<int, int>> spanning_tree(const std::vector<std::vector<int
 // The point nearest to the rays of the oriented stations (least squares); rays farther than
 // max_ray_error_px from it are left out one by one, the worst first.
 void triangulate(StartState& s, Track& track) {
-  std::vector<sensor::Ray> rays;
-  std::vector<double> pixels_per_unit;
+  std::vector<geometry::ViewRay> rays;
   for (const Observation& o : track.observations) {
     const Pose& pose = s.poses[o.station];
     if (!pose.oriented) continue;
-    rays.push_back({pose.centre, (pose.rotation * o.direction).normalized()});
-    pixels_per_unit.push_back(s.pixels_per_unit[o.station]);
+    rays.push_back({{pose.centre, (pose.rotation * o.direction).normalized()},
+                    s.pixels_per_unit[o.station]});
   }
-  track.triangulated = false;
-  while (rays.size() >= 2) {
-    sensor::NearestPoint nearest;
-    for (const sensor::Ray& ray : rays) nearest.add(ray);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(nearest.normal,
-                                                               Eigen::EigenvaluesOnly);
-    if (!(eigen.eigenvalues().minCoeff() > 1e-6)) return;  // (nearly) parallel rays
-    const Eigen::Vector3d x = nearest.solve();
-    size_t worst = 0;
-    double worst_error = -1.0;
-    for (size_t r = 0; r < rays.size(); ++r) {
-      const Eigen::Vector3d to_point = x - rays[r].origin;
-      const double angle =
-          std::atan2(rays[r].direction.cross(to_point).norm(), rays[r].direction.dot(to_point));
-      const double error_px = angle * pixels_per_unit[r];
-      if (error_px > worst_error) {
-        worst_error = error_px;
-        worst = r;
-      }
-    }
-    if (worst_error <= s.options.max_ray_error_px) {
-      track.triangulated = true;
-      track.xyz = x;
-      return;
-    }
-    rays.erase(rays.begin() + static_cast<std::ptrdiff_t>(worst));
-    pixels_per_unit.erase(pixels_per_unit.begin() + static_cast<std::ptrdiff_t>(worst));
-  }
+  // The start has no image sigma yet: 1 px weighs the rays by their distance only.
+  const geometry::RayPoint point =
+      geometry::triangulate_dropping_outliers(rays, 1.0, s.options.max_ray_error_px);
+  track.triangulated = point.ok;
+  if (point.ok) track.xyz = point.position;
 }
 
 void triangulate_all(StartState& s) {

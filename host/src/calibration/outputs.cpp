@@ -6,9 +6,7 @@
 #include "calibration/exports.hpp"
 #include "calibration/report.hpp"
 #include "sensor/camera_file.hpp"
-#ifdef SYNCAP_HAVE_SDL
 #include "sdl/sdl.hpp"
-#endif
 
 namespace syncap::calibration {
 namespace {
@@ -21,7 +19,6 @@ void write_text(const std::filesystem::path& file, const std::string& text) {
   if (!out) throw std::runtime_error(file.string() + ": write error");
 }
 
-#ifdef SYNCAP_HAVE_SDL
 // The adjusted network: the final adjustment's values as the approximations of the input.
 scene::Network adjusted_network(const CalibrationResult& result) {
   scene::Network network = result.network;
@@ -39,7 +36,6 @@ scene::Network adjusted_network(const CalibrationResult& result) {
   }
   return network;
 }
-#endif
 
 }  // namespace
 
@@ -58,9 +54,7 @@ std::vector<std::filesystem::path> write_calibration(const CalibrationResult& re
   put("report.html", format_report_html(result.report));
   put("cameras.opencv.yaml", format_opencv_yaml(result.cameras));
   put("calibration.toml", format_calibration_toml(result.cameras, result.quality.rms_px));
-#ifdef SYNCAP_HAVE_SDL
   put("scene.sdl", sdl::write(adjusted_network(result)));
-#endif
   return written;
 }
 

@@ -17,6 +17,7 @@
 #include "sensor/camera_model.hpp"
 #include "sensor/rotation.hpp"
 #include "util/printf_string.hpp"
+#include "geometry/triangulation.hpp"
 
 namespace syncap::estimators {
 namespace {
@@ -24,7 +25,7 @@ namespace {
 using scene::ParameterMode;
 using sensor::ExteriorBlock;
 using sensor::InteriorBlock;
-using sensor::NearestPoint;
+using geometry::NearestPoint;
 
 constexpr int kInteriorSize = InteriorBlock::kSize;
 constexpr int kExteriorSize = ExteriorBlock::kSize;

@@ -128,6 +128,4 @@ ProjectionJacobians CameraModel::project_with_jacobians(
   return result;
 }
 
-Eigen::Vector3d NearestPoint::solve() const { return normal.ldlt().solve(right); }
-
 }  // namespace syncap::sensor

@@ -34,22 +34,6 @@ struct Ray {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // unit
 };
 
-// The point nearest to some rays (least squares of its distances to them): the normal equations
-// sum (I - d d^T) X = sum (I - d d^T) o. `normal` tells how well the rays fix it (singular for
-// parallel rays); the triangulations of the start values, the adjustment's approximations and
-// data snooping's ray pairs begin here.
-struct NearestPoint {
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d right = Eigen::Vector3d::Zero();
-  void add(const Ray& ray) {
-    const Eigen::Matrix3d across =
-        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
-    normal += across;
-    right += across * ray.origin;
-  }
-  Eigen::Vector3d solve() const;
-};
-
 // The projection with its derivatives. Columns follow the parameter blocks
 // (camera_parameters.hpp): d_interior columns c, xp, yp, k1, k2, k3, p1, p2, sc, sh;
 // d_exterior columns X0, Y0, Z0, omega, phi, kappa; d_point columns X, Y, Z. Rows u, v.

@@ -1,0 +1,119 @@
+#include "geometry/triangulation.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace syncap::geometry {
+namespace {
+
+// Below this smallest eigenvalue of the unweighted normal matrix (sum of I - d d^T over unit
+// directions) the rays are too close to parallel to fix a point: 1e-6 is an angle of ~0.06 deg.
+constexpr double kMinNormalEigenvalue = 1e-6;
+
+bool well_conditioned(std::span<const ViewRay> rays) {
+  NearestPoint unweighted;
+  for (const ViewRay& r : rays) unweighted.add(r.ray);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(unweighted.normal,
+                                                             Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues().minCoeff() > kMinNormalEigenvalue;
+}
+
+}  // namespace
+
+Eigen::Vector3d NearestPoint::solve() const { return normal.ldlt().solve(right); }
+
+double pixels_per_rad(const sensor::CameraModel& camera) {
+  return camera.interior.c / camera.sensor.pixel_width_mm;
+}
+
+ViewRay view_ray(const sensor::CameraModel& camera, const Eigen::Vector2d& pixel) {
+  return {camera.back_project(pixel), pixels_per_rad(camera)};
+}
+
+double angle_to(const Ray& ray, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d to_point = point - ray.origin;
+  return std::atan2(ray.direction.cross(to_point).norm(), ray.direction.dot(to_point));
+}
+
+double RayPoint::rms_px() const {
+  if (errors_px.empty()) return 0;
+  double sum = 0;
+  for (const double e : errors_px) sum += e * e;
+  return std::sqrt(sum / static_cast<double>(errors_px.size()));
+}
+
+RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px) {
+  RayPoint result;
+  if (rays.size() < 2 || !well_conditioned(rays)) return result;
+  NearestPoint first;
+  for (const ViewRay& r : rays) first.add(r.ray);
+  const Eigen::Vector3d start = first.solve();
+  // Each ray weighted by its precision across itself at the point: 1 / (r sigma_rad)^2.
+  NearestPoint weighted;
+  for (const ViewRay& r : rays) {
+    const double along = r.ray.direction.dot(start - r.ray.origin);
+    if (!(along > 0)) return result;  // behind the camera
+    const double sigma_mm = along * sigma_px / r.pixels_per_rad;
+    weighted.add(r.ray, 1.0 / (sigma_mm * sigma_mm));
+  }
+  result.position = weighted.solve();
+  result.covariance = weighted.normal.inverse();
+  for (const ViewRay& r : rays) {
+    const double angle = angle_to(r.ray, result.position);
+    if (!(angle < M_PI / 2)) return result;
+    result.errors_px.push_back(angle * r.pixels_per_rad);
+    result.chi_square += std::pow(result.errors_px.back() / sigma_px, 2);
+  }
+  result.ok = result.position.allFinite();
+  return result;
+}
+
+RayPoint triangulate_dropping_outliers(std::span<const ViewRay> rays, double sigma_px,
+                                       double max_error_px, std::vector<bool>* kept) {
+  std::vector<ViewRay> used(rays.begin(), rays.end());
+  std::vector<std::size_t> index(rays.size());
+  for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
+  RayPoint point;
+  while (used.size() >= 2) {
+    point = triangulate(used, sigma_px);
+    if (!point.ok) break;
+    const auto worst = std::max_element(point.errors_px.begin(), point.errors_px.end());
+    if (*worst <= max_error_px) break;
+    const auto at = worst - point.errors_px.begin();
+    used.erase(used.begin() + at);
+    index.erase(index.begin() + at);
+    point.ok = false;
+  }
+  if (kept != nullptr) {
+    kept->assign(rays.size(), false);
+    if (point.ok)
+      for (const std::size_t i : index) (*kept)[i] = true;
+  }
+  return point;
+}
+
+std::optional<Eigen::Vector3d> refine_by_reprojection(
+    std::span<const sensor::CameraModel* const> cameras, std::span<const Eigen::Vector2d> pixels,
+    const Eigen::Vector3d& start, int iterations) {
+  Eigen::Vector3d point = start;
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+      const sensor::ProjectionJacobians j = cameras[i]->project_with_jacobians(point);
+      if (!j.projection.ok()) return std::nullopt;
+      const Eigen::Vector2d residual = pixels[i] - j.projection.pixel;
+      normal += j.d_point.transpose() * j.d_point;
+      gradient += j.d_point.transpose() * residual;
+    }
+    const Eigen::Vector3d step = normal.ldlt().solve(gradient);
+    point += step;
+    if (step.norm() < 1e-6) break;
+  }
+  if (!point.allFinite()) return std::nullopt;
+  return point;
+}
+
+}  // namespace syncap::geometry
