@@ -11,8 +11,8 @@
 #include "camera_rig.hpp"
 #include "estimators/bootstrap.hpp"
 #include "estimators/bundle_adjustment.hpp"
-#include "sensor/camera_model.hpp"
 #include "geometry/triangulation.hpp"
+#include "sensor/camera_model.hpp"
 
 namespace syncap::study {
 namespace {

@@ -8,9 +8,9 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
+#include "geometry/triangulation.hpp"
 #include "sensor/camera_model.hpp"
 #include "sensor/rotation.hpp"
-#include "geometry/triangulation.hpp"
 
 namespace syncap::calibration {
 namespace {
@@ -185,8 +185,8 @@ void triangulate(StartState& s, Track& track) {
   for (const Observation& o : track.observations) {
     const Pose& pose = s.poses[o.station];
     if (!pose.oriented) continue;
-    rays.push_back({{pose.centre, (pose.rotation * o.direction).normalized()},
-                    s.pixels_per_unit[o.station]});
+    rays.push_back(
+        {{pose.centre, (pose.rotation * o.direction).normalized()}, s.pixels_per_unit[o.station]});
   }
   // The start has no image sigma yet: 1 px weighs the rays by their distance only.
   const geometry::RayPoint point =

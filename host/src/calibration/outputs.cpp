@@ -5,8 +5,8 @@
 
 #include "calibration/exports.hpp"
 #include "calibration/report.hpp"
-#include "sensor/camera_file.hpp"
 #include "sdl/sdl.hpp"
+#include "sensor/camera_file.hpp"
 
 namespace syncap::calibration {
 namespace {

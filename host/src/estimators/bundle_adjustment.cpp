@@ -14,18 +14,18 @@
 
 #include "estimators/cost_functors.hpp"
 #include "estimators/covariance.hpp"
+#include "geometry/triangulation.hpp"
 #include "sensor/camera_model.hpp"
 #include "sensor/rotation.hpp"
 #include "util/printf_string.hpp"
-#include "geometry/triangulation.hpp"
 
 namespace syncap::estimators {
 namespace {
 
+using geometry::NearestPoint;
 using scene::ParameterMode;
 using sensor::ExteriorBlock;
 using sensor::InteriorBlock;
-using geometry::NearestPoint;
 
 constexpr int kInteriorSize = InteriorBlock::kSize;
 constexpr int kExteriorSize = ExteriorBlock::kSize;

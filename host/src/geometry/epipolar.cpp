@@ -1,7 +1,7 @@
 #include "geometry/epipolar.hpp"
 
-#include <cmath>
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace syncap::geometry {
 namespace {

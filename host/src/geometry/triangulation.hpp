@@ -51,7 +51,7 @@ double angle_to(const Ray& ray, const Eigen::Vector3d& point);
 
 struct RayPoint {
   bool ok = false;  // false: fewer than two rays, (nearly) parallel ones, or a point behind one
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // mm
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();    // mm
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // mm^2, from the image sigma
   std::vector<double> errors_px;  // each ray's angle to the point, in its image's pixels
   // sum (error / sigma)^2: chi-square with 2 n - 3 degrees of freedom when the rays agree
