@@ -53,7 +53,8 @@ struct RayPoint {
   bool ok = false;  // false: fewer than two rays, (nearly) parallel ones, or a point behind one
   Eigen::Vector3d position = Eigen::Vector3d::Zero();    // mm
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // mm^2, from the image sigma
-  std::vector<double> errors_px;  // each ray's angle to the point, in its image's pixels
+  // each ray's angle to the point (its sine: equal for small angles), in its image's pixels
+  std::vector<double> errors_px;
   // sum (error / sigma)^2: chi-square with 2 n - 3 degrees of freedom when the rays agree
   double chi_square = 0;
   double rms_px() const;

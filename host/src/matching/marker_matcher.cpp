@@ -12,12 +12,13 @@ namespace {
 struct Candidate {
   std::vector<int> nodes;  // graph nodes, one per camera
   geometry::RayPoint point;
+  double rms_px = 0;  // point.rms_px(), kept for the queue's comparisons
 };
 
 // More cameras first, then the smaller RMS: the order of the evidence.
 bool better(const Candidate& a, const Candidate& b) {
   if (a.nodes.size() != b.nodes.size()) return a.nodes.size() > b.nodes.size();
-  return a.point.rms_px() < b.point.rms_px();
+  return a.rms_px < b.rms_px;
 }
 
 struct Worse {
@@ -41,8 +42,10 @@ class Growth {
       if (!c.point.ok) return false;
       if (options_.volume && !options_.volume->contains(c.point.position)) return false;
       const auto worst = std::max_element(c.point.errors_px.begin(), c.point.errors_px.end());
-      if (*worst <= options_.tolerance_px && c.point.chi_square <= critical_[rays.size()])
+      if (*worst <= options_.tolerance_px && c.point.chi_square <= critical_[rays.size()]) {
+        c.rms_px = c.point.rms_px();
         return true;
+      }
       c.nodes.erase(c.nodes.begin() + (worst - c.point.errors_px.begin()));
       ++stats_.rays_dropped;
     }
@@ -52,7 +55,7 @@ class Growth {
   // The point of edge (a, b), with one blob of each other camera that is joined to every member
   // and passes closest to it.
   Candidate grow(int a, int b, const Eigen::Vector3d& start) const {
-    Candidate c{{a, b}, {}};
+    Candidate c{{a, b}, {}, 0};
     NodeSet joined = g_.neighbours[static_cast<std::size_t>(a)];
     joined &= g_.neighbours[static_cast<std::size_t>(b)];
     std::vector<std::pair<double, int>> near;
