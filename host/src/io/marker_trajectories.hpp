@@ -11,19 +11,22 @@
 
 namespace syncap::io {
 
-struct MarkerSample {           // one marker in one frame
-  Eigen::Vector3d position_mm;  // in the calibration's object frame
-  double residual_mm = 0;       // RMS distance of its rays to the point (C3D's residual)
-  uint32_t cameras =
-      0;  // bit i set: camera i saw it (C3D's camera mask, cameras 0..6 fit C3D's 7 bits)
+// One marker in one frame.
+struct MarkerSample {
+  // In the calibration's object frame.
+  Eigen::Vector3d position_mm;
+  // RMS distance of its rays to the point (C3D's residual); 0: not measured (interpolated).
+  double residual_mm = 0;
+  // Bit i set: camera i saw it (C3D's camera mask; cameras 0..6 fit C3D's 7 bits).
+  uint32_t cameras = 0;
 };
 
 struct MarkerTrajectories {
-  std::vector<std::string>
-      labels;               // one per marker (persistent id), e.g. "M001", or a rigid set's name
+  // One per marker (persistent id), e.g. "M001", or a rigid set's name.
+  std::vector<std::string> labels;
   double rate_hz = 0;       // frame rate
   int64_t first_frame = 0;  // frame number of samples[0]
-  // samples[f][m]: marker m in frame first_frame + f; nullopt when not seen (gap)
+  // samples[f][m]: marker m in frame first_frame + f; nullopt when not seen (gap).
   std::vector<std::vector<std::optional<MarkerSample>>> samples;
 };
 
