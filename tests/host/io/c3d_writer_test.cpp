@@ -56,11 +56,16 @@ void expect_points_match(const C3dTestReader& c3d, const MarkerTrajectories& t, 
   }
 }
 
-TEST(C3dWriter, HeaderWordsDescribeTheRecording) {
+// Exports `t` to a fresh file and opens it with the minimal reader.
+C3dTestReader written(const MarkerTrajectories& t) {
   const auto path = fresh_path(".c3d");
-  const auto t = synthetic_trajectories(50, 3, 100.0, 1234);
   write_c3d(path, t);
-  const C3dTestReader c3d(path);
+  return C3dTestReader(path);
+}
+
+TEST(C3dWriter, HeaderWordsDescribeTheRecording) {
+  const auto t = synthetic_trajectories(50, 3, 100.0, 1234);
+  const C3dTestReader c3d = written(t);
   EXPECT_EQ(c3d.byte(0), 2);     // parameters at block 2
   EXPECT_EQ(c3d.byte(1), 0x50);  // C3D key
   EXPECT_EQ(c3d.header_word(2), 3);
@@ -77,11 +82,9 @@ TEST(C3dWriter, HeaderWordsDescribeTheRecording) {
 }
 
 TEST(C3dWriter, ParameterSectionHoldsPointAnalogAndTrialGroups) {
-  const auto path = fresh_path(".c3d");
   auto t = synthetic_trajectories(50, 3, 100.0, 1234);
   t.labels[1] = "RigidSetLeftWrist";
-  write_c3d(path, t);
-  const C3dTestReader c3d(path);
+  const C3dTestReader c3d = written(t);
   EXPECT_EQ(c3d.processor(), 84);
   EXPECT_EQ(c3d.parameter("POINT:USED").word(), 3);
   EXPECT_EQ(c3d.parameter("POINT:FRAMES").word(), 50);
@@ -104,22 +107,18 @@ TEST(C3dWriter, ParameterSectionHoldsPointAnalogAndTrialGroups) {
 }
 
 TEST(C3dWriter, DataHoldsPositionsAndResidualWordsWithGapsInvalid) {
-  const auto path = fresh_path(".c3d");
   const auto t = synthetic_trajectories(50, 3, 100.0, 0);
-  write_c3d(path, t);
-  const C3dTestReader c3d(path);
+  const C3dTestReader c3d = written(t);
   for (std::size_t f = 0; f < 50; ++f) expect_points_match(c3d, t, f);
 }
 
 TEST(C3dWriter, ResidualZeroMarksUnmeasuredLargeOnesSaturateCamerasKeepSevenBits) {
-  const auto path = fresh_path(".c3d");
   MarkerTrajectories t;
   t.labels = {"A", "B", "C"};
   t.rate_hz = 50;
   t.samples = {{MarkerSample{{3200, 0, 0}, 0.0, 0b101},  // scale 0.1 mm
                 MarkerSample{{1, 2, 3}, 1e6, 0x1ff}, MarkerSample{{1, 2, 3}, 0.01, 0}}};
-  write_c3d(path, t);
-  const C3dTestReader c3d(path);
+  const C3dTestReader c3d = written(t);
   EXPECT_FLOAT_EQ(c3d.header_float(7), -0.1f);
   EXPECT_EQ(c3d.point(0, 0, 3).fourth, static_cast<float>(0b101 << 8 | 0));
   EXPECT_EQ(c3d.point(0, 1, 3).fourth, static_cast<float>(0x7f << 8 | 255));
@@ -127,10 +126,8 @@ TEST(C3dWriter, ResidualZeroMarksUnmeasuredLargeOnesSaturateCamerasKeepSevenBits
 }
 
 TEST(C3dWriter, MoreThan255MarkersContinueInLabels2) {
-  const auto path = fresh_path(".c3d");
   const auto t = synthetic_trajectories(4, 300, 250.0, 0);
-  write_c3d(path, t);
-  const C3dTestReader c3d(path);
+  const C3dTestReader c3d = written(t);
   EXPECT_EQ(c3d.header_word(2), 300);
   EXPECT_EQ(c3d.parameter("POINT:USED").word(), 300);
   EXPECT_EQ(c3d.parameter("POINT:LABELS").dimensions, (std::vector<int>{4, 255}));
@@ -144,10 +141,8 @@ TEST(C3dWriter, MoreThan255MarkersContinueInLabels2) {
 }
 
 TEST(C3dWriter, RecordingPast65535FramesCountsInTrialEndField) {
-  const auto path = fresh_path(".c3d");
   const auto t = synthetic_trajectories(70000, 2, 120.0, 7);
-  write_c3d(path, t);
-  const C3dTestReader c3d(path);
+  const C3dTestReader c3d = written(t);
   EXPECT_EQ(c3d.header_word(5), 65535);
   EXPECT_EQ(c3d.parameter("POINT:FRAMES").word(), 65535);
   const auto& end = c3d.parameter("TRIAL:ACTUAL_END_FIELD");
