@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Python packages the tests use into a venv (Debian 12's system pip is "externally
+# managed", PEP 668): the independent C3D readers ezc3d and c3d from PyPI, which read the
+# trajectory exports back (tests/host/io/check_exports.py). The venv is
+# $SYNCAP_PY_VENV, default <build dir>/py-venv, where the tests look for it.
+# Idempotent: nothing is done when the pinned versions are already there.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+venv=${SYNCAP_PY_VENV:-${SYNCAP_BUILD_DIR:-build}/py-venv}
+PACKAGES=(ezc3d==1.7.2 c3d==0.6.0)
+
+installed() {
+  "$venv/bin/python3" - "${PACKAGES[@]}" <<'PY' 2>/dev/null
+import sys
+from importlib.metadata import version
+sys.exit(0 if all(version(p.split("==")[0]) == p.split("==")[1] for p in sys.argv[1:]) else 1)
+PY
+}
+
+if [ -x "$venv/bin/python3" ] && installed; then
+  echo "py-deps: ${PACKAGES[*]} already in $venv"
+  exit 0
+fi
+echo "py-deps: installing ${PACKAGES[*]} into $venv"
+mkdir -p "$(dirname "$venv")"
+# python3 -m venv needs Debian's python3-venv (scripts/deps.sh installs it).
+"${PYTHON:-python3}" -m venv "$venv"
+"$venv/bin/python3" -m pip install --quiet --disable-pip-version-check "${PACKAGES[@]}"
+installed
+echo "py-deps: done"
