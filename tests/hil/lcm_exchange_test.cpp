@@ -46,6 +46,8 @@ pid_t spawn_publisher(int rounds) {
     lcm.publish(proto::kEdgeClipChannel, &clip);
     const trigger_status_t trigger_status = test::max_trigger_status();
     lcm.publish(kTriggerStatusChannel, &trigger_status);
+    const marker_frame_t markers = test::max_marker_frame();
+    lcm.publish(proto::kMarkersChannel, &markers);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   _exit(0);
@@ -72,10 +74,14 @@ TEST(LcmExchange, TwoProcessesExchangeEveryMessageType) {
   sub.subscribe<camera_status_t>(
       "SYNCAP_STATUS_.*",
       [&](const camera_status_t& s, const std::string&) { statuses.push_back(s); });
+  std::vector<marker_frame_t> markers;
+  sub.subscribe<marker_frame_t>(
+      proto::kMarkersChannel,
+      [&](const marker_frame_t& m, const std::string&) { markers.push_back(m); });
   const pid_t child = spawn_publisher(3);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
   while (std::chrono::steady_clock::now() < deadline &&
-         (frames.size() < 3 || statuses.size() < 3)) {
+         (frames.size() < 3 || statuses.size() < 3 || markers.size() < 3)) {
     lcm.handleTimeout(50);
   }
   ASSERT_EQ(wait_for_exit(child), 0);
@@ -86,6 +92,8 @@ TEST(LcmExchange, TwoProcessesExchangeEveryMessageType) {
   EXPECT_EQ(frames[0].blobs.size(), expected.blobs.size());
   EXPECT_FLOAT_EQ(frames[2].blobs.back().y, expected.blobs.back().y);
   EXPECT_EQ(statuses[1].message, test::max_camera_status().message);
+  ASSERT_EQ(markers.size(), 3u);
+  EXPECT_EQ(markers[2].markers.size(), static_cast<std::size_t>(marker_frame_t::MAX_MARKERS));
   EXPECT_EQ(sub.malformed(), 0);
 }
 

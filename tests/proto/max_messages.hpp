@@ -10,6 +10,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/marker_frame_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_status_t.hpp"
 #include "syncap/trigger_t.hpp"
@@ -132,6 +133,31 @@ inline clip_polygon_t max_clip_polygon() {
     c.y.push_back(static_cast<int16_t>(1023 - i * 4));
   }
   return c;
+}
+
+inline marker_frame_t max_marker_frame() {
+  marker_frame_t f{};
+  f.frame_number = std::numeric_limits<int64_t>::max() - 1;
+  f.trigger_monotonic_ns = 123'456'789'012'345;
+  f.trigger_realtime_ns = 1'800'000'000'000'000'000;
+  f.host_us = 812;
+  f.flags = marker_frame_t::FLAG_COMPLETE;
+  f.cameras = 8;
+  f.part_count = 1;
+  f.num_markers = f.total_markers = marker_frame_t::MAX_MARKERS;
+  for (int i = 0; i < f.num_markers; ++i) {
+    marker_t m{};
+    m.id = 1'000'000 + i;
+    m.x = -812.25f + static_cast<float>(i);
+    m.y = 31.5f;
+    m.z = 1700.125f;
+    m.sigma_x = m.sigma_y = m.sigma_z = 0.25f;
+    m.residual_px = 0.125f;
+    m.cameras = 8;
+    m.flags = marker_t::FLAG_PREDICTED;
+    f.markers.push_back(m);
+  }
+  return f;
 }
 
 }  // namespace syncap::test

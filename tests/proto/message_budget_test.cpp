@@ -88,6 +88,12 @@ TEST(MessageBudget, ClipPolygonWithMostPointsFitsAndRoundTrips) {
   EXPECT_EQ(back.y, clip.y);
 }
 
+TEST(MessageBudget, MarkerFrameAtMaxMarkersFitsOneDatagram) {
+  const marker_frame_t frame = test::max_marker_frame();
+  expect_fits_and_round_trips(frame, 8 + 39 + 34 * marker_frame_t::MAX_MARKERS);
+  EXPECT_EQ(decode<marker_frame_t>(encode(frame)).markers.back().id, frame.markers.back().id);
+}
+
 TEST(MessageBudget, DecodingATruncatedBufferFails) {
   std::vector<uint8_t> bytes = encode(test::max_blob_frame());
   bytes.resize(bytes.size() - 5);

@@ -39,6 +39,8 @@ inline constexpr const char* kTriggerChannel = "SYNCAP_TRIGGER";
 inline constexpr const char* kEdgeCommandChannel = "SYNCAP_EDGE_CMD";
 // clip_polygon_t, host -> edge (each message names its camera).
 inline constexpr const char* kEdgeClipChannel = "SYNCAP_EDGE_CLIP";
+// marker_frame_t: the host's 3D markers of each frame (docs/reconstruction.md).
+inline constexpr const char* kMarkersChannel = "SYNCAP_MARKERS";
 
 // Per-camera channels carry the camera id as two decimal digits: SYNCAP_BLOBS_03.
 inline constexpr int kMaxCameraId = 99;
