@@ -78,6 +78,8 @@ class FrameGrouper {
   long wrong_channel_messages() const { return wrong_channel_; }
   long duplicate_messages() const { return duplicates_; }
   long far_ahead_messages() const { return far_ahead_; }
+  // The frame number of the newest group handed out, if any.
+  std::optional<int64_t> last_handed_out() const { return last_handed_out_; }
 
  private:
   struct Pending {

@@ -1,259 +1,153 @@
 // syncap-host: the aggregator. Receives the trigger and every camera's messages, groups them by
-// frame number and reports what arrived (later stages — calibration, matching, tracking — take
-// the groups from here).
+// frame number (pipeline::HostNode) and runs the stages on each group on a worker thread: with
+// --calibration the markers are matched, triangulated and published live (docs/reconstruction.md).
 #include <lcm/lcm-cpp.hpp>
 
 #include <atomic>
-#include <charconv>
 #include <chrono>
 #include <csignal>
-#include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "aggregator/arrival_tally.hpp"
-#include "aggregator/frame_grouper.hpp"
+#include "app/host_options.hpp"
+#include "app/host_report.hpp"
+#include "outputs/json_lines_stage.hpp"
+#include "sensor/camera_file.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
-#include "syncap/proto/subscriber.hpp"
 
 namespace {
+
+using namespace syncap;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
-struct HostOptions {
-  std::set<int> cameras{0};
-  std::string lcm_url = syncap::proto::kDefaultLcmUrl;
-  int max_lag = 10;
-  long frames = 0;            // stop after this many groups; 0: no limit
-  double idle_timeout_s = 0;  // stop when nothing arrived for this long; 0: never
-  bool until_last = false;    // stop after the group of the trigger's last pulse
-  std::string out;            // JSON lines of the groups
-  bool quiet = false;
+// The stages --calibration and --out ask for, in order; the marker stages are also returned to
+// read their figures at the end.
+struct Stages {
+  std::vector<std::unique_ptr<pipeline::Stage>> chain;
+  reconstruction::MarkerStage* markers = nullptr;
+  outputs::MarkerMessageStage* marker_message = nullptr;
 };
 
-const char* kUsage =
-    "usage: syncap-host [options]\n"
-    "  --cameras LIST      expected camera ids, e.g. 0,1,2 (default 0)\n"
-    "  --max-lag N         frames to wait for missing messages (default 10)\n"
-    "  --frames N          exit after N frame groups\n"
-    "  --until-last        exit after the frame of the trigger's last pulse\n"
-    "  --idle-timeout S    exit when nothing arrived for S seconds\n"
-    "  --out FILE          write every frame group as a JSON line\n"
-    "  --lcm-url URL       LCM provider (default udpm://239.255.76.67:7667?ttl=0)\n"
-    "  --quiet             no line per frame, summary only\n";
-
-[[noreturn]] void usage_error(const std::string& message) {
-  std::cerr << "syncap-host: " << message << "\n" << kUsage;
-  std::exit(2);
-}
-
-long parse_long(const std::string& option, const std::string& text, long low, long high) {
-  long v = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || v < low || v > high) {
-    usage_error(option + " '" + text + "': expected a number in " + std::to_string(low) + ".." +
-                std::to_string(high));
-  }
-  return v;
-}
-
-HostOptions parse_options(int argc, char** argv) {
-  HostOptions o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--cameras") {
-      o.cameras.clear();
-      std::stringstream list(value());
-      for (std::string id; std::getline(list, id, ',');) {
-        o.cameras.insert(static_cast<int>(parse_long(a, id, 0, syncap::proto::kMaxCameraId)));
-      }
-    } else if (a == "--max-lag") {
-      o.max_lag = static_cast<int>(parse_long(a, value(), 0, 100000));
-    } else if (a == "--frames") {
-      o.frames = parse_long(a, value(), 1, 1L << 40);
-    } else if (a == "--until-last") {
-      o.until_last = true;
-    } else if (a == "--idle-timeout") {
-      o.idle_timeout_s = static_cast<double>(parse_long(a, value(), 1, 86400));
-    } else if (a == "--out") {
-      o.out = value();
-    } else if (a == "--lcm-url") {
-      o.lcm_url = value();
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      usage_error("unknown option '" + a + "'");
+Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& lcm) {
+  Stages s;
+  const bool markers = !o.calibration.empty();
+  if (markers) {
+    auto stage = std::make_unique<reconstruction::MarkerStage>(sensor::read_cameras(o.calibration),
+                                                               o.matching);
+    s.markers = stage.get();
+    s.chain.push_back(std::move(stage));
+    if (o.marker_message) {
+      auto message = std::make_unique<outputs::MarkerMessageStage>(
+          [&lcm](const marker_frame_t& m) { lcm.publish(proto::kMarkersChannel, &m); });
+      s.marker_message = message.get();
+      s.chain.push_back(std::move(message));
     }
   }
-  return o;
+  if (!o.quiet)
+    s.chain.push_back(
+        std::make_unique<host_app::FrameLineStage>(std::cout, o.cameras.size(), markers));
+  if (out != nullptr) s.chain.push_back(std::make_unique<outputs::JsonLinesStage>(*out, markers));
+  return s;
 }
 
-// Contours as [[x, y], ...] in pixels (outline of the foreground pixels, holes flagged).
-nlohmann::json silhouette_json(const syncap::proto::Silhouette& s) {
-  nlohmann::json contours = nlohmann::json::array();
-  for (const auto& c : s.contours) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const auto& p : c.points) points.push_back({p.x, p.y});
-    contours.push_back({{"hole", c.hole}, {"complete", c.complete}, {"points", points}});
-  }
-  return {{"width", s.image_width},
-          {"height", s.image_height},
-          {"parts", s.parts_received},
-          {"part_count", s.part_count},
-          {"contours", contours}};
-}
-
-nlohmann::json group_json(const syncap::host::FrameGroup& g) {
-  nlohmann::json j{{"frame", g.frame_number},
-                   {"complete", g.complete()},
-                   {"missing_cameras", g.missing_cameras}};
-  if (g.trigger) j["trigger_monotonic_ns"] = g.trigger->monotonic_ns;
-  nlohmann::json cameras = nlohmann::json::object();
-  for (const auto& [id, f] : g.blobs) {
-    nlohmann::json blobs = nlohmann::json::array();
-    for (const auto& b : f.blobs) blobs.push_back({{"x", b.x}, {"y", b.y}, {"area", b.area}});
-    cameras[std::to_string(id)] = {{"processing_us", f.processing_us}, {"blobs", blobs}};
-  }
-  for (const auto& [id, s] : g.silhouettes) {
-    cameras[std::to_string(id)]["silhouette"] = silhouette_json(s);
-  }
-  j["cameras"] = cameras;
-  if (!g.incomplete_silhouettes.empty()) j["incomplete_silhouettes"] = g.incomplete_silhouettes;
-  return j;
-}
-
-std::string group_line(const syncap::host::FrameGroup& g, std::size_t expected) {
-  std::ostringstream line;
-  line << "frame " << g.frame_number << ": trigger " << (g.trigger ? "ok" : "MISSING")
-       << ", cameras " << g.blobs.size() << "/" << expected;
-  for (const auto& [id, f] : g.blobs) {
-    char first[64] = "";
-    if (!f.blobs.empty()) {
-      std::snprintf(first, sizeof first, " first (%.2f, %.2f)", f.blobs[0].x, f.blobs[0].y);
+void subscribe(proto::Subscriber& sub, pipeline::HostNode& node, host_app::Arrivals& a,
+               std::optional<int64_t>& last_pulse_frame) {
+  auto reject = [&](bool ok) {
+    if (!ok) {
+      ++a.rejected;
+      std::cerr << "syncap-host: " << node.grouper().error() << "\n";
     }
-    line << " | c" << id << ": " << f.blobs.size() << " blobs" << first;
-    if (auto s = g.silhouettes.find(id); s != g.silhouettes.end()) {
-      line << ", silhouette " << s->second.contours.size() << " contours";
+  };
+  sub.subscribe<trigger_t>(proto::kTriggerChannel, [&](const trigger_t& t, const std::string&) {
+    ++a.triggers;
+    if (t.flags & trigger_t::FLAG_LAST) last_pulse_frame = t.frame_number;
+    reject(node.on_trigger(t));
+  });
+  sub.subscribe<blob_frame_t>(std::string(proto::kBlobChannelPrefix) + ".*",
+                              [&](const blob_frame_t& f, const std::string& c) {
+                                ++a.blob_parts;
+                                a.tally.add_record(f);
+                                reject(node.on_blob_part(f, c));
+                              });
+  sub.subscribe<silhouette_part_t>(std::string(proto::kSilhouetteChannelPrefix) + ".*",
+                                   [&](const silhouette_part_t& p, const std::string& c) {
+                                     ++a.silhouette_parts;
+                                     reject(node.on_silhouette_part(p, c));
+                                   });
+  sub.subscribe<camera_status_t>(
+      std::string(proto::kStatusChannelPrefix) + ".*",
+      [&](const camera_status_t& s, const std::string&) { a.tally.add_status(s); });
+}
+
+// Receives until a stop condition of the options holds (or a signal).
+void receive(lcm::LCM& lcm, pipeline::HostNode& node, const host_app::HostOptions& o,
+             const std::optional<int64_t>& last_pulse_frame) {
+  auto last_arrival = std::chrono::steady_clock::now();
+  long handed_out = 0;
+  int64_t newest_frame_out = -1;
+  while (!g_stop) {
+    const int handled = lcm.handleTimeout(100);
+    if (handled < 0) break;
+    const auto now = std::chrono::steady_clock::now();
+    if (handled > 0) last_arrival = now;
+    handed_out += static_cast<long>(node.poll());
+    newest_frame_out = node.grouper().last_handed_out().value_or(-1);
+    if (o.frames > 0 && handed_out >= o.frames) break;
+    if (o.until_last && last_pulse_frame && newest_frame_out >= *last_pulse_frame) break;
+    if (o.idle_timeout_s > 0 &&
+        std::chrono::duration<double>(now - last_arrival).count() > o.idle_timeout_s) {
+      if (!o.quiet) std::cout << "syncap-host: idle for " << o.idle_timeout_s << " s\n";
+      break;
     }
   }
-  return line.str();
+  // Let the last heartbeats and stragglers in.
+  for (int i = 0; i < 5 && !g_stop; ++i) lcm.handleTimeout(100);
 }
 
-struct Tally {
-  long groups = 0, complete = 0, triggers = 0, blob_parts = 0, silhouette_parts = 0, rejected = 0;
-  syncap::host::ArrivalTally arrivals;
-};
-
-void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
-                   const syncap::host::FrameGrouper& grouper) {
-  std::cout << "host summary: " << t.groups << " frame groups (" << t.complete << " complete, "
-            << t.groups - t.complete << " incomplete), " << t.triggers << " triggers, "
-            << t.blob_parts << " blob messages, " << t.silhouette_parts << " silhouette parts, "
-            << sub.malformed() << " malformed, " << t.rejected << " rejected ("
-            << grouper.late_messages() << " late, " << grouper.foreign_messages()
-            << " from cameras not expected, " << grouper.wrong_channel_messages()
-            << " on another camera's channel, " << grouper.duplicate_messages() << " duplicates), "
-            << grouper.far_ahead_messages() << " far ahead of the newest frame\n";
-  for (const auto& [channel, count] : sub.malformed_by_channel()) {
-    std::cout << "malformed on " << channel << ": " << count << "\n";
-  }
-  std::cout << t.arrivals.summary();
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  const HostOptions options = parse_options(argc, argv);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  const std::string lcm_url = syncap::proto::receiving_lcm_url(options.lcm_url);
+int run(const host_app::HostOptions& o) {
+  const std::string lcm_url = proto::receiving_lcm_url(o.lcm_url);
   lcm::LCM lcm(lcm_url);
   if (!lcm.good()) {
     std::cerr << "syncap-host: cannot open LCM at " << lcm_url << "\n";
     return 1;
   }
   std::ofstream out;
-  if (!options.out.empty()) {
-    out.open(options.out);
+  if (!o.out.empty()) {
+    out.open(o.out);
     if (!out) {
-      std::cerr << "syncap-host: cannot write " << options.out << "\n";
-      return 1;
+      std::cerr << "syncap-host: --out " << o.out << ": cannot be written\n";
+      return 2;
     }
   }
-  syncap::host::FrameGrouper grouper(options.cameras, options.max_lag);
-  Tally tally;
-  auto last_arrival = std::chrono::steady_clock::now();
-  bool last_pulse_seen = false;
+  Stages stages = make_stages(o, out.is_open() ? &out : nullptr, lcm);
+  pipeline::HostNode node({o.cameras, o.max_lag, 1000}, std::move(stages.chain));
+  host_app::Arrivals arrivals;
   std::optional<int64_t> last_pulse_frame;
-  auto reject = [&](bool ok) {
-    if (!ok) {
-      ++tally.rejected;
-      std::cerr << "syncap-host: " << grouper.error() << "\n";
-    }
-  };
-  syncap::proto::Subscriber sub(
-      lcm, [](const std::string& e) { std::cerr << "syncap-host: " << e << "\n"; });
-  sub.subscribe<syncap::trigger_t>(syncap::proto::kTriggerChannel,
-                                   [&](const syncap::trigger_t& t, const std::string&) {
-                                     ++tally.triggers;
-                                     if (t.flags & syncap::trigger_t::FLAG_LAST)
-                                       last_pulse_frame = t.frame_number;
-                                     reject(grouper.add_trigger(t));
-                                   });
-  sub.subscribe<syncap::blob_frame_t>(std::string(syncap::proto::kBlobChannelPrefix) + ".*",
-                                      [&](const syncap::blob_frame_t& f, const std::string& c) {
-                                        ++tally.blob_parts;
-                                        tally.arrivals.add_record(f);
-                                        reject(grouper.add_blob_part(f, c));
-                                      });
-  sub.subscribe<syncap::silhouette_part_t>(
-      std::string(syncap::proto::kSilhouetteChannelPrefix) + ".*",
-      [&](const syncap::silhouette_part_t& p, const std::string& c) {
-        ++tally.silhouette_parts;
-        reject(grouper.add_silhouette_part(p, c));
-      });
-  sub.subscribe<syncap::camera_status_t>(
-      std::string(syncap::proto::kStatusChannelPrefix) + ".*",
-      [&](const syncap::camera_status_t& s, const std::string&) { tally.arrivals.add_status(s); });
-
-  auto emit = [&](std::vector<syncap::host::FrameGroup> groups) {
-    for (const auto& g : groups) {
-      ++tally.groups;
-      if (g.complete()) ++tally.complete;
-      if (!options.quiet) std::cout << group_line(g, options.cameras.size()) << "\n";
-      if (out.is_open()) out << group_json(g).dump() << "\n";
-      if (last_pulse_frame && g.frame_number >= *last_pulse_frame) last_pulse_seen = true;
-    }
-  };
-  if (!options.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
-  while (!g_stop) {
-    const int handled = lcm.handleTimeout(100);
-    if (handled < 0) break;
-    const auto now = std::chrono::steady_clock::now();
-    if (handled > 0) last_arrival = now;
-    emit(grouper.pop_ready());
-    if (options.frames > 0 && tally.groups >= options.frames) break;
-    if (options.until_last && last_pulse_seen) break;
-    if (options.idle_timeout_s > 0 &&
-        std::chrono::duration<double>(now - last_arrival).count() > options.idle_timeout_s) {
-      if (!options.quiet) std::cout << "syncap-host: idle for " << options.idle_timeout_s << " s\n";
-      break;
-    }
-  }
-  // Let the last heartbeats and stragglers in, then hand out everything still held.
-  for (int i = 0; i < 5 && !g_stop; ++i) lcm.handleTimeout(100);
-  emit(grouper.flush());
-  print_summary(tally, sub, grouper);
+  proto::Subscriber sub(lcm,
+                        [](const std::string& e) { std::cerr << "syncap-host: " << e << "\n"; });
+  subscribe(sub, node, arrivals, last_pulse_frame);
+  if (!o.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
+  receive(lcm, node, o, last_pulse_frame);
+  node.finish();
+  host_app::print_summary({node, sub, arrivals, stages.markers, stages.marker_message}, std::cout);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const host_app::ParsedHostOptions parsed = host_app::parse_host_options(
+      std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
+  if (!parsed.options) return parsed.exit_status;
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    return run(*parsed.options);
+  } catch (const sensor::CameraFileError& e) {
+    std::cerr << "syncap-host: --calibration " << e.what() << "\n";
+    return 2;
+  }
 }

@@ -1,0 +1,93 @@
+#include "app/host_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <ostream>
+#include <sstream>
+
+#include "syncap/proto/channels.hpp"
+
+namespace syncap::host_app {
+namespace {
+
+std::set<int> parse_camera_list(const std::string& text) {
+  std::set<int> ids;
+  std::stringstream list(text);
+  for (std::string id; std::getline(list, id, ',');) {
+    int v = -1;
+    const auto [end, ec] = std::from_chars(id.data(), id.data() + id.size(), v);
+    if (ec != std::errc() || end != id.data() + id.size() || v < 0 || v > proto::kMaxCameraId)
+      throw CLI::ValidationError("--cameras", "'" + id + "' is not a camera id 0..99");
+    ids.insert(v);
+  }
+  if (ids.empty()) throw CLI::ValidationError("--cameras", "no camera ids");
+  return ids;
+}
+
+Eigen::AlignedBox3d parse_volume(const std::vector<double>& v) {
+  if (v.size() != 6 || !(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]))
+    throw CLI::ValidationError("--volume",
+                               "expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX in mm, min < max");
+  return Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
+}
+
+void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vector<double>& volume) {
+  app.add_option("--cameras", cameras, "expected camera ids, e.g. 0,1,2 (default 0)");
+  app.add_option("--max-lag", o.max_lag, "frames to wait for missing messages (default 10)")
+      ->check(CLI::Range(0, 100000));
+  app.add_option("--frames", o.frames, "exit after N frame groups")
+      ->check(CLI::Range(1L, 1L << 40));
+  app.add_flag("--until-last", o.until_last, "exit after the frame of the trigger's last pulse");
+  app.add_option("--idle-timeout", o.idle_timeout_s, "exit when nothing arrived for S seconds")
+      ->check(CLI::Range(1.0, 86400.0));
+  app.add_option("--out", o.out, "write every frame group (and its markers) as a JSON line");
+  app.add_option("--lcm-url", o.lcm_url, "LCM provider (default " + o.lcm_url + ")");
+  app.add_flag("--quiet", o.quiet, "no line per frame, summary only");
+  app.add_option("--calibration", o.calibration,
+                 "cameras.json (syncap calibrate): reconstruct the markers of every frame live, "
+                 "publish them on SYNCAP_MARKERS and add them to --out")
+      ->check(CLI::ExistingFile);
+  app.add_option("--volume", volume,
+                 "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm, the calibration's frame): "
+                 "points outside are no markers")
+      ->delimiter(',')
+      ->expected(6);
+  app.add_option("--tolerance-px", o.matching.tolerance_px,
+                 "how far a ray may miss another, or a point, in its image (default 2)")
+      ->check(CLI::Range(0.01, 100.0));
+  app.add_option("--sigma-px", o.matching.sigma_px,
+                 "a ray's standard deviation in its image: blob noise and the calibration's RMS "
+                 "(default 0.2)")
+      ->check(CLI::Range(0.001, 10.0));
+  app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
+}
+
+}  // namespace
+
+ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::ostream& out,
+                                     std::ostream& err) {
+  HostOptions o;
+  o.lcm_url = proto::kDefaultLcmUrl;
+  std::string cameras = "0";
+  std::vector<double> volume;
+  CLI::App app(
+      "syncap-host: groups every camera's messages by frame number and runs the "
+      "host's stages on each group (docs/reconstruction.md).",
+      "syncap-host");
+  add_options(app, o, cameras, volume);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
+  try {
+    app.parse(reversed);
+    o.cameras = parse_camera_list(cameras);
+    if (!volume.empty()) o.matching.volume = parse_volume(volume);
+  } catch (const CLI::CallForHelp&) {
+    out << app.help();
+    return {std::nullopt, 0};
+  } catch (const CLI::Error& e) {
+    err << "syncap-host: " << e.what() << "\n" << app.help();
+    return {std::nullopt, 2};
+  }
+  return {o, 0};
+}
+
+}  // namespace syncap::host_app

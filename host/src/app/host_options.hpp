@@ -1,0 +1,37 @@
+// Command line of syncap-host.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "matching/marker_matcher.hpp"
+
+namespace syncap::host_app {
+
+struct HostOptions {
+  std::set<int> cameras{0};
+  std::string lcm_url;
+  int max_lag = 10;
+  long frames = 0;            // stop after this many groups; 0: no limit
+  double idle_timeout_s = 0;  // stop when nothing arrived for this long; 0: never
+  bool until_last = false;    // stop after the group of the trigger's last pulse
+  std::string out;            // JSON lines of the groups
+  bool quiet = false;
+  std::string calibration;  // cameras.json: the markers are reconstructed live
+  matching::MatchOptions matching;
+  bool marker_message = true;  // publish marker_frame_t on SYNCAP_MARKERS
+};
+
+// Parses argv[1..]. Returns the options, or an exit status when the run is over: 0 after
+// --help (printed on `out`), 2 after a usage error (named on `err`, with the usage).
+struct ParsedHostOptions {
+  std::optional<HostOptions> options;
+  int exit_status = 0;
+};
+ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::ostream& out,
+                                     std::ostream& err);
+
+}  // namespace syncap::host_app

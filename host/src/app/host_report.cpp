@@ -1,0 +1,76 @@
+#include "app/host_report.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace syncap::host_app {
+namespace {
+
+void print_grouping(const SummaryInputs& in, std::ostream& out) {
+  const pipeline::HostNodeStats s = in.node.stats();
+  const host::FrameGrouper& g = in.node.grouper();
+  const Arrivals& a = in.arrivals;
+  out << "host summary: " << s.groups << " frame groups (" << s.complete << " complete, "
+      << s.groups - s.complete << " incomplete), " << a.triggers << " triggers, " << a.blob_parts
+      << " blob messages, " << a.silhouette_parts << " silhouette parts, "
+      << in.subscriber.malformed() << " malformed, " << a.rejected << " rejected ("
+      << g.late_messages() << " late, " << g.foreign_messages() << " from cameras not expected, "
+      << g.wrong_channel_messages() << " on another camera's channel, " << g.duplicate_messages()
+      << " duplicates), " << g.far_ahead_messages() << " far ahead of the newest frame\n";
+  for (const auto& [channel, count] : in.subscriber.malformed_by_channel())
+    out << "malformed on " << channel << ": " << count << "\n";
+  out << a.tally.summary();
+}
+
+void print_reconstruction(const SummaryInputs& in, std::ostream& out) {
+  const pipeline::HostNodeStats s = in.node.stats();
+  const reconstruction::MarkerStageStats& m = in.markers->stats();
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "host markers: %ld frames, %ld markers (%ld seen by two cameras only), %ld of "
+                "%ld blobs in a marker, %ld of cameras outside the calibration\n",
+                m.frames, m.markers, m.two_camera_markers, m.blobs_used, m.blobs,
+                m.blobs_of_unknown_cameras);
+  out << line;
+  std::snprintf(line, sizeof line,
+                "host time per group: p50 %.3f ms, p99 %.3f ms (%ld groups, %ld dropped by a "
+                "full queue)\n",
+                pipeline::quantile(s.host_us.values(), 0.5) * 1e-3,
+                pipeline::quantile(s.host_us.values(), 0.99) * 1e-3, s.processed, s.dropped);
+  out << line;
+  if (in.marker_message != nullptr && in.marker_message->latency().added() > 0) {
+    const auto& latency = in.marker_message->latency().values();
+    std::snprintf(line, sizeof line,
+                  "latency trigger to marker message: p50 %.3f ms, p99 %.3f ms (%zu frames)\n",
+                  pipeline::quantile(latency, 0.5), pipeline::quantile(latency, 0.99),
+                  in.marker_message->latency().added());
+    out << line;
+  }
+}
+
+}  // namespace
+
+void FrameLineStage::process(pipeline::FrameWork& work) {
+  const host::FrameGroup& g = work.group;
+  std::ostringstream line;
+  line << "frame " << g.frame_number << ": trigger " << (g.trigger ? "ok" : "MISSING")
+       << ", cameras " << g.blobs.size() << "/" << expected_;
+  for (const auto& [id, f] : g.blobs) {
+    char first[64] = "";
+    if (!f.blobs.empty())
+      std::snprintf(first, sizeof first, " first (%.2f, %.2f)", f.blobs[0].x, f.blobs[0].y);
+    line << " | c" << id << ": " << f.blobs.size() << " blobs" << first;
+    if (auto s = g.silhouettes.find(id); s != g.silhouettes.end())
+      line << ", silhouette " << s->second.contours.size() << " contours";
+  }
+  if (with_markers_) line << " | " << work.markers.size() << " markers";
+  out_ << line.str() << '\n';
+}
+
+void print_summary(const SummaryInputs& in, std::ostream& out) {
+  print_grouping(in, out);
+  if (in.markers != nullptr) print_reconstruction(in, out);
+  out.flush();
+}
+
+}  // namespace syncap::host_app

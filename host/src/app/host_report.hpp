@@ -1,0 +1,44 @@
+// What syncap-host prints: a line per frame group (unless --quiet) and the summary at the end.
+#pragma once
+
+#include <ostream>
+
+#include "aggregator/arrival_tally.hpp"
+#include "outputs/marker_message_stage.hpp"
+#include "pipeline/host_node.hpp"
+#include "reconstruction/marker_stage.hpp"
+#include "syncap/proto/subscriber.hpp"
+
+namespace syncap::host_app {
+
+// "frame 12: trigger ok, cameras 3/3 | c0: 4 blobs first (12.50, 40.25) ... | 4 markers".
+class FrameLineStage : public pipeline::Stage {
+ public:
+  FrameLineStage(std::ostream& out, std::size_t expected_cameras, bool with_markers)
+      : out_(out), expected_(expected_cameras), with_markers_(with_markers) {}
+  const char* name() const override { return "frame line"; }
+  void process(pipeline::FrameWork& work) override;
+
+ private:
+  std::ostream& out_;
+  std::size_t expected_;
+  bool with_markers_;
+};
+
+// Counts of the receiving side, kept by host_main.
+struct Arrivals {
+  long triggers = 0, blob_parts = 0, silhouette_parts = 0, rejected = 0;
+  host::ArrivalTally tally;
+};
+
+struct SummaryInputs {
+  const pipeline::HostNode& node;
+  const proto::Subscriber& subscriber;
+  const Arrivals& arrivals;
+  const reconstruction::MarkerStage* markers = nullptr;         // with --calibration
+  const outputs::MarkerMessageStage* marker_message = nullptr;  // with --calibration
+};
+
+void print_summary(const SummaryInputs& in, std::ostream& out);
+
+}  // namespace syncap::host_app

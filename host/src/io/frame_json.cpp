@@ -1,0 +1,70 @@
+#include "io/frame_json.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace syncap::io {
+namespace {
+
+// Contours as [[x, y], ...] in pixels (outline of the foreground pixels, holes flagged).
+nlohmann::json silhouette_json(const proto::Silhouette& s) {
+  nlohmann::json contours = nlohmann::json::array();
+  for (const auto& c : s.contours) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : c.points) points.push_back({p.x, p.y});
+    contours.push_back({{"hole", c.hole}, {"complete", c.complete}, {"points", points}});
+  }
+  return {{"width", s.image_width},
+          {"height", s.image_height},
+          {"parts", s.parts_received},
+          {"part_count", s.part_count},
+          {"contours", contours}};
+}
+
+// mm to 0.001 mm: the JSON stays short and no precision that exists is lost.
+double micrometres(double mm) { return std::round(mm * 1000.0) / 1000.0; }
+
+}  // namespace
+
+nlohmann::json marker_json(const pipeline::Marker3d& m) {
+  nlohmann::json j{
+      {"id", m.id},
+      {"x", micrometres(m.position.x())},
+      {"y", micrometres(m.position.y())},
+      {"z", micrometres(m.position.z())},
+      {"sigma",
+       {micrometres(std::sqrt(m.covariance(0, 0))), micrometres(std::sqrt(m.covariance(1, 1))),
+        micrometres(std::sqrt(m.covariance(2, 2)))}},
+      {"residual_px", std::round(m.residual_px * 1000.0) / 1000.0},
+      {"cameras", m.camera_ids}};
+  if (m.two_cameras_only()) j["two_cameras"] = true;
+  if (m.predicted) j["predicted"] = true;
+  return j;
+}
+
+nlohmann::json frame_json(const pipeline::FrameWork& work, bool with_markers) {
+  const host::FrameGroup& g = work.group;
+  nlohmann::json j{{"frame", g.frame_number},
+                   {"complete", g.complete()},
+                   {"missing_cameras", g.missing_cameras}};
+  if (g.trigger) j["trigger_monotonic_ns"] = g.trigger->monotonic_ns;
+  nlohmann::json cameras = nlohmann::json::object();
+  for (const auto& [id, f] : g.blobs) {
+    nlohmann::json blobs = nlohmann::json::array();
+    for (const auto& b : f.blobs) blobs.push_back({{"x", b.x}, {"y", b.y}, {"area", b.area}});
+    cameras[std::to_string(id)] = {{"processing_us", f.processing_us}, {"blobs", blobs}};
+  }
+  for (const auto& [id, s] : g.silhouettes) {
+    cameras[std::to_string(id)]["silhouette"] = silhouette_json(s);
+  }
+  j["cameras"] = cameras;
+  if (!g.incomplete_silhouettes.empty()) j["incomplete_silhouettes"] = g.incomplete_silhouettes;
+  if (with_markers) {
+    nlohmann::json markers = nlohmann::json::array();
+    for (const pipeline::Marker3d& m : work.markers) markers.push_back(marker_json(m));
+    j["markers"] = markers;
+  }
+  return j;
+}
+
+}  // namespace syncap::io

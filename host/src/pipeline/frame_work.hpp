@@ -1,0 +1,43 @@
+// A frame group on its way through the host's stages: what the grouper handed out and what each
+// stage added (docs/ARCHITECTURE.md, "The host's pipeline").
+#pragma once
+
+#include <Eigen/Core>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "aggregator/frame_grouper.hpp"
+
+namespace syncap::pipeline {
+
+// One 3D marker of a frame.
+struct Marker3d {
+  int id = -1;  // persistent trajectory id once tracked; -1 before
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();    // mm, the calibration's frame
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // mm^2
+  double residual_px = 0;                                // RMS of its rays' errors
+  std::vector<int> camera_ids;                           // the cameras that saw it, ascending
+  bool predicted = false;  // not seen this frame: the tracker's prediction
+  bool two_cameras_only() const { return camera_ids.size() == 2; }
+};
+
+struct FrameWork {
+  host::FrameGroup group;
+  // When the grouper handed the group out: the host's time for it starts here.
+  std::chrono::steady_clock::time_point ready;
+  std::vector<Marker3d> markers;
+};
+
+// A step of the host's per-frame work. Stages run in order on the pipeline's worker thread, one
+// frame at a time; a stage keeps its own state across frames (a tracker does).
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  virtual const char* name() const = 0;
+  virtual void process(FrameWork& work) = 0;
+  // After the last frame (flush files, print a summary line).
+  virtual void finish() {}
+};
+
+}  // namespace syncap::pipeline

@@ -1,0 +1,56 @@
+#include "app/host_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace syncap::host_app {
+namespace {
+
+ParsedHostOptions parse(std::vector<std::string> args, std::string* err_text = nullptr) {
+  std::ostringstream out, err;
+  ParsedHostOptions p = parse_host_options(args, out, err);
+  if (err_text != nullptr) *err_text = err.str() + out.str();
+  return p;
+}
+
+TEST(HostOptions, MarkersOptionsAreParsed) {
+  const ParsedHostOptions p =
+      parse({"--cameras", "0,2,5", "--volume", "-1000,-1000,0,1000,1000,2000", "--sigma-px", "0.3",
+             "--tolerance-px", "1.5", "--no-marker-message", "--max-lag", "30"});
+  ASSERT_TRUE(p.options.has_value());
+  EXPECT_EQ(p.options->cameras, (std::set<int>{0, 2, 5}));
+  ASSERT_TRUE(p.options->matching.volume.has_value());
+  EXPECT_EQ(p.options->matching.volume->max().z(), 2000);
+  EXPECT_DOUBLE_EQ(p.options->matching.sigma_px, 0.3);
+  EXPECT_DOUBLE_EQ(p.options->matching.tolerance_px, 1.5);
+  EXPECT_FALSE(p.options->marker_message);
+  EXPECT_EQ(p.options->max_lag, 30);
+}
+
+TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
+  std::string err;
+  EXPECT_EQ(parse({"--cameras", "0,x"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("'x' is not a camera id"), std::string::npos) << err;
+  EXPECT_EQ(parse({"--volume", "1,2,3,0,0,0"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("--volume"), std::string::npos) << err;
+  EXPECT_EQ(parse({"--calibration", "/nonexistent/cameras.json"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("/nonexistent/cameras.json"), std::string::npos) << err;
+  EXPECT_EQ(parse({"--max-lag", "-1"}, &err).exit_status, 2);
+  EXPECT_EQ(parse({"--colour"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("--colour"), std::string::npos) << err;
+}
+
+TEST(HostOptions, HelpNamesEveryOption) {
+  std::string text;
+  const ParsedHostOptions p = parse({"--help"}, &text);
+  EXPECT_FALSE(p.options.has_value());
+  EXPECT_EQ(p.exit_status, 0);
+  for (const char* option : {"--cameras", "--max-lag", "--frames", "--until-last", "--idle-timeout",
+                             "--out", "--lcm-url", "--quiet", "--calibration", "--volume",
+                             "--tolerance-px", "--sigma-px", "--no-marker-message"})
+    EXPECT_NE(text.find(option), std::string::npos) << option;
+}
+
+}  // namespace
+}  // namespace syncap::host_app

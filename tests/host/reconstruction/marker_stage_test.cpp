@@ -1,0 +1,93 @@
+#include "reconstruction/marker_stage.hpp"
+
+#include <gtest/gtest.h>
+
+#include "outputs/marker_message_stage.hpp"
+#include "synthetic_markers.hpp"
+
+namespace syncap::reconstruction {
+namespace {
+
+// The synthetic frame as the grouper hands it out: one blob frame per camera id.
+pipeline::FrameWork work_of(const test::MarkerFrame& f,
+                            const std::vector<sensor::CameraModel>& cameras) {
+  pipeline::FrameWork w;
+  w.group.frame_number = 42;
+  w.group.trigger = trigger_t{};
+  w.group.trigger->frame_number = 42;
+  w.ready = std::chrono::steady_clock::now();
+  for (std::size_t c = 0; c < cameras.size(); ++c) {
+    blob_frame_t b{};
+    b.camera_id = static_cast<int16_t>(cameras[c].id);
+    b.frame_number = 42;
+    for (const Eigen::Vector2d& p : f.blobs[c]) {
+      blob_t blob{};
+      blob.x = static_cast<float>(p.x());
+      blob.y = static_cast<float>(p.y());
+      b.blobs.push_back(blob);
+    }
+    b.num_blobs = static_cast<int16_t>(b.blobs.size());
+    w.group.blobs[cameras[c].id] = b;
+  }
+  return w;
+}
+
+TEST(MarkerStage, TheMarkersOfAGroupAreFoundWithTheirCameraIds) {
+  auto cameras = test::marker_ring(6);
+  for (auto& c : cameras) c.id += 10;  // ids are not indices
+  std::mt19937 rng(3);
+  test::MarkerFrameOptions o;
+  o.hidden = 0;
+  o.spurious_per_camera = 0;
+  o.noise_px = 0.05;  // float pixels in blob_t: ~1e-4 px more
+  const auto truth = test::random_markers(rng, 20);
+  const test::MarkerFrame f = test::observe(cameras, truth, o, rng);
+  pipeline::FrameWork w = work_of(f, cameras);
+  blob_frame_t stranger{};  // a camera the calibration does not know
+  stranger.camera_id = 3;
+  stranger.blobs.resize(4);
+  w.group.blobs[3] = stranger;
+
+  MarkerStage stage(cameras, {});
+  stage.process(w);
+  ASSERT_EQ(w.markers.size(), 20u);
+  for (const pipeline::Marker3d& m : w.markers) {
+    double nearest = 1e9;
+    for (const Eigen::Vector3d& t : truth) nearest = std::min(nearest, (m.position - t).norm());
+    EXPECT_LT(nearest, 1.0);
+    EXPECT_EQ(m.camera_ids.size(), 6u);
+    EXPECT_EQ(m.camera_ids.front(), 10);
+    EXPECT_GT(m.covariance(0, 0), 0);
+  }
+  EXPECT_EQ(stage.stats().blobs_of_unknown_cameras, 4);
+  EXPECT_EQ(stage.stats().blobs_used, 120);
+}
+
+TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
+  pipeline::FrameWork w;
+  w.group.frame_number = 7;
+  w.group.trigger = trigger_t{};
+  w.group.trigger->realtime_ns = 1;  // long ago: the latency is large, but measured
+  w.ready = std::chrono::steady_clock::now();
+  for (int i = 0; i < 50; ++i) {
+    pipeline::Marker3d m;
+    m.id = i;
+    m.position = {1.0 * i, 2, 3};
+    m.covariance = Eigen::Matrix3d::Identity() * 0.04;
+    m.camera_ids = {0, 1};
+    w.markers.push_back(m);
+  }
+  std::vector<marker_frame_t> sent;
+  outputs::MarkerMessageStage stage([&](const marker_frame_t& m) { sent.push_back(m); });
+  stage.process(w);
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0].num_markers, marker_frame_t::MAX_MARKERS);
+  EXPECT_EQ(sent[1].total_markers, 50);
+  EXPECT_EQ(sent[1].frame_number, 7);
+  EXPECT_EQ(sent[0].markers[3].flags, marker_t::FLAG_TWO_CAMERAS);
+  EXPECT_FLOAT_EQ(sent[0].markers[3].sigma_y, 0.2f);
+  EXPECT_EQ(stage.latency().added(), 1u);
+}
+
+}  // namespace
+}  // namespace syncap::reconstruction
