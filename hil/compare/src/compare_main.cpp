@@ -1,5 +1,6 @@
 // syncap-hil-compare: what the system produced (the host's frame groups) against the simulator's
 // ground truth; prints a summary and PASS or FAIL: reasons (hil/compare/README.md).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "comparison.hpp"
 #include "groups.hpp"
 #include "input_error.hpp"
+#include "markers_check.hpp"
 #include "sensor/camera_file.hpp"
 #include "summary.hpp"
 #include "truth.hpp"
@@ -30,15 +32,29 @@ const char* kUsage =
     "  --min-frames SHARE     complete groups / truth frames\n"
     "  --min-iou SHARE        per camera: mean IoU of its silhouettes against the true masks\n"
     "  --require-silhouettes  per camera: a silhouette in min-frames of the frames with a mask\n"
+    "  When the groups carry 3D markers (syncap-host --calibration), against truth/targets.csv:\n"
+    "  --marker-radius-mm MM  a marker finds the nearest free true target within MM (5)\n"
+    "  --min-markers-found SHARE  found / targets seen by two or more cameras (0.995)\n"
+    "  --max-ghosts SHARE     markers near no target / markers (0.005)\n"
+    "  --max-marker-rms-mm MM 3D RMS error of the found markers (0.5)\n"
     "       syncap-hil-compare --truth DIR --cameras FILE [--max-reprojection-px 0.5]\n"
     "  --cameras FILE         a calibration (cameras.json) against DIR/cameras.json, aligned by\n"
     "                         a similarity; the true targets reprojected through both\n"
     "  --max-reprojection-px PX  RMS of that reprojection at most PX\n"
     "exit 0 PASS, 1 FAIL, 2 unusable inputs\n";
 
+// The host's 3D markers, when the groups carry them (syncap-host --calibration).
+struct MarkerLimits {
+  double match_radius_mm = 5;
+  double min_found = 0.995;
+  double max_ghosts = 0.005;
+  double max_rms_mm = 0.5;
+};
+
 struct Options {
   std::string truth, groups, json, cameras;
   syncap::compare::Thresholds thresholds;
+  MarkerLimits markers;
   double max_reprojection_px = 0.5;
 };
 
@@ -67,7 +83,11 @@ Options parse(int argc, char** argv) {
                                          {"--match-radius-px", &o.thresholds.match_radius_px},
                                          {"--min-frames", &o.thresholds.min_frames},
                                          {"--min-iou", &o.thresholds.min_iou},
-                                         {"--max-reprojection-px", &o.max_reprojection_px}};
+                                         {"--max-reprojection-px", &o.max_reprojection_px},
+                                         {"--marker-radius-mm", &o.markers.match_radius_mm},
+                                         {"--min-markers-found", &o.markers.min_found},
+                                         {"--max-ghosts", &o.markers.max_ghosts},
+                                         {"--max-marker-rms-mm", &o.markers.max_rms_mm}};
   for (int i = 1; i < argc; ++i) {
     const std::string option = argv[i];
     if (option == "--help" || option == "-h") {
@@ -106,6 +126,27 @@ void write_json(const std::string& file, const syncap::compare::Report& report) 
 }
 
 }  // namespace
+
+// The host's markers against the true targets, when the groups carry them; true when within the
+// limits (or when there are none).
+bool check_markers(const Options& o, const syncap::compare::Truth& truth,
+                   const std::vector<syncap::compare::Group>& groups) {
+  const bool any = std::any_of(groups.begin(), groups.end(),
+                               [](const auto& g) { return g.markers.has_value(); });
+  if (!any) return true;
+  const auto positions = syncap::compare::read_true_positions(std::filesystem::path(o.truth) /
+                                                              "truth" / "targets.csv");
+  const auto check =
+      syncap::compare::check_markers(truth, positions, groups, o.markers.match_radius_mm);
+  std::cout << syncap::compare::format_markers_check(check);
+  const bool pass = check.found_share() >= o.markers.min_found &&
+                    check.ghost_share() <= o.markers.max_ghosts &&
+                    check.rms_mm() <= o.markers.max_rms_mm;
+  std::cout << (pass ? "PASS" : "FAIL") << ": markers (found >= " << o.markers.min_found
+            << ", ghosts <= " << o.markers.max_ghosts << ", 3D RMS <= " << o.markers.max_rms_mm
+            << " mm)\n";
+  return pass;
+}
 
 // The calibration check: 0 when the true targets reproject within the limit.
 int check_cameras(const Options& o) {
@@ -149,7 +190,8 @@ int main(int argc, char** argv) {
                                 o.groups + " (" + std::to_string(groups.size()) + " lines)";
     std::cout << syncap::compare::format_summary(report, heading) << std::flush;
     if (!o.json.empty()) write_json(o.json, report);
-    return report.pass() ? 0 : 1;
+    const bool markers_pass = check_markers(o, truth, groups);
+    return report.pass() && markers_pass ? 0 : 1;
   } catch (const syncap::compare::InputError& e) {
     std::cerr << "syncap-hil-compare: " << e.what() << "\n";
     return 2;

@@ -103,6 +103,22 @@ std::vector<int> parse_missing(const json& object, const std::string& where) {
   return missing;
 }
 
+std::vector<Marker> parse_markers(const json& list, const std::string& where) {
+  if (!list.is_array()) fail(where, "markers is not an array");
+  std::vector<Marker> markers;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "markers[" + std::to_string(i) + "].";
+    if (!list[i].is_object()) fail(where, path + " is not an object");
+    Marker m{number(list[i], "x", where, path), number(list[i], "y", where, path),
+             number(list[i], "z", where, path), 0};
+    const json& cameras = member(list[i], "cameras", where);
+    if (!cameras.is_array()) fail(where, path + "cameras is not an array");
+    m.cameras = static_cast<int>(cameras.size());
+    markers.push_back(m);
+  }
+  return markers;
+}
+
 }  // namespace
 
 Group parse_group(std::string_view line, const std::string& where) {
@@ -122,6 +138,7 @@ Group parse_group(std::string_view line, const std::string& where) {
   for (const auto& [key, value] : cameras.items()) {
     g.cameras[camera_id(key, where)] = parse_camera(value, where, "cameras." + key);
   }
+  if (object.contains("markers")) g.markers = parse_markers(object["markers"], where);
   return g;
 }
 

@@ -34,11 +34,18 @@ struct CameraBlobs {
   std::optional<std::vector<Outline>> silhouette;  // when the camera sent one for the frame
 };
 
+// A 3D marker of the host's reconstruction (syncap-host --calibration).
+struct Marker {
+  double x = 0, y = 0, z = 0;  // mm
+  int cameras = 0;             // how many saw it
+};
+
 struct Group {
   long frame = 0;
   bool complete = false;
   std::vector<int> missing_cameras;
-  std::map<int, CameraBlobs> cameras;  // by camera id: the cameras whose message arrived
+  std::map<int, CameraBlobs> cameras;          // by camera id: the cameras whose message arrived
+  std::optional<std::vector<Marker>> markers;  // when the host reconstructed them
 };
 
 // One line; `where` ("groups.jsonl:17") starts every InputError message.

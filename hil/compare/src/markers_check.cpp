@@ -1,0 +1,108 @@
+#include "markers_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <tuple>
+
+#include "csv_reader.hpp"
+
+namespace syncap::compare {
+namespace {
+
+// Targets of `frame` that two or more cameras see.
+std::vector<int> visible_targets(const Truth& truth, long frame) {
+  std::map<int, int> views;
+  for (const auto& [id, size] : truth.images) {
+    const auto it = truth.projections.find({frame, id});
+    if (it == truth.projections.end()) continue;
+    for (const Projection& p : it->second) views[p.target] += p.visible;
+  }
+  std::vector<int> out;
+  for (const auto& [target, n] : views)
+    if (n >= 2) out.push_back(target);
+  return out;
+}
+
+double distance(const Marker& m, const std::array<double, 3>& t) {
+  return std::hypot(m.x - t[0], m.y - t[1], m.z - t[2]);
+}
+
+// One frame: pairs within the radius, nearest first, each marker and target used once.
+void check_frame(const std::vector<Marker>& markers, const std::vector<int>& targets,
+                 const std::map<int, std::array<double, 3>>& positions, double radius,
+                 MarkersCheck& c) {
+  std::vector<std::tuple<double, std::size_t, int>> pairs;
+  for (std::size_t m = 0; m < markers.size(); ++m) {
+    for (const auto& [target, position] : positions) {
+      const double d = distance(markers[m], position);
+      if (d <= radius) pairs.emplace_back(d, m, target);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<bool> marker_used(markers.size(), false);
+  std::map<int, bool> target_used;
+  for (const auto& [d, m, target] : pairs) {
+    if (marker_used[m] || target_used[target]) continue;
+    marker_used[m] = target_used[target] = true;
+    if (std::find(targets.begin(), targets.end(), target) != targets.end()) {
+      ++c.found;
+      c.squared_error_sum += d * d;
+    }
+  }
+  c.visible_targets += static_cast<long>(targets.size());
+  c.markers += static_cast<long>(markers.size());
+  c.ghosts += static_cast<long>(std::count(marker_used.begin(), marker_used.end(), false));
+  for (const Marker& m : markers) c.two_camera_markers += m.cameras == 2;
+}
+
+}  // namespace
+
+double MarkersCheck::found_share() const {
+  return visible_targets > 0 ? static_cast<double>(found) / static_cast<double>(visible_targets)
+                             : 1.0;
+}
+
+double MarkersCheck::ghost_share() const {
+  return markers > 0 ? static_cast<double>(ghosts) / static_cast<double>(markers) : 0.0;
+}
+
+double MarkersCheck::rms_mm() const {
+  return found > 0 ? std::sqrt(squared_error_sum / static_cast<double>(found)) : 0.0;
+}
+
+TruePositions read_true_positions(const std::filesystem::path& targets_csv) {
+  TruePositions positions;
+  read_csv(targets_csv, {"frame", "target", "X_mm", "Y_mm", "Z_mm", "radius_mm"},
+           [&](const CsvRow& row) {
+             positions[static_cast<long>(row.number(0))][static_cast<int>(row.number(1))] = {
+                 row.number(2), row.number(3), row.number(4)};
+           });
+  return positions;
+}
+
+MarkersCheck check_markers(const Truth& truth, const TruePositions& positions,
+                           const std::vector<Group>& groups, double match_radius_mm) {
+  MarkersCheck c;
+  static const std::map<int, std::array<double, 3>> kNone;
+  for (const Group& g : groups) {
+    if (!g.markers) continue;
+    ++c.frames;
+    const auto it = positions.find(g.frame);
+    check_frame(*g.markers, visible_targets(truth, g.frame),
+                it == positions.end() ? kNone : it->second, match_radius_mm, c);
+  }
+  return c;
+}
+
+std::string format_markers_check(const MarkersCheck& c) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "markers: %ld frames, %ld of %ld visible targets found (%.2f %%), %ld ghosts of "
+                "%ld markers (%.2f %%), 3D RMS %.3f mm, %ld seen by two cameras only\n",
+                c.frames, c.found, c.visible_targets, 100 * c.found_share(), c.ghosts, c.markers,
+                100 * c.ghost_share(), c.rms_mm(), c.two_camera_markers);
+  return line;
+}
+
+}  // namespace syncap::compare
