@@ -19,6 +19,7 @@
 #include "clip_command.hpp"
 #include "ctl_command.hpp"
 #include "log_command.hpp"
+#include "markers_command.hpp"
 #include "subcommand.hpp"
 
 namespace {
@@ -42,6 +43,8 @@ constexpr std::array kSubcommands{
                &syncap::tools::clip_command},
     Subcommand{"ctl", "command the edges (start, stop, background, threshold, ROI, ...), signed",
                &syncap::tools::ctl_command},
+    Subcommand{"markers", "reconstruct the 3D markers of a recorded LCM log (as syncap-host)",
+               &syncap::tools::markers_command},
     Subcommand{"keygen", "create the installation's key that signs the edges' commands",
                &syncap::tools::keygen_command},
 };

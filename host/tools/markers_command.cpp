@@ -1,0 +1,152 @@
+#include "markers_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "lcm_log_reader.hpp"
+#include "outputs/json_lines_stage.hpp"
+#include "pipeline/host_node.hpp"
+#include "reconstruction/marker_stage.hpp"
+#include "sensor/camera_file.hpp"
+#include "subcommand.hpp"
+#include "syncap/proto/channels.hpp"
+#include "syncap/proto/decode.hpp"
+
+namespace syncap::tools {
+namespace {
+
+constexpr const char* kName = "syncap markers";
+
+struct MarkersArgs {
+  std::string input;        // lcmlog:FILE
+  std::string calibration;  // cameras.json
+  std::string out;          // folder
+  std::string cameras;      // expected ids; default: the calibration's
+  std::set<int> camera_ids;
+  matching::MatchOptions matching;
+  std::vector<double> volume;
+  int max_lag = 30;
+};
+
+// Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
+bool feed(pipeline::HostNode& node, const LogEvent& e, long& rejected) {
+  const auto decode_into = [&](auto& msg) {
+    return proto::try_decode(e.data.data(), e.data.size(), msg).ok();
+  };
+  bool ok = true;
+  if (e.channel == proto::kTriggerChannel) {
+    trigger_t t;
+    ok = decode_into(t) && node.on_trigger(t);
+  } else if (proto::camera_of_channel(e.channel) && e.channel.starts_with(proto::kBlobChannelPrefix)) {
+    blob_frame_t f;
+    ok = decode_into(f) && node.on_blob_part(f, e.channel);
+  } else {
+    return true;  // statuses, silhouettes, commands: not needed for markers
+  }
+  if (!ok) ++rejected;
+  return ok;
+}
+
+std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
+                              std::ostream& out, std::ostream& err) {
+  CLI::App app("Reconstructs the 3D markers of every frame of a recorded LCM log, as syncap-host "
+               "--calibration does live, into DIR/markers.jsonl (docs/reconstruction.md).",
+               kName);
+  app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
+  app.add_option("--calibration", a.calibration, "cameras.json")->required()->check(CLI::ExistingFile);
+  app.add_option("--out", a.out, "the output folder")->required();
+  app.add_option("--cameras", a.cameras, "expected camera ids (default: the calibration's)");
+  app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
+      ->delimiter(',')
+      ->expected(6);
+  app.add_option("--sigma-px", a.matching.sigma_px, "a ray's standard deviation (0.2)");
+  app.add_option("--tolerance-px", a.matching.tolerance_px, "a ray's largest miss (2)");
+  app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app.parse(reversed);
+    if (!a.input.starts_with("lcmlog:")) throw CLI::ValidationError("--input", "expected lcmlog:FILE");
+    std::stringstream list(a.cameras);
+    for (std::string id; std::getline(list, id, ',');) {
+      int v = -1;
+      const auto [end, ec] = std::from_chars(id.data(), id.data() + id.size(), v);
+      if (ec != std::errc() || end != id.data() + id.size() || v < 0 || v > proto::kMaxCameraId)
+        throw CLI::ValidationError("--cameras", "'" + id + "' is not a camera id 0..99");
+      a.camera_ids.insert(v);
+    }
+    if (!a.volume.empty()) {
+      const auto& v = a.volume;
+      if (!(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]))
+        throw CLI::ValidationError("--volume", "min < max expected");
+      a.matching.volume = Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]),
+                                              Eigen::Vector3d(v[3], v[4], v[5]));
+    }
+  } catch (const CLI::CallForHelp&) {
+    out << app.help();
+    return kExitOk;
+  } catch (const CLI::Error& e) {
+    err << kName << ": " << e.what() << '\n' << app.help();
+    return kExitUsage;
+  }
+  return std::nullopt;
+}
+
+std::set<int> expected_cameras(const MarkersArgs& a, const std::vector<sensor::CameraModel>& cams) {
+  if (!a.camera_ids.empty()) return a.camera_ids;
+  std::set<int> ids;
+  for (const auto& c : cams) ids.insert(c.id);
+  return ids;
+}
+
+}  // namespace
+
+int markers_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+  MarkersArgs a;
+  if (const auto status = parse_args(args, a, out, err)) return *status;
+  std::vector<sensor::CameraModel> cameras;
+  try {
+    cameras = sensor::read_cameras(a.calibration);
+  } catch (const sensor::CameraFileError& e) {
+    err << kName << ": --calibration " << e.what() << '\n';
+    return kExitUsage;
+  }
+  const std::string log_path = a.input.substr(7);
+  std::ifstream log(log_path, std::ios::binary);
+  std::error_code ec;
+  std::filesystem::create_directories(a.out, ec);
+  std::ofstream jsonl(std::filesystem::path(a.out) / "markers.jsonl");
+  if (!log || !jsonl) {
+    err << kName << ": " << (!log ? log_path + ": cannot be read" : a.out + ": cannot be written")
+        << '\n';
+    return kExitUsage;
+  }
+  auto marker_stage = std::make_unique<reconstruction::MarkerStage>(cameras, a.matching);
+  const reconstruction::MarkerStage* markers = marker_stage.get();
+  std::vector<std::unique_ptr<pipeline::Stage>> stages;
+  stages.push_back(std::move(marker_stage));
+  stages.push_back(std::make_unique<outputs::JsonLinesStage>(jsonl, true));
+  pipeline::HostNode node({expected_cameras(a, cameras), a.max_lag, 1'000'000}, std::move(stages));
+  LcmLogReader reader(log);
+  long rejected = 0;
+  bool damaged = false;
+  while (const auto event = reader.next()) {
+    feed(node, *event, rejected);
+    node.poll();
+    for (const LogError& e : reader.take_errors()) {
+      err << kName << ": " << e.message << '\n';
+      damaged = true;
+    }
+  }
+  node.finish();
+  const auto s = node.stats();
+  out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "
+      << markers->stats().markers << " markers (" << markers->stats().two_camera_markers
+      << " seen by two cameras only), " << rejected << " messages rejected; "
+      << (std::filesystem::path(a.out) / "markers.jsonl").string() << '\n';
+  return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;
+}
+
+}  // namespace syncap::tools
