@@ -1,0 +1,233 @@
+#include "tracking/marker_tracker.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+
+namespace syncap::tracking {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+void symmetrize(Matrix3d& m) { m = 0.5 * (m + m.transpose()).eval(); }
+
+// Constant velocity over dt, plus white acceleration of sigma held over the interval.
+void predict(Track& t, double time_s, double acceleration_sigma) {
+  const double dt = std::max(0.0, time_s - t.time_s);
+  const double q = acceleration_sigma * acceleration_sigma;
+  const Matrix3d pv = t.position_velocity_cov;
+  t.position_mm += dt * t.velocity_mm_s;
+  t.position_cov += dt * (pv + pv.transpose()) + dt * dt * t.velocity_cov;
+  t.position_cov.diagonal().array() += q * dt * dt * dt * dt / 4;
+  t.position_velocity_cov += dt * t.velocity_cov;
+  t.position_velocity_cov.diagonal().array() += q * dt * dt * dt / 2;
+  t.velocity_cov.diagonal().array() += q * dt * dt;
+  t.time_s = time_s;
+}
+
+// The Kalman update with a position measurement z of covariance r (H = [I 0]).
+void correct(Track& t, const Vector3d& z, const Matrix3d& r) {
+  const Matrix3d s_inverse = (t.position_cov + r).inverse();
+  const Matrix3d gain_p = t.position_cov * s_inverse;
+  const Matrix3d gain_v = t.position_velocity_cov.transpose() * s_inverse;
+  const Vector3d innovation = z - t.position_mm;
+  t.position_mm += gain_p * innovation;
+  t.velocity_mm_s += gain_v * innovation;
+  const Matrix3d pv = t.position_velocity_cov;
+  t.velocity_cov -= gain_v * pv;
+  t.position_velocity_cov -= gain_p * pv;
+  t.position_cov -= gain_p * t.position_cov;
+  symmetrize(t.position_cov);
+  symmetrize(t.velocity_cov);
+}
+
+}  // namespace
+
+MarkerTracker::MarkerTracker(TrackerOptions options) : options_(options) {}
+
+Matrix3d MarkerTracker::measurement_cov(const PointObservation& p) const {
+  Matrix3d r = p.covariance_mm2;
+  r.diagonal().array() += options_.min_point_sigma_mm * options_.min_point_sigma_mm;
+  return r;
+}
+
+const TrackedFrame& MarkerTracker::update(int64_t frame, double time_s,
+                                          std::span<const PointObservation> points) {
+  result_.frame = frame;
+  result_.time_s = time_s;
+  result_.coasting.clear();
+  result_.ended.clear();
+  predict_all(time_s);
+  gate(points);
+  assign(static_cast<int>(points.size()));
+  apply(frame, points);
+  ++counters_.frames;
+  return result_;
+}
+
+void MarkerTracker::predict_all(double time_s) {
+  for (Track& t : tracks_) predict(t, time_s, options_.acceleration_mm_s2);
+}
+
+// Every pair within the gate. d^T S^-1 d >= |d|^2 / trace(S), so pairs with |d|^2 above
+// gate * trace(S) are skipped before S is inverted.
+void MarkerTracker::gate(std::span<const PointObservation> points) {
+  edges_.clear();
+  point_claimable_.assign(points.size(), 0);
+  const double gate = options_.gate_chi_square;
+  const double floor_trace = 3 * options_.min_point_sigma_mm * options_.min_point_sigma_mm;
+  for (int t = 0; t < static_cast<int>(tracks_.size()); ++t) {
+    const Track& track = tracks_[t];
+    const double track_trace = track.position_cov.trace() + floor_trace;
+    for (int p = 0; p < static_cast<int>(points.size()); ++p) {
+      const Vector3d d = points[p].position_mm - track.position_mm;
+      if (d.squaredNorm() > gate * (track_trace + points[p].covariance_mm2.trace())) continue;
+      const Matrix3d s = track.position_cov + measurement_cov(points[p]);
+      const double cost = d.dot(s.inverse() * d);
+      if (!(cost < gate)) continue;
+      edges_.push_back({t, p, cost, 0});
+      point_claimable_[p] = 1;
+    }
+  }
+}
+
+int MarkerTracker::find_root(int node) {
+  while (parent_[node] != node) node = parent_[node] = parent_[parent_[node]];
+  return node;
+}
+
+// Confirmed tracks first, then the young ones on the points left: a ghost's new track has a wide
+// gate (its velocity is unknown) in which a marker's point can look nearer, by Mahalanobis
+// distance, than to the marker's own track.
+void MarkerTracker::assign(int point_count) {
+  track_point_.assign(tracks_.size(), -1);
+  point_taken_.assign(point_count, 0);
+  for (const bool confirmed : {true, false}) {
+    pass_edges_.clear();
+    for (const Edge& e : edges_) {
+      if (is_confirmed(tracks_[e.track]) == confirmed && !point_taken_[e.point]) {
+        pass_edges_.push_back(e);
+      }
+    }
+    assign_pass(point_count);
+    for (int p : track_point_) {
+      if (p >= 0) point_taken_[p] = 1;
+    }
+  }
+}
+
+bool MarkerTracker::is_confirmed(const Track& t) const {
+  return t.points >= options_.confirmation_points;
+}
+
+// Tracks and points joined by gated pairs compete; each such group is solved on its own.
+void MarkerTracker::assign_pass(int point_count) {
+  const int track_count = static_cast<int>(tracks_.size());
+  parent_.resize(track_count + point_count);
+  for (int i = 0; i < static_cast<int>(parent_.size()); ++i) parent_[i] = i;
+  for (const Edge& e : pass_edges_) parent_[find_root(e.track)] = find_root(track_count + e.point);
+  for (Edge& e : pass_edges_) e.group = find_root(e.track);
+  std::sort(pass_edges_.begin(), pass_edges_.end(),
+            [](const Edge& a, const Edge& b) { return a.group < b.group; });
+  for (std::size_t begin = 0; begin < pass_edges_.size();) {
+    std::size_t end = begin;
+    bool one_track = true;
+    while (end < pass_edges_.size() && pass_edges_[end].group == pass_edges_[begin].group) {
+      one_track = one_track && pass_edges_[end].track == pass_edges_[begin].track;
+      ++end;
+    }
+    const std::span<const Edge> group(pass_edges_.data() + begin, end - begin);
+    if (one_track) {  // its points are nobody else's: the nearest is the optimum
+      track_point_[group[0].track] =
+          std::min_element(group.begin(), group.end(), [](const Edge& a, const Edge& b) {
+            return a.cost < b.cost;
+          })->point;
+    } else {
+      solve_group(group);
+    }
+    begin = end;
+  }
+}
+
+// The group's tracks are rows; its points, then one "missed" column per track (cost: the gate),
+// are columns: every track may go without a point, and the total cost is the least.
+void MarkerTracker::solve_group(std::span<const Edge> group) {
+  const int track_count = static_cast<int>(tracks_.size());
+  local_.resize(parent_.size(), -1);
+  group_tracks_.clear();
+  group_points_.clear();
+  for (const Edge& e : group) {
+    if (local_[e.track] < 0) {
+      local_[e.track] = static_cast<int>(group_tracks_.size());
+      group_tracks_.push_back(e.track);
+    }
+    if (local_[track_count + e.point] < 0) {
+      local_[track_count + e.point] = static_cast<int>(group_points_.size());
+      group_points_.push_back(e.point);
+    }
+  }
+  const int rows = static_cast<int>(group_tracks_.size());
+  const int points = static_cast<int>(group_points_.size());
+  const int cols = points + rows;
+  group_cost_.assign(static_cast<std::size_t>(rows) * cols, kForbiddenCost);
+  for (const Edge& e : group) {
+    group_cost_[local_[e.track] * cols + local_[track_count + e.point]] = e.cost;
+  }
+  for (int r = 0; r < rows; ++r) group_cost_[r * cols + points + r] = options_.gate_chi_square;
+  group_choice_.resize(rows);
+  solver_.solve(group_cost_, rows, cols, group_choice_);
+  for (int r = 0; r < rows; ++r) {
+    if (group_choice_[r] < points) track_point_[group_tracks_[r]] = group_points_[group_choice_[r]];
+    local_[group_tracks_[r]] = -1;
+  }
+  for (int p : group_points_) local_[track_count + p] = -1;
+}
+
+void MarkerTracker::apply(int64_t frame, std::span<const PointObservation> points) {
+  result_.ids.assign(points.size(), kNoTrack);
+  for (std::size_t t = 0; t < tracks_.size(); ++t) {
+    Track& track = tracks_[t];
+    const int p = track_point_[t];
+    if (p >= 0) {
+      correct(track, points[p].position_mm, measurement_cov(points[p]));
+      result_.ids[p] = track.id;
+      track.last_seen_frame = frame;
+      track.missed_frames = 0;
+      ++track.points;
+      ++counters_.points_assigned;
+      continue;
+    }
+    track.missed_frames = static_cast<int>(frame - track.last_seen_frame);
+    if (track.missed_frames > options_.max_missed_frames) {
+      result_.ended.push_back(track.id);
+      continue;
+    }
+    result_.coasting.push_back(
+        {track.id, track.position_mm, track.position_cov, track.missed_frames});
+    ++counters_.coasting;
+  }
+  counters_.tracks_ended += static_cast<long>(result_.ended.size());
+  std::erase_if(tracks_,
+                [&](const Track& t) { return t.missed_frames > options_.max_missed_frames; });
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (result_.ids[p] != kNoTrack) continue;
+    if (point_claimable_[p]) {
+      ++counters_.points_unclaimed;
+      continue;
+    }
+    Track t;
+    t.id = next_id_++;
+    t.time_s = result_.time_s;
+    t.position_mm = points[p].position_mm;
+    t.position_cov = measurement_cov(points[p]);
+    t.velocity_cov.diagonal().setConstant(options_.new_track_speed_mm_s *
+                                          options_.new_track_speed_mm_s);
+    t.first_frame = t.last_seen_frame = frame;
+    t.points = 1;
+    tracks_.push_back(t);
+    result_.ids[p] = t.id;
+    ++counters_.tracks_started;
+  }
+}
+
+}  // namespace syncap::tracking
