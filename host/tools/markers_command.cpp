@@ -6,10 +6,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/c3d_writer.hpp"
+#include "io/export_error.hpp"
+#include "io/trc_writer.hpp"
 #include "lcm_log_reader.hpp"
 #include "outputs/json_lines_stage.hpp"
 #include "pipeline/host_node.hpp"
 #include "reconstruction/marker_stage.hpp"
+#include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
 #include "syncap/proto/channels.hpp"
@@ -40,7 +44,8 @@ bool feed(pipeline::HostNode& node, const LogEvent& e, long& rejected) {
   if (e.channel == proto::kTriggerChannel) {
     trigger_t t;
     ok = decode_into(t) && node.on_trigger(t);
-  } else if (proto::camera_of_channel(e.channel) && e.channel.starts_with(proto::kBlobChannelPrefix)) {
+  } else if (proto::camera_of_channel(e.channel) &&
+             e.channel.starts_with(proto::kBlobChannelPrefix)) {
     blob_frame_t f;
     ok = decode_into(f) && node.on_blob_part(f, e.channel);
   } else {
@@ -50,13 +55,17 @@ bool feed(pipeline::HostNode& node, const LogEvent& e, long& rejected) {
   return ok;
 }
 
-std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
-                              std::ostream& out, std::ostream& err) {
-  CLI::App app("Reconstructs the 3D markers of every frame of a recorded LCM log, as syncap-host "
-               "--calibration does live, into DIR/markers.jsonl (docs/reconstruction.md).",
-               kName);
+std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a, std::ostream& out,
+                              std::ostream& err) {
+  CLI::App app(
+      "Reconstructs and tracks the 3D markers of every frame of a recorded LCM log, as "
+      "syncap-host --calibration does live, into DIR/markers.jsonl, and exports the "
+      "trajectories to DIR/markers.c3d and DIR/markers.trc (docs/reconstruction.md).",
+      kName);
   app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
-  app.add_option("--calibration", a.calibration, "cameras.json")->required()->check(CLI::ExistingFile);
+  app.add_option("--calibration", a.calibration, "cameras.json")
+      ->required()
+      ->check(CLI::ExistingFile);
   app.add_option("--out", a.out, "the output folder")->required();
   app.add_option("--cameras", a.cameras, "expected camera ids (default: the calibration's)");
   app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
@@ -68,7 +77,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
     app.parse(reversed);
-    if (!a.input.starts_with("lcmlog:")) throw CLI::ValidationError("--input", "expected lcmlog:FILE");
+    if (!a.input.starts_with("lcmlog:"))
+      throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     std::stringstream list(a.cameras);
     for (std::string id; std::getline(list, id, ',');) {
       int v = -1;
@@ -81,8 +91,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
       const auto& v = a.volume;
       if (!(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]))
         throw CLI::ValidationError("--volume", "min < max expected");
-      a.matching.volume = Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]),
-                                              Eigen::Vector3d(v[3], v[4], v[5]));
+      a.matching.volume =
+          Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
     }
   } catch (const CLI::CallForHelp&) {
     out << app.help();
@@ -99,6 +109,27 @@ std::set<int> expected_cameras(const MarkersArgs& a, const std::vector<sensor::C
   std::set<int> ids;
   for (const auto& c : cams) ids.insert(c.id);
   return ids;
+}
+
+// DIR/markers.c3d and DIR/markers.trc of the tracked trajectories; false (named on err) when
+// there is nothing to export or a file cannot be written.
+bool export_trajectories(const tracking::TrackHistory& history, double rate_hz,
+                         const std::string& dir, std::ostream& err) {
+  if (history.frames().empty()) return true;
+  const io::MarkerTrajectories trajectories =
+      tracking::to_trajectories(history, {}, {rate_hz > 0 ? rate_hz : 100.0, 10});
+  if (trajectories.labels.empty()) {
+    err << kName << ": no trajectory of 10 frames or more: no C3D/TRC written\n";
+    return true;
+  }
+  try {
+    io::write_c3d((std::filesystem::path(dir) / "markers.c3d").string(), trajectories);
+    io::write_trc((std::filesystem::path(dir) / "markers.trc").string(), trajectories);
+  } catch (const io::ExportError& e) {
+    err << kName << ": " << e.what() << '\n';
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -125,8 +156,13 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   }
   auto marker_stage = std::make_unique<reconstruction::MarkerStage>(cameras, a.matching);
   const reconstruction::MarkerStage* markers = marker_stage.get();
+  tracking::TrackHistory history;
+  auto tracking_stage =
+      std::make_unique<reconstruction::TrackingStage>(tracking::TrackerOptions{}, &history);
+  const reconstruction::TrackingStage* tracker = tracking_stage.get();
   std::vector<std::unique_ptr<pipeline::Stage>> stages;
   stages.push_back(std::move(marker_stage));
+  stages.push_back(std::move(tracking_stage));
   stages.push_back(std::make_unique<outputs::JsonLinesStage>(jsonl, true));
   pipeline::HostNode node({expected_cameras(a, cameras), a.max_lag, 1'000'000}, std::move(stages));
   LcmLogReader reader(log);
@@ -141,11 +177,14 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
     }
   }
   node.finish();
+  if (!export_trajectories(history, tracker->rate_hz(), a.out, err)) damaged = true;
   const auto s = node.stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "
       << markers->stats().markers << " markers (" << markers->stats().two_camera_markers
       << " seen by two cameras only), " << rejected << " messages rejected; "
-      << (std::filesystem::path(a.out) / "markers.jsonl").string() << '\n';
+      << tracker->tracker().counters().tracks_started << " tracks; "
+      << (std::filesystem::path(a.out) / "markers.jsonl").string() << " (and markers.c3d, "
+      << "markers.trc)\n";
   return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;
 }
 

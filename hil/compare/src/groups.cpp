@@ -109,6 +109,8 @@ std::vector<Marker> parse_markers(const json& list, const std::string& where) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = "markers[" + std::to_string(i) + "].";
     if (!list[i].is_object()) fail(where, path + " is not an object");
+    // The tracker's predictions of hidden markers are not measurements: not scored.
+    if (list[i].value("predicted", false)) continue;
     Marker m{number(list[i], "x", where, path), number(list[i], "y", where, path),
              number(list[i], "z", where, path), 0};
     const json& cameras = member(list[i], "cameras", where);

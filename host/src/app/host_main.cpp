@@ -1,6 +1,7 @@
 // syncap-host: the aggregator. Receives the trigger and every camera's messages, groups them by
 // frame number (pipeline::HostNode) and runs the stages on each group on a worker thread: with
-// --calibration the markers are matched, triangulated and published live (docs/reconstruction.md).
+// --calibration the markers are matched, triangulated, tracked and published live
+// (docs/reconstruction.md).
 #include <lcm/lcm-cpp.hpp>
 
 #include <atomic>
@@ -12,6 +13,7 @@
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
 #include "outputs/json_lines_stage.hpp"
+#include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
@@ -39,6 +41,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
                                                                o.matching);
     s.markers = stage.get();
     s.chain.push_back(std::move(stage));
+    s.chain.push_back(std::make_unique<reconstruction::TrackingStage>());
     if (o.marker_message) {
       auto message = std::make_unique<outputs::MarkerMessageStage>(
           [&lcm](const marker_frame_t& m) { lcm.publish(proto::kMarkersChannel, &m); });

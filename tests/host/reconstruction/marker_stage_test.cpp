@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "outputs/marker_message_stage.hpp"
+#include "reconstruction/tracking_stage.hpp"
 #include "synthetic_markers.hpp"
 
 namespace syncap::reconstruction {
@@ -87,6 +90,48 @@ TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
   EXPECT_EQ(sent[0].markers[3].flags, marker_t::FLAG_TWO_CAMERAS);
   EXPECT_FLOAT_EQ(sent[0].markers[3].sigma_y, 0.2f);
   EXPECT_EQ(stage.latency().added(), 1u);
+}
+
+// Markers moving at 1 m/s keep their ids from frame to frame; one hidden for two frames comes back
+// with its id, and meanwhile is the tracker's prediction.
+TEST(TrackingStage, IdsPersistAndAHiddenMarkerIsPredicted) {
+  TrackingStage stage;
+  std::map<int, int> id_of_marker;  // marker index -> id
+  for (int k = 0; k < 20; ++k) {
+    pipeline::FrameWork w;
+    w.group.frame_number = k;
+    w.group.trigger = trigger_t{};
+    w.group.trigger->monotonic_ns = 1'000'000'000 + k * 10'000'000;  // 100 Hz
+    w.group.trigger->rate_hz = 100;
+    for (int m = 0; m < 3; ++m) {
+      if (m == 1 && (k == 10 || k == 11)) continue;  // hidden
+      pipeline::Marker3d marker;
+      marker.position = Eigen::Vector3d(200.0 * m + 10.0 * k, 0, 1000);
+      marker.covariance = Eigen::Matrix3d::Identity() * 0.01;
+      marker.camera_ids = {0, 1, 2};
+      w.markers.push_back(marker);
+    }
+    stage.process(w);
+    std::size_t measured = 0;
+    for (int m = 0; m < 3; ++m) {
+      if (m == 1 && (k == 10 || k == 11)) continue;
+      const int id = w.markers[measured++].id;
+      if (k >= 1) {  // a track is confirmed by its second point
+        ASSERT_NE(id, -1) << "frame " << k << " marker " << m;
+        if (id_of_marker.contains(m)) {
+          EXPECT_EQ(id, id_of_marker[m]) << "frame " << k;
+        }
+        id_of_marker[m] = id;
+      }
+    }
+    if (k == 10) {
+      ASSERT_EQ(w.markers.size(), 3u);
+      EXPECT_TRUE(w.markers[2].predicted);
+      EXPECT_EQ(w.markers[2].id, id_of_marker[1]);
+      EXPECT_NEAR(w.markers[2].position.x(), 300.0, 1.0);
+    }
+  }
+  EXPECT_DOUBLE_EQ(stage.rate_hz(), 100);
 }
 
 }  // namespace
