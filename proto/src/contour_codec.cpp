@@ -1,6 +1,7 @@
 #include "syncap/proto/contour_codec.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace syncap::proto {
 namespace {
@@ -22,8 +23,20 @@ void put_varint(std::vector<uint8_t>& out, uint32_t v) {
   out.push_back(static_cast<uint8_t>(v));
 }
 
+bool in_int16(int32_t v) { return v >= -32768 && v <= 32767; }
+
+// `from` (within int16) moved by a step read from the data; summed in int64, so that no step can
+// overflow (a step past INT32_MAX did: found by fuzzing, issue 15). Anything outside int16 is
+// rejected by the caller.
+ContourPoint stepped(ContourPoint from, int32_t dx, int32_t dy) {
+  const auto clamp = [](int64_t v) {
+    return static_cast<int32_t>(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX));
+  };
+  return {clamp(int64_t{from.x} + dx), clamp(int64_t{from.y} + dy)};
+}
+
 void check_coordinate(int32_t v) {
-  if (v < -32768 || v > 32767) {
+  if (!in_int16(v)) {
     throw std::invalid_argument("contour coordinate " + std::to_string(v) + " outside int16");
   }
 }
@@ -164,7 +177,8 @@ void decode_part(const silhouette_part_t& part, bool previous_part_present,
     for (uint32_t i = 0; i < count; ++i) {
       const int32_t dx = unzigzag(in.varint());
       const int32_t dy = unzigzag(in.varint());
-      p = i == 0 ? ContourPoint{dx, dy} : ContourPoint{p.x + dx, p.y + dy};
+      p = i == 0 ? ContourPoint{dx, dy} : stepped(p, dx, dy);
+      if (!in_int16(p.x) || !in_int16(p.y)) in.fail("point outside the coordinate range int16");
       contour.points.push_back(p);
     }
   }

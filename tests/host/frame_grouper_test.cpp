@@ -315,5 +315,35 @@ TEST(FrameGrouper, DuplicateRecordKeepsTheFirstAndIsCounted) {
   EXPECT_EQ(all[1].trigger->monotonic_ns, 0);
 }
 
+// Found by the fuzzer (issue 15, tests/fuzz/corpus/frame_grouper/held_parts_*): a frame
+// handed out while parts of a camera nobody waits for were still held for it came out a second
+// time when those parts were given up.
+TEST(FrameGrouper, PartsHeldForAFrameHandedOutGoWithItNotInASecondGroup) {
+  FrameGrouper grouper({}, 3);                             // every camera accepted, none waited for
+  auto parts = proto::split_blob_frame(blobs(0, 0, 100));  // 2 parts, the second never comes
+  grouper.add_trigger(trigger(0));
+  grouper.add_blob_part(parts[0]);
+  const auto ready = grouper.pop_ready();  // frame 0 is complete: its trigger came
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_EQ(ready[0].frame_number, 0);
+  EXPECT_EQ(ready[0].blobs.at(0).blobs.size(), static_cast<size_t>(blob_frame_t::MAX_BLOBS));
+  EXPECT_TRUE(grouper.flush().empty());
+}
+
+TEST(FrameGrouper, CompleteFrameWaitsBehindAnOlderFrameWhosePartsAreArriving) {
+  FrameGrouper grouper({}, 3);
+  auto parts = proto::split_blob_frame(blobs(0, 4, 100));  // 2 parts
+  grouper.add_blob_part(parts[0]);
+  grouper.add_trigger(trigger(5));
+  EXPECT_TRUE(grouper.pop_ready().empty());  // frame 4 may still fill up
+  grouper.add_blob_part(parts[1]);
+  grouper.add_trigger(trigger(4));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 2u);
+  EXPECT_EQ(ready[0].frame_number, 4);
+  EXPECT_EQ(ready[0].blobs.at(0).blobs.size(), 100u);
+  EXPECT_EQ(ready[1].frame_number, 5);
+}
+
 }  // namespace
 }  // namespace syncap::host

@@ -116,5 +116,29 @@ TEST(ContourCodec, DataSizeMismatchIsAnError) {
   EXPECT_THROW(decode_silhouette(parts), ContourDecodeError);
 }
 
+silhouette_part_t part_with_data(std::vector<uint8_t> data, int pieces) {
+  silhouette_part_t part{};
+  part.part_count = 1;
+  part.num_pieces = static_cast<int16_t>(pieces);
+  part.data_size = static_cast<int16_t>(data.size());
+  part.data = std::move(data);
+  return part;
+}
+
+// Found by the contour codec fuzz target (issue 15): the decoder added steps without a bound, so
+// a step past INT32_MAX overflowed (undefined behaviour), and points outside the encoder's int16
+// range decoded as if they were pixels.
+TEST(ContourCodec, DecodedPointOutsideInt16IsAnError) {
+  // One piece of two points: (32767, 0), then a step of (+1, 0) to 32768.
+  const std::vector<uint8_t> past_int16{0x08, 0xfe, 0xff, 0x03, 0x00, 0x02, 0x00};
+  EXPECT_THROW(decode_silhouette(std::vector{part_with_data(past_int16, 1)}), ContourDecodeError);
+  // (INT32_MAX, 0), then (+1, 0): the sum overflowed int.
+  const std::vector<uint8_t> past_int32{0x08, 0xfe, 0xff, 0xff, 0xff, 0x0f, 0x00, 0x02, 0x00};
+  EXPECT_THROW(decode_silhouette(std::vector{part_with_data(past_int32, 1)}), ContourDecodeError);
+  const std::vector<uint8_t> at_the_edge{0x08, 0xfd, 0xff, 0x03, 0x00, 0x01, 0x00};
+  const auto decoded = decode_silhouette(std::vector{part_with_data(at_the_edge, 1)});
+  EXPECT_EQ(decoded.contours.at(0).points.at(1), (ContourPoint{-32768, 0}));
+}
+
 }  // namespace
 }  // namespace syncap::proto

@@ -7,6 +7,7 @@
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/trigger_status_t.hpp"
 
 namespace syncap {
 namespace {
@@ -60,6 +61,48 @@ TEST(Subscriber, ZeroStringLengthIsCounted) {
   EXPECT_EQ(sub.malformed_by_channel().at("SYNCAP_STATUS_04"), 1);
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_NE(errors[0].find("SYNCAP_STATUS_04"), std::string::npos) << errors[0];
+}
+
+// Found by the fuzzer (issue 15): for a string length of INT_MIN lcm-gen's decoder computed the
+// length - 1 as INT_MAX and copied 2 GiB from the datagram, a read far past its end (SIGSEGV).
+TEST(Subscriber, StringLengthOfIntMinIsCounted) {
+  lcm::LCM lcm("memq://");
+  ASSERT_TRUE(lcm.good());
+  proto::Subscriber sub(lcm);
+  int statuses = 0;
+  sub.subscribe<trigger_status_t>("SYNCAP_TRIGGER_STATUS",
+                                  [&](const trigger_status_t&, const std::string&) { ++statuses; });
+  std::vector<std::uint8_t> datagram = test::encoded(trigger_status_t{});  // ends 0 0 0 1 '\0'
+  datagram[datagram.size() - 5] = 0x80;
+  datagram[datagram.size() - 2] = 0;
+  publish_bytes(lcm, "SYNCAP_TRIGGER_STATUS", datagram);
+  EXPECT_EQ(lcm.handleTimeout(100), 1);
+  EXPECT_EQ(statuses, 0);
+  EXPECT_EQ(sub.malformed(), 1);
+}
+
+// Found by the fuzzer (issue 15): lcm-gen's decoder kept the bytes after a NUL inside a string,
+// its encoder stops at the NUL, so the delivered status re-encoded shorter than
+// getEncodedSize() said. The string ends at the NUL, as for the C decoder.
+TEST(Subscriber, StringWithANulInsideEndsAtTheNulAndReEncodesWhole) {
+  lcm::LCM lcm("memq://");
+  ASSERT_TRUE(lcm.good());
+  proto::Subscriber sub(lcm);
+  std::vector<camera_status_t> statuses;
+  sub.subscribe<camera_status_t>(
+      "SYNCAP_STATUS_.*",
+      [&](const camera_status_t& s, const std::string&) { statuses.push_back(s); });
+  camera_status_t sent{};
+  sent.message = "ok_tail";
+  std::vector<std::uint8_t> datagram = test::encoded(sent);
+  datagram[datagram.size() - 6] = 0;  // the '_': the string's last 8 bytes are "ok_tail\0"
+  publish_bytes(lcm, proto::status_channel(4), datagram);
+  EXPECT_EQ(lcm.handleTimeout(100), 1);
+  ASSERT_EQ(statuses.size(), 1u);
+  EXPECT_EQ(statuses[0].message, "ok");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(statuses[0].getEncodedSize()));
+  EXPECT_EQ(statuses[0].encode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
 }
 
 // A flood of malformed datagrams is counted whole but reported once a second per channel, so

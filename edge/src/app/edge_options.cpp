@@ -178,7 +178,10 @@ void apply_config_file(EdgeOptions& o, const std::string& file, bool& have_camer
                      ": expected `key: value` lines (the long option names)");
   }
   for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
+    if (!entry.first.IsScalar()) {  // as<std::string>() would throw yaml-cpp's BadConversion
+      throw UsageError("syncap-edge: " + place(file, entry.first.Mark()) + ": a key must be text");
+    }
+    const std::string key = entry.first.Scalar();
     const std::string where = "syncap-edge: " + place(file, entry.first.Mark()) + ": key '" + key;
     if (!entry.second.IsScalar()) throw UsageError(where + "': expected a single value");
     if (key == "config") throw UsageError(where + "': a config file cannot include another");

@@ -66,9 +66,13 @@ void CsvRow::fail_field(std::size_t column, const std::string& what) const {
 
 void read_csv(const std::filesystem::path& path, const std::vector<std::string>& columns,
               const std::function<void(const CsvRow&)>& on_row) {
-  const std::string file = path.string();
   std::ifstream in(path);
-  if (!in) throw InputError(file + ": cannot read");
+  if (!in) throw InputError(path.string() + ": cannot read");
+  read_csv(in, path.string(), columns, on_row);
+}
+
+void read_csv(std::istream& in, const std::string& file, const std::vector<std::string>& columns,
+              const std::function<void(const CsvRow&)>& on_row) {
   std::string line;
   const std::string header = joined(columns);
   if (!std::getline(in, line)) fail_at(file, 1, "empty, expected the header '" + header + "'");

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <istream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -37,6 +38,9 @@ class CsvRow {
 // Reads `path`: the first line must be the columns joined by commas, every further non-empty
 // line must have as many fields; `on_row` sees each data row in file order.
 void read_csv(const std::filesystem::path& path, const std::vector<std::string>& columns,
+              const std::function<void(const CsvRow&)>& on_row);
+// The same on a stream; `file` names it in messages.
+void read_csv(std::istream& in, const std::string& file, const std::vector<std::string>& columns,
               const std::function<void(const CsvRow&)>& on_row);
 
 }  // namespace syncap::compare

@@ -10,6 +10,18 @@
 namespace syncap::sim {
 namespace {
 
+// A sequence of numbers. yaml-cpp's convert<std::vector<double>> throws for an element that is
+// not a number instead of returning false (found by fuzzing, issue 15).
+bool decode_numbers(const YAML::Node& sequence, std::vector<double>& values) {
+  values.clear();
+  for (const YAML::Node& element : sequence) {
+    double value = 0;
+    if (!element.IsScalar() || !YAML::convert<double>::decode(element, value)) return false;
+    values.push_back(value);
+  }
+  return true;
+}
+
 // A YAML mapping being read: typed getters that name file and line on error, and a check that
 // no key was left unread (a typo must not be silently ignored).
 class Section {
@@ -82,7 +94,7 @@ class Section {
     const YAML::Node n = child(key);
     if (!n) return fallback;
     std::vector<double> v;
-    if (!n.IsSequence() || n.size() != 3 || !YAML::convert<std::vector<double>>::decode(n, v)) {
+    if (!n.IsSequence() || n.size() != 3 || !decode_numbers(n, v)) {
       fail(n, what_ + "." + key + " must be a list of three numbers [x, y, z]");
     }
     return {v[0], v[1], v[2]};
@@ -92,7 +104,7 @@ class Section {
     const YAML::Node n = child(key);
     if (!n) return fallback;
     std::vector<double> v;
-    if (!n.IsSequence() || !YAML::convert<std::vector<double>>::decode(n, v)) {
+    if (!n.IsSequence() || !decode_numbers(n, v)) {
       fail(n, what_ + "." + key + " must be a list of numbers");
     }
     return v;
@@ -105,7 +117,8 @@ class Section {
   // Every key of the mapping must have been read.
   void finish() const {
     for (const auto& kv : node_) {
-      const std::string key = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) fail(kv.first, "a key in " + what_ + " is not text");
+      const std::string key = kv.first.Scalar();
       if (!read_.contains(key)) fail(kv.first, "unknown key '" + key + "' in " + what_);
     }
   }

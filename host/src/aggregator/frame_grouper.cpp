@@ -212,6 +212,23 @@ void FrameGrouper::absorb_expired_parts(int64_t before_frame) {
   for (auto& set : silhouette_parts_.expire_before(before_frame)) keep_silhouette(set);
 }
 
+// A frame handed out takes the parts still held for it (of a camera nobody waits for): given up
+// later, they would make a second group of it.
+void FrameGrouper::absorb_parts_of(int64_t frame_number) {
+  for (auto& set : parts_.take_frame(frame_number)) {
+    keep_first_blobs(frame_number, set.key.camera_id, proto::join_blob_parts(set.parts));
+  }
+  for (auto& set : silhouette_parts_.take_frame(frame_number)) keep_silhouette(set);
+}
+
+// The oldest frame of which blob or silhouette parts are still arriving.
+std::optional<int64_t> FrameGrouper::oldest_held_part() const {
+  const auto blobs = parts_.oldest_frame();
+  const auto silhouettes = silhouette_parts_.oldest_frame();
+  if (!blobs || !silhouettes) return blobs ? blobs : silhouettes;
+  return std::min(*blobs, *silhouettes);
+}
+
 std::vector<FrameGroup> FrameGrouper::pop_ready() {
   std::vector<FrameGroup> ready;
   if (!newest_) return ready;
@@ -224,6 +241,11 @@ std::vector<FrameGroup> FrameGrouper::pop_ready() {
   while (!pending_.empty()) {
     auto it = pending_.begin();
     if (!is_complete(it->second) && it->first >= give_up_before) break;
+    // An older frame whose parts are still arriving goes first (parts older than give_up_before
+    // were absorbed above).
+    const std::optional<int64_t> held = oldest_held_part();
+    if (held && *held < it->first) break;
+    if (held && *held == it->first) absorb_parts_of(it->first);
     last_handed_out_ = it->first;
     ready.push_back(finish(it->first, std::move(it->second)));
     pending_.erase(it);

@@ -106,6 +106,8 @@ class FrameGrouper {
   bool is_complete(const Pending& p) const;
   FrameGroup finish(int64_t frame_number, Pending pending);
   void absorb_expired_parts(int64_t before_frame);
+  void absorb_parts_of(int64_t frame_number);
+  std::optional<int64_t> oldest_held_part() const;
   bool keep_silhouette(const proto::PartSet<silhouette_part_t>& set);
   bool camera_complete(const Pending& p, int camera) const;
 

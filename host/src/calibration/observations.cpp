@@ -9,6 +9,9 @@
 namespace syncap::calibration {
 namespace {
 
+// Larger than any sensor; keeps a Res.dat size within int (issue 15: 3e12 was cast to int).
+constexpr int kMaxImageSide = 100000;
+
 std::string read_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw ObservationError(file.string() + ": cannot open for reading");
@@ -143,24 +146,30 @@ Observations read_csv_observations(const std::filesystem::path& file) {
 }
 
 Observations read_mcsc_observations(const std::filesystem::path& folder) {
-  const std::string where = folder.string();
   if (!std::filesystem::is_directory(folder)) {
-    throw ObservationError(where + ": not a MultiCamSelfCal folder (not a directory)");
+    throw ObservationError(folder.string() + ": not a MultiCamSelfCal folder (not a directory)");
   }
+  return parse_mcsc_observations({read_text(folder / "camera_order.txt"),
+                                  read_text(folder / "Res.dat"), read_text(folder / "points.dat")},
+                                 folder);
+}
+
+Observations parse_mcsc_observations(const McscFiles& files, const std::filesystem::path& folder) {
+  const std::string where = folder.string();
   Observations obs;
   obs.source = "mcsc:" + where;
 
   // camera_order.txt: one name a line; Res.dat: "width height" a line, same order.
   std::vector<std::string> names;
   {
-    std::istringstream in(read_text(folder / "camera_order.txt"));
+    std::istringstream in(files.camera_order);
     std::string line;
     while (std::getline(in, line)) {
       if (!trimmed(line).empty()) names.push_back(trimmed(line));
     }
   }
   const std::string res_file = (folder / "Res.dat").string();
-  std::istringstream res(read_text(folder / "Res.dat"));
+  std::istringstream res(files.res);
   std::string line;
   int line_number = 0;
   std::vector<ImageSize> sizes;
@@ -169,9 +178,11 @@ Observations read_mcsc_observations(const std::filesystem::path& folder) {
     if (trimmed(line).empty()) continue;
     std::istringstream fields(line);
     double w = 0, h = 0;
-    if (!(fields >> w >> h) || w < 1 || h < 1 || w != std::floor(w) || h != std::floor(h)) {
+    if (!(fields >> w >> h) || !(w >= 1 && w <= kMaxImageSide) || !(h >= 1 && h <= kMaxImageSide) ||
+        w != std::floor(w) || h != std::floor(h)) {
       throw ObservationError(res_file + ":" + std::to_string(line_number) +
-                             ": expected the image width and height in pixels");
+                             ": expected the image width and height in pixels (1 to " +
+                             std::to_string(kMaxImageSide) + ")");
     }
     sizes.push_back({static_cast<int>(w), static_cast<int>(h)});
   }
@@ -188,7 +199,7 @@ Observations read_mcsc_observations(const std::filesystem::path& folder) {
 
   // points.dat: rows x_0, y_0, 1, x_1, y_1, 1, ...; a column per frame.
   const std::string points_file = (folder / "points.dat").string();
-  std::istringstream points(read_text(folder / "points.dat"));
+  std::istringstream points(files.points);
   std::vector<std::vector<double>> rows;
   line_number = 0;
   while (std::getline(points, line)) {

@@ -67,6 +67,14 @@ Observations read_csv_observations(const std::filesystem::path& file);
 Observations parse_csv_observations(const std::string& text, const std::string& source);
 
 Observations read_mcsc_observations(const std::filesystem::path& folder);
+// The texts of a MultiCamSelfCal folder's three files.
+struct McscFiles {
+  std::string camera_order;  // camera_order.txt
+  std::string res;           // Res.dat
+  std::string points;        // points.dat
+};
+// The same on the files' texts; `folder` names them in messages.
+Observations parse_mcsc_observations(const McscFiles& files, const std::filesystem::path& folder);
 
 // Collects blob frames (and triggers) as they arrive, live or from a log, into Observations.
 // `cameras`: the camera ids to wait for in each frame group; empty: every camera seen (groups are

@@ -240,7 +240,7 @@ CameraSet parse_camera_set(std::string_view text, std::string_view source) {
   json document;
   try {
     document = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error; out_of_range for a number beyond double
     throw CameraFileError(std::string(source) + ": not valid JSON: " + e.what());
   }
   const std::string where(source);

@@ -117,6 +117,13 @@ TEST_F(EdgeConfigTest, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(error_of(), "syncap-edge: --config " + file_.string() + ": cannot be read");
 }
 
+// Found by the edge config fuzz target (issue 15): yaml-cpp's BadConversion escaped for a key
+// that is not text, and ended syncap-edge with an uncaught exception.
+TEST_F(EdgeConfigTest, AKeyThatIsNotTextIsAUsageError) {
+  write("camera-id: 3\n[1, 2]: 3\n");
+  EXPECT_EQ(error_of(), "syncap-edge: " + file_.string() + ":2:1: a key must be text");
+}
+
 TEST_F(EdgeConfigTest, TheFileStillNeedsACameraAndASource) {
   write("threshold: 50\n");
   EXPECT_EQ(error_of(), "syncap-edge: --camera-id is required");

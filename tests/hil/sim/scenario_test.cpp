@@ -66,6 +66,18 @@ TEST(Scenario, ErrorsNameFileLineAndProblem) {
             "broken.yaml:2: scenario.volume_min_mm must be a list of three numbers [x, y, z]");
 }
 
+// Found by the fuzzer (issue 15): yaml-cpp's own exceptions escaped the reader for a list with
+// a word in it and for a key that is not text.
+TEST(Scenario, MistypedListsAndKeysAreScenarioErrors) {
+  EXPECT_EQ(error_of("cameras: {count: 2}\nvolume_max_mm: [800, i800, 1900]\nphases: []\n"),
+            "broken.yaml:2: scenario.volume_max_mm must be a list of three numbers [x, y, z]");
+  EXPECT_EQ(error_of("cameras: {count: 2}\nphases:\n  - {type: wand, frames: 1, "
+                     "target_offsets_mm: [0, x]}\n"),
+            "broken.yaml:3: phases[0].target_offsets_mm must be a list of numbers");
+  EXPECT_EQ(error_of("cameras: {count: 2, [1, 2]: 3}\nphases:\n  - {type: wand, frames: 1}\n"),
+            "broken.yaml:1: a key in cameras is not text");
+}
+
 TEST(Scenario, YamlSyntaxErrorsNameTheLine) {
   const std::string e = error_of("cameras:\n  count: 2\nphases: [\n  - type: wand\n");
   EXPECT_EQ(e.rfind("broken.yaml:", 0), 0u) << e;

@@ -108,10 +108,20 @@ TEST(McscObservations, ErrorsNameTheFileAndLine) {
   {
     const McscFolder f("1 2\n3 4\n1 1\n", "752\n", "a\n");
     EXPECT_EQ(error_of([&] { read_mcsc_observations(f.dir); }),
-              (f.dir / "Res.dat").string() + ":1: expected the image width and height in pixels");
+              (f.dir / "Res.dat").string() +
+                  ":1: expected the image width and height in pixels (1 to 100000)");
   }
   EXPECT_EQ(error_of([] { read_mcsc_observations("/nonexistent"); }),
             "/nonexistent: not a MultiCamSelfCal folder (not a directory)");
+}
+
+// Found by the fuzzer (issue 15): an image height beyond int's range was converted to int
+// (undefined behaviour; INT_MIN with gcc, a camera with a negative image size).
+TEST(McscObservations, ImageSizeBeyondAnySensorIsAnError) {
+  EXPECT_EQ(error_of([] {
+              parse_mcsc_observations({"", "320 2999999999940\n", "150\n250\n1\n"}, "mcsc");
+            }),
+            "mcsc/Res.dat:1: expected the image width and height in pixels (1 to 100000)");
 }
 
 blob_frame_t blob_frame(int camera, int64_t frame, std::vector<std::pair<float, float>> xy,

@@ -154,6 +154,10 @@ TEST(CameraFile, ErrorsForTheFileAsAWhole) {
   EXPECT_EQ(message(R"({"cameras": [42]})"), "setup/cameras.json: cameras[0]: must be an object");
   EXPECT_EQ(message(R"({"cameras": [)").rfind("setup/cameras.json: not valid JSON: ", 0), 0u);
   EXPECT_TRUE(parse_cameras(R"({"cameras": []})", "x").empty());
+  // Found by the fuzzer (issue 15): a number beyond double's range was JSON's out_of_range.
+  EXPECT_EQ(
+      message(R"({"cameras": [], "x": 1e99999})").rfind("setup/cameras.json: not valid JSON: ", 0),
+      0u);
 
   try {
     read_cameras("/nonexistent/cameras.json");

@@ -10,6 +10,7 @@
 #include <compare>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,29 @@ class PartCollector {
       }
     }
     return expired;
+  }
+
+  // Removes and returns every set of `frame_number` (any camera), in key order.
+  std::vector<PartSet<Part>> take_frame(int64_t frame_number) {
+    std::vector<PartSet<Part>> taken;
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      if (it->first.frame_number == frame_number) {
+        taken.push_back(std::move(it->second));
+        it = pending_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    return taken;
+  }
+
+  // The lowest frame number of which parts are held; nothing when none are.
+  std::optional<int64_t> oldest_frame() const {
+    std::optional<int64_t> oldest;
+    for (const auto& [key, set] : pending_) {
+      if (!oldest || key.frame_number < *oldest) oldest = key.frame_number;
+    }
+    return oldest;
   }
 
   std::size_t pending() const { return pending_.size(); }
