@@ -40,7 +40,8 @@ const char* kUsage =
     "  --cameras LIST      expected camera ids, e.g. 0,1,2 (default 0)\n"
     "  --max-lag N         frames to wait for missing messages (default 10)\n"
     "  --frames N          exit after N frame groups\n"
-    "  --until-last        exit after the frame of the trigger's last pulse\n"
+    "  --until-last        exit after the frame of the trigger's last pulse, or once\n"
+    "                      --max-lag frames at its rate have passed since it arrived\n"
     "  --idle-timeout S    exit when nothing arrived for S seconds\n"
     "  --out FILE          write every frame group as a JSON line\n"
     "  --lcm-url URL       LCM provider (default udpm://239.255.76.67:7667?ttl=0)\n"
@@ -171,6 +172,16 @@ void print_summary(const Tally& t, const syncap::proto::Subscriber& sub,
   std::cout << t.arrivals.summary();
 }
 
+// When the records of the last pulse's frames have had as long as the grouper waits for them
+// (max_lag frames at the trigger's rate; 1 s when the rate is unknown).
+std::chrono::steady_clock::time_point straggler_deadline(const syncap::trigger_t& last,
+                                                         const HostOptions& options) {
+  const double wait_s = last.rate_hz > 0 ? options.max_lag / last.rate_hz : 1.0;
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+             std::chrono::duration<double>(wait_s));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,6 +207,10 @@ int main(int argc, char** argv) {
   auto last_arrival = std::chrono::steady_clock::now();
   bool last_pulse_seen = false;
   std::optional<int64_t> last_pulse_frame;
+  // --until-last: the last pulse's group may wait for records that never come (lost on the
+  // network, a camera gone), and no newer frame will push it out: wait for stragglers as long as
+  // max_lag frames take at the run's rate, then hand out what is held.
+  std::optional<std::chrono::steady_clock::time_point> last_pulse_deadline;
   auto reject = [&](bool ok) {
     if (!ok) {
       ++tally.rejected;
@@ -207,8 +222,10 @@ int main(int argc, char** argv) {
   sub.subscribe<syncap::trigger_t>(syncap::proto::kTriggerChannel,
                                    [&](const syncap::trigger_t& t, const std::string&) {
                                      ++tally.triggers;
-                                     if (t.flags & syncap::trigger_t::FLAG_LAST)
+                                     if (t.flags & syncap::trigger_t::FLAG_LAST) {
                                        last_pulse_frame = t.frame_number;
+                                       last_pulse_deadline = straggler_deadline(t, options);
+                                     }
                                      reject(grouper.add_trigger(t));
                                    });
   sub.subscribe<syncap::blob_frame_t>(std::string(syncap::proto::kBlobChannelPrefix) + ".*",
@@ -244,7 +261,9 @@ int main(int argc, char** argv) {
     if (handled > 0) last_arrival = now;
     emit(grouper.pop_ready());
     if (options.frames > 0 && tally.groups >= options.frames) break;
-    if (options.until_last && last_pulse_seen) break;
+    if (options.until_last &&
+        (last_pulse_seen || (last_pulse_deadline && now >= *last_pulse_deadline)))
+      break;
     if (options.idle_timeout_s > 0 &&
         std::chrono::duration<double>(now - last_arrival).count() > options.idle_timeout_s) {
       if (!options.quiet) std::cout << "syncap-host: idle for " << options.idle_timeout_s << " s\n";
