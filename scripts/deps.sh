@@ -22,6 +22,9 @@ PACKAGES=(
   clang libclang-rt-14-dev
   # private network namespaces (ip), unshare comes with util-linux
   iproute2 util-linux
+  # fault injection (hil/run --fault): jq reads the groups and the log, libfaketime steps one
+  # board's clock (clock-step)
+  jq libfaketime
 )
 
 missing=()
