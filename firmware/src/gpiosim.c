@@ -20,7 +20,7 @@
 #define SHM_PREFIX "/syncap-gpiosim-"
 #define PATH_PREFIX "/dev/shm/syncap-gpiosim-"
 #define CHIP_MAGIC 0x53475053u  // "SGPS"
-#define CHIP_VERSION 2u  // 2: a futex word instead of a pthread condition variable
+#define CHIP_VERSION 2u         // 2: a futex word instead of a pthread condition variable
 #define NS_PER_S INT64_C(1000000000)
 // How long an opener waits for a chip another process is creating right now.
 #define CREATION_WAIT_NS (5 * NS_PER_S)
@@ -349,8 +349,8 @@ static int wait_changed(struct shared_chip* shared, const struct timespec* deadl
   const uint32_t seen = atomic_load(&shared->changes);
   unlock_chip(shared);
   // FUTEX_WAIT_BITSET: the deadline is absolute, on CLOCK_MONOTONIC; NULL waits for ever.
-  const long result = syscall(SYS_futex, &shared->changes, FUTEX_WAIT_BITSET, seen, deadline,
-                              NULL, FUTEX_BITSET_MATCH_ANY);
+  const long result = syscall(SYS_futex, &shared->changes, FUTEX_WAIT_BITSET, seen, deadline, NULL,
+                              FUTEX_BITSET_MATCH_ANY);
   const int wait_error = result == -1 && errno == ETIMEDOUT ? ETIMEDOUT : 0;
   const int lock_error = lock_chip(shared);
   return lock_error != 0 ? lock_error : wait_error;
