@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "../fakecam/child_process.hpp"
 
 namespace {
@@ -42,7 +44,9 @@ class RelayTest : public ::testing::Test {
   // Runs the relay with `options`, publishes kMessages on TEST_A and on TEST_B, collects what
   // arrives on the host's URL, stops the relay; its stats JSON in stats_.
   Received relay(const std::vector<std::string>& options) {
-    const std::string stats_path = ::testing::TempDir() + "impair-stats.json";
+    // One file per test process: ctest runs the cases in parallel, all in the same /tmp.
+    const std::string stats_path =
+        ::testing::TempDir() + "impair-stats-" + std::to_string(getpid()) + ".json";
     std::vector<std::string> argv{SYNCAP_IMPAIR_EXE, "--in",    kBoardUrl, "--out",
                                   kHostUrl,          "--stats", stats_path};
     argv.insert(argv.end(), options.begin(), options.end());
