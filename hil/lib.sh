@@ -17,3 +17,12 @@ wait_for_line() {
   echo "$(basename "$0"): no '$2' in $1 after $3 s" >&2
   return 1
 }
+
+# The path of libfaketime's multi-threaded preload library (Debian's libfaketime), or nothing.
+faketime_library() {
+  local found
+  for found in /usr/lib/*/faketime/libfaketimeMT.so.1 /usr/lib/faketime/libfaketimeMT.so.1; do
+    [ -f "$found" ] && { echo "$found"; return 0; }
+  done
+  return 0
+}

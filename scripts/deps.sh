@@ -28,6 +28,9 @@ PACKAGES=(
   python3 python3-venv
   # private network namespaces (ip), unshare comes with util-linux
   iproute2 util-linux
+  # fault injection (hil/run --fault): jq reads the groups and the log, libfaketime steps one
+  # board's clock (clock-step)
+  jq libfaketime
 )
 
 missing=()

@@ -1,8 +1,11 @@
 // The shared simulated GPIO chip: one POSIX shared-memory object per chip, see gpiosim.h.
+#define _DEFAULT_SOURCE  // syscall(): futexes have no libc wrapper
 #include "syncap/trigger/gpiosim.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
+#include <linux/futex.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -10,13 +13,14 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <time.h>
 #include <unistd.h>
 
 #define SHM_PREFIX "/syncap-gpiosim-"
 #define PATH_PREFIX "/dev/shm/syncap-gpiosim-"
 #define CHIP_MAGIC 0x53475053u  // "SGPS"
-#define CHIP_VERSION 1u
+#define CHIP_VERSION 2u         // 2: a futex word instead of a pthread condition variable
 #define NS_PER_S INT64_C(1000000000)
 // How long an opener waits for a chip another process is creating right now.
 #define CREATION_WAIT_NS (5 * NS_PER_S)
@@ -37,8 +41,12 @@ struct shared_chip {
   uint32_t version;
   uint32_t size;  // sizeof(struct shared_chip): a build with another layout refuses the chip
   uint32_t num_lines;
-  pthread_mutex_t mutex;   // process-shared and robust: a watcher killed holding it blocks no one
-  pthread_cond_t changed;  // CLOCK_MONOTONIC; broadcast on every rising edge and every claim
+  pthread_mutex_t mutex;  // process-shared and robust: a watcher killed holding it blocks no one
+  // Counts rising edges and claims; waiters sleep on it as a futex. Not a pthread condition
+  // variable: glibc's are not robust, and a watcher killed inside pthread_cond_wait (the replay
+  // bench's camera-unplug fault) made the trigger's next broadcast block forever in
+  // __condvar_quiesce_and_switch_g1. A dead futex waiter leaves nothing behind.
+  _Atomic uint32_t changes;
   struct shared_line lines[SYNCAP_GPIOSIM_NUM_LINES];
 };
 
@@ -108,18 +116,20 @@ static void unlock_chip(struct shared_chip* shared) { pthread_mutex_unlock(&shar
 
 static int init_sync(struct shared_chip* shared) {
   pthread_mutexattr_t mutex_attr;
-  pthread_condattr_t cond_attr;
   pthread_mutexattr_init(&mutex_attr);
   pthread_mutexattr_setpshared(&mutex_attr, PTHREAD_PROCESS_SHARED);
   pthread_mutexattr_setrobust(&mutex_attr, PTHREAD_MUTEX_ROBUST);
-  pthread_condattr_init(&cond_attr);
-  pthread_condattr_setpshared(&cond_attr, PTHREAD_PROCESS_SHARED);
-  pthread_condattr_setclock(&cond_attr, CLOCK_MONOTONIC);
-  int error = pthread_mutex_init(&shared->mutex, &mutex_attr);
-  if (error == 0) error = pthread_cond_init(&shared->changed, &cond_attr);
+  const int error = pthread_mutex_init(&shared->mutex, &mutex_attr);
   pthread_mutexattr_destroy(&mutex_attr);
-  pthread_condattr_destroy(&cond_attr);
+  atomic_store(&shared->changes, 0);
   return error;
+}
+
+// Wakes every waiter (called with the chip locked).
+static void announce_change(struct shared_chip* shared) {
+  atomic_fetch_add(&shared->changes, 1);
+  // A shared futex (no FUTEX_PRIVATE_FLAG): the waiters are other processes.
+  syscall(SYS_futex, &shared->changes, FUTEX_WAKE, INT_MAX, NULL, NULL, 0);
 }
 
 // Fills a freshly created (zeroed) object; the magic goes last so openers never see half of it.
@@ -271,7 +281,7 @@ int syncap_gpiosim_claim_lines(struct syncap_gpiosim* chip, const unsigned* line
     line->level = 0;
     line->last_rise_ns = 0;
   }
-  pthread_cond_broadcast(&shared->changed);
+  announce_change(shared);
   unlock_chip(shared);
   return 0;
 }
@@ -298,7 +308,7 @@ int syncap_gpiosim_set_lines(struct syncap_gpiosim* chip, const unsigned* lines,
   for (size_t i = 0; i < num_lines; ++i) {
     any_rising |= set_level(&shared->lines[lines[i]], value != 0, now_ns);
   }
-  if (any_rising) pthread_cond_broadcast(&shared->changed);
+  if (any_rising) announce_change(shared);
   unlock_chip(shared);
   if (time_ns != NULL) *time_ns = now_ns;
   return 0;
@@ -332,13 +342,18 @@ static bool find_next_rise(const struct shared_line* line, struct syncap_gpiosim
   return true;
 }
 
-// One wait on the condition variable; 0, ETIMEDOUT or another error number.
+// One wait for a change, entered and left with the chip locked; 0, ETIMEDOUT or another error
+// number. The count is read under the lock, so a change between unlocking and sleeping makes the
+// futex wait return at once (EAGAIN) instead of being missed.
 static int wait_changed(struct shared_chip* shared, const struct timespec* deadline) {
-  const int error = deadline != NULL
-                        ? pthread_cond_timedwait(&shared->changed, &shared->mutex, deadline)
-                        : pthread_cond_wait(&shared->changed, &shared->mutex);
-  if (error == EOWNERDEAD) return pthread_mutex_consistent(&shared->mutex);
-  return error;
+  const uint32_t seen = atomic_load(&shared->changes);
+  unlock_chip(shared);
+  // FUTEX_WAIT_BITSET: the deadline is absolute, on CLOCK_MONOTONIC; NULL waits for ever.
+  const long result = syscall(SYS_futex, &shared->changes, FUTEX_WAIT_BITSET, seen, deadline, NULL,
+                              FUTEX_BITSET_MATCH_ANY);
+  const int wait_error = result == -1 && errno == ETIMEDOUT ? ETIMEDOUT : 0;
+  const int lock_error = lock_chip(shared);
+  return lock_error != 0 ? lock_error : wait_error;
 }
 
 int syncap_gpiosim_wait_rising(struct syncap_gpiosim* chip, unsigned line, int64_t timeout_ns,

@@ -312,7 +312,7 @@ void EdgeNode::publish_status(bool final) {
   s.frame_rate_hz = interval_s > 0 ? static_cast<float>(interval_frames_ / interval_s) : 0.0f;
   s.processing_us_mean =
       interval_frames_ > 0 ? static_cast<float>(interval_processing_us_ / interval_frames_) : 0.0f;
-  std::string note = last_error_;
+  std::string note = last_error_.empty() ? source_.note() : last_error_;
   if (silhouettes_ && note.empty()) note = silhouettes_->state();
   if (publish_.queue) {
     // camera_status_t has no fields for the publishing queue: its state goes in the text, last

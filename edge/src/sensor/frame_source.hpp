@@ -90,6 +90,8 @@ class FrameSource {
   }
   // Why the source delivers nothing right now (camera gone, reopening ...), or empty.
   virtual std::string problem() const { return {}; }
+  // A recent event worth telling that is no problem (the camera came back), or empty.
+  virtual std::string note() const { return {}; }
 };
 
 }  // namespace syncap::edge

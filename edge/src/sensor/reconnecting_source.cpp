@@ -70,11 +70,14 @@ void ReconnectingSource::lose(const std::string& why, int64_t now) {
   incomplete_before_ += source_->frames_incomplete();
   source_.reset();  // closes the device: a vanished camera's handles are useless
   why_ = why;
+  lost_at_ns_ = now;
+  attempts_ = 0;
   delay_s_ = options_.first_delay_s;
   retry_at_ns_ = now + to_ns(delay_s_);
 }
 
 void ReconnectingSource::try_reopen(int64_t frame_number, int64_t now) {
+  ++attempts_;
   try {
     auto source = open_(frame_number + 1);
     if (!roi_.empty()) source->set_roi(roi_);
@@ -86,6 +89,10 @@ void ReconnectingSource::try_reopen(int64_t frame_number, int64_t now) {
     misses_ = 0;
     delay_s_ = options_.first_delay_s;
     ++reopened_;
+    reopened_at_ns_ = now;
+    reopen_note_ = "camera reopened after " +
+                   seconds_text(static_cast<double>(now - lost_at_ns_) * 1e-9) +
+                   " away, on attempt " + std::to_string(attempts_);
   } catch (const FrameSourceError& e) {
     why_ = e.what();
     delay_s_ = std::min(delay_s_ * 2, options_.max_delay_s);
@@ -117,6 +124,11 @@ void ReconnectingSource::set_exposure_us(double exposure_us) {
 void ReconnectingSource::set_gain_db(double gain_db) {
   if (source_) source_->set_gain_db(gain_db);
   gain_db_ = gain_db;
+}
+
+std::string ReconnectingSource::note() const {
+  if (!source_ || reopened_ == 0 || clock_ns_() - reopened_at_ns_ >= to_ns(kNoteSeconds)) return {};
+  return reopen_note_;
 }
 
 std::string ReconnectingSource::problem() const {

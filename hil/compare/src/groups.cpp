@@ -138,7 +138,11 @@ Group parse_group(std::string_view line, const std::string& where) {
   const json& cameras = member(object, "cameras", where);
   if (!cameras.is_object()) fail(where, "cameras is not an object");
   for (const auto& [key, value] : cameras.items()) {
-    g.cameras[camera_id(key, where)] = parse_camera(value, where, "cameras." + key);
+    const int id = camera_id(key, where);
+    // Only a silhouette: its blob frame was lost (the group names the camera missing), so the
+    // camera did not report this frame; its orphan silhouette is left out of the scores.
+    if (value.is_object() && !value.contains("blobs") && value.contains("silhouette")) continue;
+    g.cameras[id] = parse_camera(value, where, "cameras." + key);
   }
   if (object.contains("markers")) g.markers = parse_markers(object["markers"], where);
   return g;

@@ -44,13 +44,13 @@ std::optional<std::string> wait_for_stop(const sigset_t& signals, const Server& 
 void print_start(const Options& options, const ImageSet& images) {
   std::printf(
       "syncap-fakecam: serving %zu images %dx%d (frames %llu-%llu) from %s on %s as %s, trigger "
-      "%s, first frame %llu, drop %s, delay %lld ms\n",
+      "%s, first frame %llu, drop %s, delay %lld ms%s\n",
       images.size(), images.width(), images.height(),
       static_cast<unsigned long long>(images.first_frame()),
       static_cast<unsigned long long>(images.last_frame()), images.directory().c_str(),
       options.address.c_str(), options.serial.c_str(), options.trigger.describe().c_str(),
       static_cast<unsigned long long>(options.start_frame), options.drop.describe().c_str(),
-      static_cast<long long>(options.delay_ms));
+      static_cast<long long>(options.delay_ms), options.loop ? ", looping" : "");
   std::fflush(stdout);
 }
 

@@ -149,8 +149,8 @@ ParsedOptions parse_options(std::span<const char* const> arguments) {
   Parser parser;
   for (std::size_t i = 0; i < arguments.size(); ++i) {
     const std::string_view name = arguments[i];
-    if (name == "--quiet") {
-      parser.options.quiet = true;
+    if (name == "--quiet" || name == "--loop") {
+      (name == "--quiet" ? parser.options.quiet : parser.options.loop) = true;
       continue;
     }
     if (!takes_value(name)) return invalid("unknown option '" + std::string(name) + "'");
@@ -187,6 +187,8 @@ std::string usage() {
          "  --cache-mb N           keep up to N MiB of decoded images in memory (default 256)\n"
          "  --link-mbps N          send frames no faster than a link of N Mbit/s, as a GigE\n"
          "                         camera does (default 1000; 0: unpaced)\n"
+         "  --loop                 frame f shows image first + (f - first) mod (number of\n"
+         "                         images): a short render serves a long run (soak)\n"
          "  --quiet                no start line and no summary\n"
          "  --help                 this text\n";
 }

@@ -30,6 +30,7 @@ struct Options {
   std::uint64_t start_frame = 0;
   std::uint64_t cache_mb = 256;
   std::uint32_t link_mbps = 1000;  // 0: unpaced
+  bool loop = false;               // frames past the last image start the images again (soak runs)
   bool quiet = false;
 };
 

@@ -187,7 +187,10 @@ void Server::send_frames(std::stop_token stop) {
 // The frame's image; nothing, counted and reported, when the set has none or it cannot be read.
 std::optional<cv::Mat> Server::image_of(std::uint64_t frame) {
   try {
-    auto image = images_.image(frame);
+    const std::uint64_t first = images_.first_frame();
+    const std::uint64_t span = images_.last_frame() - first + 1;
+    const bool looped = options_.loop && frame >= first;
+    auto image = images_.image(looped ? first + (frame - first) % span : frame);
     if (image) return image;
   } catch (const ImageSetError& error) {
     std::fprintf(stderr, "syncap-fakecam: %s\n", error.what());

@@ -56,8 +56,24 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
   return s;
 }
 
+// The trigger's last pulse, and when the records of its frame have had as long as the grouper
+// waits for them (max_lag frames at the trigger's rate; 1 s when the rate is unknown): the last
+// group may wait for records that never come (lost, a camera gone), and no newer frame will push
+// it out.
+struct LastPulse {
+  int64_t frame = 0;
+  std::chrono::steady_clock::time_point deadline;
+};
+
+LastPulse last_pulse_of(const trigger_t& t, int max_lag) {
+  const double wait_s = t.rate_hz > 0 ? max_lag / t.rate_hz : 1.0;
+  return {t.frame_number, std::chrono::steady_clock::now() +
+                              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                  std::chrono::duration<double>(wait_s))};
+}
+
 void subscribe(proto::Subscriber& sub, pipeline::HostNode& node, host_app::Arrivals& a,
-               std::optional<int64_t>& last_pulse_frame) {
+               std::optional<LastPulse>& last_pulse, int max_lag) {
   auto reject = [&](bool ok) {
     if (!ok) {
       ++a.rejected;
@@ -66,7 +82,7 @@ void subscribe(proto::Subscriber& sub, pipeline::HostNode& node, host_app::Arriv
   };
   sub.subscribe<trigger_t>(proto::kTriggerChannel, [&](const trigger_t& t, const std::string&) {
     ++a.triggers;
-    if (t.flags & trigger_t::FLAG_LAST) last_pulse_frame = t.frame_number;
+    if (t.flags & trigger_t::FLAG_LAST) last_pulse = last_pulse_of(t, max_lag);
     reject(node.on_trigger(t));
   });
   sub.subscribe<blob_frame_t>(std::string(proto::kBlobChannelPrefix) + ".*",
@@ -87,7 +103,7 @@ void subscribe(proto::Subscriber& sub, pipeline::HostNode& node, host_app::Arriv
 
 // Receives until a stop condition of the options holds (or a signal).
 void receive(lcm::LCM& lcm, pipeline::HostNode& node, const host_app::HostOptions& o,
-             const std::optional<int64_t>& last_pulse_frame) {
+             const std::optional<LastPulse>& last_pulse) {
   auto last_arrival = std::chrono::steady_clock::now();
   long handed_out = 0;
   int64_t newest_frame_out = -1;
@@ -99,7 +115,9 @@ void receive(lcm::LCM& lcm, pipeline::HostNode& node, const host_app::HostOption
     handed_out += static_cast<long>(node.poll());
     newest_frame_out = node.grouper().last_handed_out().value_or(-1);
     if (o.frames > 0 && handed_out >= o.frames) break;
-    if (o.until_last && last_pulse_frame && newest_frame_out >= *last_pulse_frame) break;
+    if (o.until_last && last_pulse &&
+        (newest_frame_out >= last_pulse->frame || now >= last_pulse->deadline))
+      break;
     if (o.idle_timeout_s > 0 &&
         std::chrono::duration<double>(now - last_arrival).count() > o.idle_timeout_s) {
       if (!o.quiet) std::cout << "syncap-host: idle for " << o.idle_timeout_s << " s\n";
@@ -128,12 +146,12 @@ int run(const host_app::HostOptions& o) {
   Stages stages = make_stages(o, out.is_open() ? &out : nullptr, lcm);
   pipeline::HostNode node({o.cameras, o.max_lag, 1000}, std::move(stages.chain));
   host_app::Arrivals arrivals;
-  std::optional<int64_t> last_pulse_frame;
+  std::optional<LastPulse> last_pulse;
   proto::Subscriber sub(lcm,
                         [](const std::string& e) { std::cerr << "syncap-host: " << e << "\n"; });
-  subscribe(sub, node, arrivals, last_pulse_frame);
+  subscribe(sub, node, arrivals, last_pulse, o.max_lag);
   if (!o.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
-  receive(lcm, node, o, last_pulse_frame);
+  receive(lcm, node, o, last_pulse);
   node.finish();
   host_app::print_summary({node, sub, arrivals, stages.markers, stages.marker_message}, std::cout);
   return 0;

@@ -37,7 +37,9 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
       ->check(CLI::Range(0, 100000));
   app.add_option("--frames", o.frames, "exit after N frame groups")
       ->check(CLI::Range(1L, 1L << 40));
-  app.add_flag("--until-last", o.until_last, "exit after the frame of the trigger's last pulse");
+  app.add_flag("--until-last", o.until_last,
+               "exit after the frame of the trigger's last pulse, or once --max-lag frames at its "
+               "rate have passed since it arrived");
   app.add_option("--idle-timeout", o.idle_timeout_s, "exit when nothing arrived for S seconds")
       ->check(CLI::Range(1.0, 86400.0));
   app.add_option("--out", o.out, "write every frame group (and its markers) as a JSON line");

@@ -91,6 +91,13 @@ TEST_F(ReconnectingSourceTest, ReopensWithDoublingDelaysAndContinuesTheNumbering
   EXPECT_EQ(attempts_at_frame, (std::vector<int64_t>{8, 18, 38}));
   EXPECT_TRUE(source->connected());
   EXPECT_EQ(source->problem(), "");
+  // Lost at t=0 (frame 3), back at 3.5 s on the third attempt; said for 10 s.
+  EXPECT_EQ(source->note(), "camera reopened after 3.5 s away, on attempt 3");
+  advance_s(9.9);
+  EXPECT_EQ(source->note(), "camera reopened after 3.5 s away, on attempt 3");
+  advance_s(0.1);
+  EXPECT_EQ(source->note(), "");
+  advance_s(-10);
   EXPECT_EQ(opens_.back().next_frame, 39);  // numbered from the trigger after the reopen
   const auto frame = source->grab(39);
   ASSERT_TRUE(frame.has_value());
@@ -202,9 +209,9 @@ TEST_F(ReconnectingSourceTest, TheNodeReportsTheLossAndResumes) {
   node.publish_status();  // frames of this interval were lost: still an error ...
   EXPECT_EQ(statuses.back().state, camera_status_t::STATE_ERROR);
   trigger(12);
-  node.publish_status();  // ... the next interval is clean
+  node.publish_status();  // ... the next interval is clean, and says the camera is back
   EXPECT_EQ(statuses.back().state, camera_status_t::STATE_ACQUIRING);
-  EXPECT_EQ(statuses.back().message, "");
+  EXPECT_EQ(statuses.back().message, "camera reopened after 0.5 s away, on attempt 1");
   EXPECT_EQ(frames.back().frame_number, 12);
   EXPECT_EQ(frames.back().num_blobs, 1);
   EXPECT_EQ(node.frames_received(), 3 + 4);   // 0..2, then 9..12 (reopened at 8)

@@ -131,6 +131,22 @@ TEST(ReadGroups, ReadsTheHostsLines) {
   EXPECT_TRUE(g.cameras.at(1).blobs.empty());
 }
 
+// A group whose camera's blob frame was lost but whose silhouette arrived (a network fault): the
+// camera is missing, not a camera that saw nothing.
+TEST(ReadGroups, ACameraWithOnlyASilhouetteDidNotReport) {
+  ScratchDir dir;
+  const auto file =
+      dir.write("groups.jsonl",
+                R"({"frame":5,"complete":false,"missing_cameras":[1],"cameras":{"0":{"blobs":[]},)"
+                R"("1":{"silhouette":{"width":4,"height":4,"contours":[]}}}})"
+                "\n");
+  const auto groups = read_groups(file);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].cameras.size(), 1u);
+  EXPECT_TRUE(groups[0].cameras.contains(0));
+  EXPECT_EQ(groups[0].missing_cameras, std::vector<int>{1});
+}
+
 TEST(ReadGroups, NamesFileAndLine) {
   ScratchDir dir;
   const auto read = [&](const std::string& lines) {

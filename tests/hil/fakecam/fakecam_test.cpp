@@ -307,6 +307,23 @@ TEST_F(FakecamTest, SoftwareTriggerDeliversOneFramePerTrigger) {
       << fakecam->output();
 }
 
+// --loop: frames past the last image show the images again from the first, keeping their numbers.
+TEST_F(FakecamTest, LoopServesTheImagesAgainPastTheLast) {
+  write_images(10, 4);  // frames 10..13
+  auto fakecam = start_fakecam("127.0.0.2", {"--start-frame", "10", "--loop"});
+  AravisClient client("127.0.0.2");
+  client.start("Software");
+  FrameNumberTracker tracker(10);
+  for (std::uint64_t f = 10; f < 20; ++f) {
+    client.software_trigger();
+    const auto frame = client.receive(kFrameTimeoutMs);
+    ASSERT_TRUE(frame) << "no frame " << f;
+    SCOPED_TRACE("frame " + std::to_string(f));
+    EXPECT_EQ(tracker.next(frame->block_id), f);
+    EXPECT_EQ(frame->pixels, image_pixels(10 + (f - 10) % 4, kWidth, kHeight));
+  }
+}
+
 TEST_F(FakecamTest, RegionOfInterestIsACropOfTheImage) {
   write_images(0, 3);
   auto fakecam = start_fakecam("127.0.0.2");

@@ -24,6 +24,7 @@ TEST(FakecamOptions, NeedsOnlyAddressAndImages) {
   EXPECT_EQ(parsed.options.delay_ms, 0);
   EXPECT_EQ(parsed.options.start_frame, 0u);
   EXPECT_EQ(parsed.options.link_mbps, 1000u);
+  EXPECT_FALSE(parsed.options.loop);
   EXPECT_FALSE(parsed.options.drop.drops(0));
 }
 
@@ -33,7 +34,7 @@ TEST(FakecamOptions, ReadsEveryOption) {
                                       "--drop",     "4,9",       "--seed",        "3",
                                       "--delay-ms", "25",        "--start-frame", "100",
                                       "--cache-mb", "0",         "--link-mbps",   "0",
-                                      "--quiet"});
+                                      "--loop",     "--quiet"});
   ASSERT_EQ(parsed.result, ParsedOptions::Result::run) << parsed.error;
   const auto& o = parsed.options;
   EXPECT_EQ(o.serial, "CAM-A");
@@ -48,6 +49,7 @@ TEST(FakecamOptions, ReadsEveryOption) {
   EXPECT_EQ(o.start_frame, 100u);
   EXPECT_EQ(o.cache_mb, 0u);
   EXPECT_EQ(o.link_mbps, 0u);
+  EXPECT_TRUE(o.loop);
   EXPECT_TRUE(o.quiet);
 }
 
