@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "aggregator/arrival_tally.hpp"
 #include "subcommand.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/command_auth.hpp"
@@ -59,22 +60,8 @@ const char* result_text(int8_t result) {
              : proto::describe(static_cast<proto::CommandCheck>(result));
 }
 
-const char* state_text(int8_t state) {
-  switch (state) {
-    case camera_status_t::STATE_IDLE:
-      return "idle";
-    case camera_status_t::STATE_ACQUIRING:
-      return "acquiring";
-    case camera_status_t::STATE_ERROR:
-      return "error";
-    case camera_status_t::STATE_STOPPED:
-      return "stopped";
-  }
-  return "unknown state";
-}
-
 std::string status_line(const camera_status_t& s) {
-  std::string line = std::string(state_text(s.state)) + ", last frame " +
+  std::string line = std::string(host::state_name(s.state)) + ", last frame " +
                      std::to_string(s.last_frame_number) + ", " +
                      std::to_string(s.commands_accepted) + " commands obeyed, " +
                      std::to_string(s.commands_rejected) + " refused";

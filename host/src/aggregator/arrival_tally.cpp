@@ -4,7 +4,6 @@
 #include <sstream>
 
 namespace syncap::host {
-namespace {
 
 const char* state_name(int8_t state) {
   switch (state) {
@@ -20,8 +19,6 @@ const char* state_name(int8_t state) {
       return "unknown";
   }
 }
-
-}  // namespace
 
 void ArrivalTally::add_record(const blob_frame_t& part) {
   if (part.part_index == 0) ++cameras_[part.camera_id].records;

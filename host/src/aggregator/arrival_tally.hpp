@@ -19,6 +19,9 @@
 
 namespace syncap::host {
 
+// camera_status_t's state as a word: "idle", "acquiring", "error", "stopped" ("unknown").
+const char* state_name(int8_t state);
+
 class ArrivalTally {
  public:
   void add_record(const blob_frame_t& part);  // counts part 0s only

@@ -188,9 +188,9 @@ void triangulate(StartState& s, Track& track) {
     rays.push_back(
         {{pose.centre, (pose.rotation * o.direction).normalized()}, s.pixels_per_unit[o.station]});
   }
-  // The start has no image sigma yet: 1 px weighs the rays by their distance only.
-  const geometry::RayPoint point =
-      geometry::triangulate_dropping_outliers(rays, 1.0, s.options.max_ray_error_px);
+  // Equal weights: the start's frame has no scale yet (and its adjustment was tuned on them).
+  const geometry::RayPoint point = geometry::triangulate_dropping_outliers(
+      rays, 1.0, s.options.max_ray_error_px, nullptr, /*weigh_by_distance=*/false);
   track.triangulated = point.ok;
   if (point.ok) track.xyz = point.position;
 }

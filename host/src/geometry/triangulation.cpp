@@ -45,17 +45,18 @@ double RayPoint::rms_px() const {
   return std::sqrt(sum / static_cast<double>(errors_px.size()));
 }
 
-RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px) {
+RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_by_distance) {
   RayPoint result;
   if (rays.size() < 2 || !well_conditioned(rays)) return result;
   NearestPoint first;
   for (const ViewRay& r : rays) first.add(r.ray);
   const Eigen::Vector3d start = first.solve();
-  // Each ray weighted by its precision across itself at the point: 1 / (r sigma_rad)^2.
+  // Each ray weighted by its precision across itself at the point: 1 / (r sigma_rad)^2 (a ray
+  // with the point behind it weighs as if at 1 um: its error below names it).
   NearestPoint weighted;
   for (const ViewRay& r : rays) {
-    const double along = r.ray.direction.dot(start - r.ray.origin);
-    if (!(along > 0)) return result;  // behind the camera
+    const double along =
+        weigh_by_distance ? std::max(r.ray.direction.dot(start - r.ray.origin), 1e-3) : 1.0;
     const double sigma_mm = along * sigma_px / r.pixels_per_rad;
     weighted.add(r.ray, 1.0 / (sigma_mm * sigma_mm));
   }
@@ -64,12 +65,12 @@ RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px) {
   result.errors_px.reserve(rays.size());
   for (const ViewRay& r : rays) {
     // The sine of the ray's angle to the point: the angle itself for the small ones that matter
-    // (1e-5 relative at 10 mrad), without atan2's cost.
+    // (1e-5 relative at 10 mrad), without atan2's cost. A point behind the ray: kBehindPx.
     const Eigen::Vector3d to_point = result.position - r.ray.origin;
-    const double distance = to_point.norm();
-    if (!(r.ray.direction.dot(to_point) > 0)) return result;
-    result.errors_px.push_back(r.ray.direction.cross(to_point).norm() / distance *
-                               r.pixels_per_rad);
+    const bool in_front = r.ray.direction.dot(to_point) > 0;
+    result.errors_px.push_back(in_front ? r.ray.direction.cross(to_point).norm() / to_point.norm() *
+                                              r.pixels_per_rad
+                                        : kBehindPx);
     const double normalised = result.errors_px.back() / sigma_px;
     result.chi_square += normalised * normalised;
   }
@@ -78,13 +79,14 @@ RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px) {
 }
 
 RayPoint triangulate_dropping_outliers(std::span<const ViewRay> rays, double sigma_px,
-                                       double max_error_px, std::vector<bool>* kept) {
+                                       double max_error_px, std::vector<bool>* kept,
+                                       bool weigh_by_distance) {
   std::vector<ViewRay> used(rays.begin(), rays.end());
   std::vector<std::size_t> index(rays.size());
   for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
   RayPoint point;
   while (used.size() >= 2) {
-    point = triangulate(used, sigma_px);
+    point = triangulate(used, sigma_px, weigh_by_distance);
     if (!point.ok) break;
     const auto worst = std::max_element(point.errors_px.begin(), point.errors_px.end());
     if (*worst <= max_error_px) break;

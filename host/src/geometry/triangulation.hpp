@@ -49,11 +49,15 @@ double pixels_per_rad(const sensor::CameraModel& camera);
 // The angle between a ray and the direction from its origin to `point` [rad].
 double angle_to(const Ray& ray, const Eigen::Vector3d& point);
 
+// The error of a ray that has the point behind its camera [px].
+inline constexpr double kBehindPx = 1e9;
+
 struct RayPoint {
-  bool ok = false;  // false: fewer than two rays, (nearly) parallel ones, or a point behind one
+  bool ok = false;  // false: fewer than two rays, or (nearly) parallel ones
   Eigen::Vector3d position = Eigen::Vector3d::Zero();    // mm
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // mm^2, from the image sigma
-  // each ray's angle to the point (its sine: equal for small angles), in its image's pixels
+  // each ray's angle to the point (its sine: equal for small angles), in its image's pixels;
+  // kBehindPx for a ray with the point behind its camera
   std::vector<double> errors_px;
   // sum (error / sigma)^2: chi-square with 2 n - 3 degrees of freedom when the rays agree
   double chi_square = 0;
@@ -61,12 +65,15 @@ struct RayPoint {
 };
 
 // The weighted nearest point of `rays` (see above) with image standard deviation `sigma_px`.
-RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px);
+// `weigh_by_distance` false: every ray weighs the same (the calibration's start, whose scale is
+// arbitrary until the network is oriented; the covariance is then in units of its frame).
+RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_by_distance = true);
 
 // triangulate(), then while a ray is off by more than `max_error_px`, the worst is left out and
 // the rest triangulated again. `kept` (optional) gets which rays the point keeps.
 RayPoint triangulate_dropping_outliers(std::span<const ViewRay> rays, double sigma_px,
-                                       double max_error_px, std::vector<bool>* kept = nullptr);
+                                       double max_error_px, std::vector<bool>* kept = nullptr,
+                                       bool weigh_by_distance = true);
 
 // Gauss-Newton on the reprojection errors from `start` (the exact maximum likelihood point for
 // equal image noise, through the full camera model); nothing when a camera cannot see it.
