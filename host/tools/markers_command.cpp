@@ -1,11 +1,10 @@
 #include "markers_command.hpp"
 
 #include <CLI/CLI.hpp>
-#include <charconv>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
+#include "app/host_options.hpp"
 #include "io/c3d_writer.hpp"
 #include "io/export_error.hpp"
 #include "io/trc_writer.hpp"
@@ -79,21 +78,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
     app.parse(reversed);
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
-    std::stringstream list(a.cameras);
-    for (std::string id; std::getline(list, id, ',');) {
-      int v = -1;
-      const auto [end, ec] = std::from_chars(id.data(), id.data() + id.size(), v);
-      if (ec != std::errc() || end != id.data() + id.size() || v < 0 || v > proto::kMaxCameraId)
-        throw CLI::ValidationError("--cameras", "'" + id + "' is not a camera id 0..99");
-      a.camera_ids.insert(v);
-    }
-    if (!a.volume.empty()) {
-      const auto& v = a.volume;
-      if (!(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]))
-        throw CLI::ValidationError("--volume", "min < max expected");
-      a.matching.volume =
-          Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
-    }
+    if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
+    if (!a.volume.empty()) a.matching.volume = host_app::parse_volume(a.volume);
   } catch (const CLI::CallForHelp&) {
     out << app.help();
     return kExitOk;

@@ -8,7 +8,6 @@
 #include "syncap/proto/channels.hpp"
 
 namespace syncap::host_app {
-namespace {
 
 std::set<int> parse_camera_list(const std::string& text) {
   std::set<int> ids;
@@ -30,6 +29,8 @@ Eigen::AlignedBox3d parse_volume(const std::vector<double>& v) {
                                "expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX in mm, min < max");
   return Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
 }
+
+namespace {
 
 void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vector<double>& volume) {
   app.add_option("--cameras", cameras, "expected camera ids, e.g. 0,1,2 (default 0)");

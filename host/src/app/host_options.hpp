@@ -25,6 +25,12 @@ struct HostOptions {
   bool marker_message = true;  // publish marker_frame_t on SYNCAP_MARKERS
 };
 
+// "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and
+// syncap markers share it).
+std::set<int> parse_camera_list(const std::string& text);
+// XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm] as a box, min < max; CLI::ValidationError naming --volume.
+Eigen::AlignedBox3d parse_volume(const std::vector<double>& values);
+
 // Parses argv[1..]. Returns the options, or an exit status when the run is over: 0 after
 // --help (printed on `out`), 2 after a usage error (named on `err`, with the usage).
 struct ParsedHostOptions {

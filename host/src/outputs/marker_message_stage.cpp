@@ -2,18 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 
+#include "syncap/proto/command_auth.hpp"
 #include "syncap/proto/marker_parts.hpp"
 
 namespace syncap::outputs {
 namespace {
-
-int64_t realtime_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 marker_t marker_of(const pipeline::Marker3d& m) {
   marker_t out{};
@@ -60,7 +54,8 @@ void MarkerMessageStage::process(pipeline::FrameWork& work) {
   if (!work.group.trigger) return;
   // Trigger board and host share one clock on the replay bench; on a network, NTP/PTP's offset
   // is in this figure too.
-  const double ms = static_cast<double>(realtime_ns() - work.group.trigger->realtime_ns) * 1e-6;
+  const double ms =
+      static_cast<double>(proto::realtime_now_ns() - work.group.trigger->realtime_ns) * 1e-6;
   latency_.add(ms);
 }
 
