@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "sensor/aravis_source.hpp"
+#include "sensor/exposure_numbering.hpp"
 
 namespace syncap::edge {
 namespace {

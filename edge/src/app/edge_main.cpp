@@ -47,7 +47,7 @@ std::unique_ptr<syncap::edge::FrameSource> open_source(const syncap::edge::EdgeO
       aravis.exposure_us = o.exposure_us;
       aravis.gain_db = o.gain_db;
       aravis.udp_socket = o.udp_socket;
-      if (next_frame_number > 0) aravis.first_frame_number = next_frame_number;
+      aravis.reopened = next_frame_number > 0;
       return std::make_unique<AravisSource>(aravis, o.camera_id);
     };
   } else {

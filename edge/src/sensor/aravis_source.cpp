@@ -28,6 +28,12 @@ int64_t monotonic_now_ns() {
       .count();
 }
 
+int64_t realtime_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
 // The local address the kernel would send from to reach `device`: a connected UDP socket sends
 // nothing but tells.
 std::string route_source_address(const std::string& device) {
@@ -59,18 +65,6 @@ void check(GError* error, const std::string& address, const std::string& what) {
 
 }  // namespace
 
-uint64_t BlockIdUnwrapper::next(uint16_t block_id) {
-  if (!last_) {
-    count_ = block_id;
-  } else {
-    // Ids run 1..65535; the step from the last id, forward, skipping 0.
-    const int step = (block_id - *last_ + 65535) % 65535;
-    count_ += step;
-  }
-  last_ = block_id;
-  return count_;
-}
-
 struct AravisSource::Camera {
   GPtr<ArvCamera> camera;
   GPtr<ArvStream> stream;
@@ -87,7 +81,10 @@ void on_control_lost(ArvDevice*, gpointer flag) {
 }  // namespace
 
 AravisSource::AravisSource(const AravisOptions& options, int camera_id)
-    : options_(options), camera_id_(camera_id), camera_(std::make_unique<Camera>()) {
+    : options_(options),
+      camera_id_(camera_id),
+      camera_(std::make_unique<Camera>()),
+      numbering_(options.reopened, options.trigger_tolerance_ns) {
   const std::string& address = options_.device_address;
   const std::string local = options_.interface_address.empty() ? route_source_address(address)
                                                                : options_.interface_address;
@@ -192,13 +189,8 @@ cv::Rect AravisSource::set_roi(const cv::Rect& roi) {
   return region_;
 }
 
-int64_t AravisSource::frame_number_of(uint16_t block_id) {
-  const auto unwrapped = static_cast<int64_t>(block_ids_.next(block_id));
-  if (!number_offset_) {
-    number_offset_ =
-        options_.first_frame_number >= 0 ? options_.first_frame_number - unwrapped : int64_t{-1};
-  }
-  return unwrapped + *number_offset_;
+void AravisSource::note_trigger(int64_t frame_number, int64_t monotonic_ns) {
+  numbering_.note_trigger(frame_number, monotonic_ns);
 }
 
 void AravisSource::set_exposure_us(double exposure_us) {
@@ -221,10 +213,9 @@ void AravisSource::software_trigger() {
   check(error, options_.device_address, "software trigger");
 }
 
-Frame AravisSource::copy_frame(ArvBuffer* buffer, int64_t number) const {
+Frame AravisSource::copy_frame(ArvBuffer* buffer) const {
   Frame frame;
   frame.camera_id = camera_id_;
-  frame.frame_number = number;
   frame.monotonic_ns = monotonic_now_ns();
   frame.exposure_us = static_cast<int32_t>(options_.exposure_us);
   frame.origin = {arv_buffer_get_image_x(buffer), arv_buffer_get_image_y(buffer)};
@@ -233,8 +224,38 @@ Frame AravisSource::copy_frame(ArvBuffer* buffer, int64_t number) const {
   const void* data = arv_buffer_get_image_data(buffer, &size);
   const cv::Mat view(arv_buffer_get_image_height(buffer), arv_buffer_get_image_width(buffer),
                      CV_8UC1, const_cast<void*>(data));
-  frame.image = view.clone();  // the buffer goes back to the pool right after
+  frame.image = view.clone();
   return frame;
+}
+
+std::optional<Frame> AravisSource::deliver(Frame frame, int64_t frame_number, bool& done) {
+  done = frame.frame_number >= frame_number;
+  if (!done) {
+    ++stale_;  // an exposure whose trigger this process never saw
+    return std::nullopt;
+  }
+  if (frame.frame_number == frame_number) return frame;
+  read_ahead_.hold(std::move(frame));  // a later exposure came first: ours was lost
+  return std::nullopt;
+}
+
+std::optional<Frame> AravisSource::grab_waiting(int64_t frame_number, bool& done) {
+  done = false;
+  if (!waiting_) return std::nullopt;
+  const auto number =
+      numbering_.number(waiting_->block_id, waiting_->camera_ns, waiting_->arrival_ns);
+  if (number.kind == ExposureNumbering::Result::Kind::kWait) {
+    done = true;
+    return std::nullopt;
+  }
+  Unnumbered exposure = std::move(*waiting_);
+  waiting_.reset();
+  if (number.kind == ExposureNumbering::Result::Kind::kDrop) {
+    ++stale_;
+    return std::nullopt;
+  }
+  exposure.frame.frame_number = number.frame_number;
+  return deliver(std::move(exposure.frame), frame_number, done);
 }
 
 std::optional<Frame> AravisSource::grab(int64_t frame_number) {
@@ -245,31 +266,49 @@ std::optional<Frame> AravisSource::grab(int64_t frame_number) {
   bool lost = false;
   if (auto held = read_ahead_.take(frame_number, lost, stale_)) return held;
   if (lost) return std::nullopt;
+  bool done = false;
+  if (auto frame = grab_waiting(frame_number, done); done) return frame;
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.frame_timeout_ms);
+  // The board's CLOCK_MONOTONIC minus Aravis' system timestamps (CLOCK_REALTIME at a frame's
+  // first packet): when a reopened camera's first exposure arrived.
+  const int64_t realtime_to_monotonic = monotonic_now_ns() - realtime_now_ns();
   for (auto now = std::chrono::steady_clock::now(); now < deadline;
        now = std::chrono::steady_clock::now()) {
     const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - now).count();
     ArvBuffer* buffer =
         arv_stream_timeout_pop_buffer(camera_->stream.get(), static_cast<guint64>(left));
     if (!buffer) break;
-    const int64_t number = frame_number_of(static_cast<uint16_t>(arv_buffer_get_frame_id(buffer)));
-    const bool complete = arv_buffer_get_status(buffer) == ARV_BUFFER_STATUS_SUCCESS;
-    std::optional<Frame> frame;
-    if (complete && number >= frame_number) frame = copy_frame(buffer, number);
-    arv_stream_push_buffer(camera_->stream.get(), buffer);
-    if (!complete) {
+    const auto block_id = static_cast<uint16_t>(arv_buffer_get_frame_id(buffer));
+    if (arv_buffer_get_status(buffer) != ARV_BUFFER_STATUS_SUCCESS) {
+      arv_stream_push_buffer(camera_->stream.get(), buffer);
       ++incomplete_;
-      if (number >= frame_number) return std::nullopt;
+      // Once the stream is numbered, an incomplete exposure of this trigger or a later one ends
+      // the wait: this trigger's frame is lost.
+      if (numbering_.numbered() && numbering_.number(block_id, 0, 0).frame_number >= frame_number)
+        return std::nullopt;
       continue;
     }
-    if (number < frame_number) {
-      ++stale_;  // an exposure whose trigger this process never saw
+    const int64_t camera_ns = static_cast<int64_t>(arv_buffer_get_timestamp(buffer));
+    const int64_t arrival_ns =
+        static_cast<int64_t>(arv_buffer_get_system_timestamp(buffer)) + realtime_to_monotonic;
+    const auto number = numbering_.number(block_id, camera_ns, arrival_ns);
+    if (number.kind == ExposureNumbering::Result::Kind::kWait) {
+      waiting_ = Unnumbered{copy_frame(buffer), block_id, camera_ns, arrival_ns};
+      arv_stream_push_buffer(camera_->stream.get(), buffer);
+      return std::nullopt;
+    }
+    const bool wanted = number.kind == ExposureNumbering::Result::Kind::kNumbered &&
+                        number.frame_number >= frame_number;
+    std::optional<Frame> frame;
+    if (wanted) frame = copy_frame(buffer);  // the buffer goes back to the pool right after
+    arv_stream_push_buffer(camera_->stream.get(), buffer);
+    if (!wanted) {
+      ++stale_;  // dropped, or an exposure whose trigger this process never saw
       continue;
     }
-    if (number == frame_number) return frame;
-    read_ahead_.hold(std::move(*frame));  // a later exposure came first: ours was lost
-    return std::nullopt;
+    frame->frame_number = number.frame_number;
+    return deliver(std::move(*frame), frame_number, done);
   }
   return std::nullopt;
 }

@@ -1,14 +1,8 @@
 // A GigE Vision (or USB3 Vision) camera through Aravis, opened by address: never by discovery,
 // which broadcasts on every interface.
 //
-// Frame numbers: GigE Vision numbers the exposures of an acquisition with 16-bit block ids that
-// wrap from 65535 to 1. The source unwraps them into a 64-bit count, and frame number =
-// unwrapped block id - 1, so the first exposure of an acquisition (block id 1) is frame 0: the
-// trigger's first pulse of a run, provided the camera is acquiring before the run starts. The
-// replay bench's fake cameras send block id = frame number mod 65535 + 1 (docs/fakecam.md),
-// which the same rule turns back into the frame number. A camera reopened mid-run (after it
-// vanished) restarts its block ids: `first_frame_number` then numbers its first exposure, and the
-// block ids count on from there.
+// Frame numbers: sensor/exposure_numbering.hpp (block ids from the run's start; by time for a
+// camera reopened mid-run).
 //
 // Region of interest: set_roi() stops the acquisition, sets OffsetX/Y and Width/Height, gives the
 // stream buffers of the new payload size and starts again; the stream channel stays open, so
@@ -22,6 +16,7 @@
 #include <optional>
 #include <string>
 
+#include "sensor/exposure_numbering.hpp"
 #include "sensor/frame_source.hpp"
 
 struct _ArvBuffer;  // Aravis' buffer type, kept out of this header
@@ -41,19 +36,11 @@ struct AravisOptions {
   // frame starts, so under load the first frame's burst can overflow the default buffer: the
   // replay bench lost frame 0 in 2 of 5 short runs that way, and none with packet sockets.
   bool udp_socket = false;
-  // -1: frame number = block id - 1 (acquiring before the trigger's first pulse). Otherwise the
-  // number of the first exposure received (a camera reopened mid-run).
-  int64_t first_frame_number = -1;
-};
-
-// Unwraps GigE Vision block ids (1..65535, then 1 again) into a running 64-bit count.
-class BlockIdUnwrapper {
- public:
-  uint64_t next(uint16_t block_id);
-
- private:
-  std::optional<uint16_t> last_;
-  uint64_t count_ = 0;
+  // false: frame number = block id - 1 (acquiring before the trigger's first pulse). true: a
+  // camera reopened mid-run, whose first exposure is numbered by time (ExposureNumbering).
+  bool reopened = false;
+  // How near the camera's timestamp must be to a trigger's time to be its exposure.
+  int64_t trigger_tolerance_ns = 500'000;
 };
 
 class AravisSource : public FrameSource {
@@ -69,6 +56,7 @@ class AravisSource : public FrameSource {
   // (counted lost); a later frame arriving first means this one was lost, and is kept for the
   // next call. Incomplete buffers are counted and never returned.
   std::optional<Frame> grab(int64_t frame_number) override;
+  void note_trigger(int64_t frame_number, int64_t monotonic_ns) override;
   std::string describe() const override;
   // Applies the region (empty: the whole sensor) as the camera rounds it; throws
   // FrameSourceError naming the camera when it refuses.
@@ -87,16 +75,27 @@ class AravisSource : public FrameSource {
 
  private:
   struct Camera;  // Aravis objects
-  Frame copy_frame(::_ArvBuffer* buffer, int64_t number) const;
+  // An exposure of a reopened camera that cannot be numbered yet (ExposureNumbering waits).
+  struct Unnumbered {
+    Frame frame;
+    uint16_t block_id = 0;
+    int64_t camera_ns = 0;
+    int64_t arrival_ns = 0;
+  };
+  Frame copy_frame(::_ArvBuffer* buffer) const;
   void push_buffers();
-  int64_t frame_number_of(uint16_t block_id);
+  // A numbered exposure for the caller asking for `frame_number`: returned when it is that one,
+  // held when later (`done` set for both), counted stale when earlier.
+  std::optional<Frame> deliver(Frame frame, int64_t frame_number, bool& done);
+  // The waiting exposure, once it can be numbered; `done` when the caller's grab is over.
+  std::optional<Frame> grab_waiting(int64_t frame_number, bool& done);
 
   AravisOptions options_;
   int camera_id_;
   std::unique_ptr<Camera> camera_;
-  BlockIdUnwrapper block_ids_;
-  std::optional<int64_t> number_offset_;  // frame number - unwrapped block id
-  cv::Rect region_;                       // the sensor window frames come from
+  ExposureNumbering numbering_;
+  std::optional<Unnumbered> waiting_;  // the first exposure after a reopen, not yet numbered
+  cv::Rect region_;                    // the sensor window frames come from
   cv::Size sensor_size_;
   ReadAheadFrame read_ahead_;  // a frame that arrived before its trigger was asked for
   int64_t stale_ = 0;

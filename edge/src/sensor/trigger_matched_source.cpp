@@ -33,6 +33,19 @@ std::optional<int64_t> TriggerMatcher::match(int64_t monotonic_ns) const {
   return best->frame_number;
 }
 
+std::optional<int64_t> TriggerMatcher::last_at_or_before(int64_t monotonic_ns) const {
+  auto after =
+      std::upper_bound(pulses_.begin(), pulses_.end(), monotonic_ns,
+                       [](int64_t time, const Pulse& pulse) { return time < pulse.monotonic_ns; });
+  if (after == pulses_.begin()) return std::nullopt;
+  return std::prev(after)->frame_number;
+}
+
+std::optional<int64_t> TriggerMatcher::newest_ns() const {
+  if (pulses_.empty()) return std::nullopt;
+  return pulses_.back().monotonic_ns;
+}
+
 std::optional<int64_t> TriggerMatcher::time_of(int64_t frame_number) const {
   for (auto it = pulses_.rbegin(); it != pulses_.rend(); ++it) {
     if (it->frame_number == frame_number) return it->monotonic_ns;

@@ -22,6 +22,10 @@ class TriggerMatcher {
   void add(int64_t frame_number, int64_t monotonic_ns);
   // The frame number of the trigger closest to `monotonic_ns`, if within the tolerance.
   std::optional<int64_t> match(int64_t monotonic_ns) const;
+  // The last trigger at or before `monotonic_ns` (its frame number), if one is kept.
+  std::optional<int64_t> last_at_or_before(int64_t monotonic_ns) const;
+  // The time of the latest trigger kept.
+  std::optional<int64_t> newest_ns() const;
   // The time of trigger `frame_number`, if it is still kept.
   std::optional<int64_t> time_of(int64_t frame_number) const;
   int64_t tolerance_ns() const { return tolerance_ns_; }
