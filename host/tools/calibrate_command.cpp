@@ -13,6 +13,7 @@
 #include <iomanip>
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
+#include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -41,6 +42,11 @@ struct CalibrateArgs {
   bool led = false;
   std::set<int> cameras;
   long frames = 0;
+  // Frame numbers to calibrate from (lcm:, lcmlog:): a log of a whole session holds the wand
+  // phase and then the capture, whose markers are no wand.
+  int64_t first_frame = 0;
+  int64_t last_frame = std::numeric_limits<int64_t>::max();
+  bool in_range(int64_t frame) const { return frame >= first_frame && frame <= last_frame; }
   double idle_timeout_s = 5.0;
   bool progress = false;
   std::optional<calibration::ImageSize> image_size;  // for sources without one (CSV)
@@ -99,6 +105,27 @@ std::vector<int> interior_list(const std::string& text) {
     free.push_back(index);
   }
   return free;
+}
+
+// "FIRST-LAST" (either may be left out: "300-", "-299") into a.first_frame, a.last_frame.
+void parse_frame_range(const std::string& text, CalibrateArgs& a) {
+  const auto dash = text.find('-');
+  const auto bound = [&](const std::string& part, int64_t fallback) {
+    if (part.empty()) return fallback;
+    const double v = number_arg("--frame-range", part);
+    if (v < 0 || v != std::floor(v) || v > 9e15) {
+      throw UsageError{"--frame-range: '" + part + "' is not a frame number"};
+    }
+    return static_cast<int64_t>(v);
+  };
+  if (dash == std::string::npos || text == "-") {
+    throw UsageError{"--frame-range needs FIRST-LAST (e.g. 0-299, or 300-), got '" + text + "'"};
+  }
+  a.first_frame = bound(text.substr(0, dash), 0);
+  a.last_frame = bound(text.substr(dash + 1), std::numeric_limits<int64_t>::max());
+  if (a.first_frame > a.last_frame) {
+    throw UsageError{"--frame-range: " + text + " ends before it starts"};
+  }
 }
 
 CalibrateArgs parse_args(std::span<const std::string> args) {
@@ -193,6 +220,8 @@ CalibrateArgs parse_args(std::span<const std::string> args) {
       o.free_interior = interior_list(value());
     } else if (arg == "--cameras") {
       a.cameras = camera_list(value());
+    } else if (arg == "--frame-range") {
+      parse_frame_range(value(), a);
     } else if (arg == "--frames") {
       a.frames = static_cast<long>(number_arg(arg, value()));
     } else if (arg == "--idle-timeout") {
@@ -221,8 +250,9 @@ bool is_blob_channel(const std::string& channel) {
   return channel.rfind(proto::kBlobChannelPrefix, 0) == 0;
 }
 
-calibration::Observations read_lcm_log(const std::string& file, std::set<int> cameras,
+calibration::Observations read_lcm_log(const std::string& file, const CalibrateArgs& a,
                                        std::ostream& err) {
+  std::set<int> cameras = a.cameras;
   std::ifstream in(file, std::ios::binary);
   if (!in) throw calibration::ObservationError(file + ": cannot open for reading");
   if (cameras.empty()) {  // every camera in the log
@@ -256,10 +286,11 @@ calibration::Observations read_lcm_log(const std::string& file, std::set<int> ca
   while (auto event = reader.next()) {
     if (is_blob_channel(event->channel)) {
       blob_frame_t frame;
-      if (decode(*event, frame)) collector.add_blob_frame(frame);
+      if (decode(*event, frame) && a.in_range(frame.frame_number)) collector.add_blob_frame(frame);
     } else if (event->channel == proto::kTriggerChannel) {
       trigger_t trigger;
-      if (decode(*event, trigger)) collector.add_trigger(trigger);
+      if (decode(*event, trigger) && a.in_range(trigger.frame_number))
+        collector.add_trigger(trigger);
     }
   }
   if (undecodable > 0) {
@@ -283,11 +314,14 @@ calibration::Observations read_live(const std::string& url, const CalibrateArgs&
   proto::Subscriber sub(lcm, [&](const std::string& m) { err << kPrefix << m << '\n'; });
   using Clock = std::chrono::steady_clock;
   std::optional<Clock::time_point> last_blob;
+  bool past_range = false;  // a blob frame after --frame-range's last: the range is complete
   sub.subscribe<trigger_t>(proto::kTriggerChannel, [&](const trigger_t& t, const std::string&) {
-    collector.add_trigger(t);
+    if (a.in_range(t.frame_number)) collector.add_trigger(t);
   });
   sub.subscribe<blob_frame_t>(std::string(proto::kBlobChannelPrefix) + ".*",
                               [&](const blob_frame_t& f, const std::string&) {
+                                past_range = past_range || f.frame_number > a.last_frame;
+                                if (!a.in_range(f.frame_number)) return;
                                 collector.add_blob_frame(f);
                                 last_blob = Clock::now();
                               });
@@ -299,6 +333,7 @@ calibration::Observations read_live(const std::string& url, const CalibrateArgs&
   while (!g_stop) {
     lcm.handleTimeout(100);
     if (a.frames > 0 && collector.frame_groups() >= a.frames) break;
+    if (past_range) break;
     if (last_blob && Clock::now() - *last_blob > std::chrono::duration<double>(a.idle_timeout_s)) {
       break;
     }
@@ -322,7 +357,7 @@ calibration::Observations read_source(const CalibrateArgs& a, std::ostream& err,
   const std::string where = a.input.substr(colon + 1);
   if (kind == "csv") return calibration::read_csv_observations(where);
   if (kind == "mcsc") return calibration::read_mcsc_observations(where);
-  if (kind == "lcmlog") return read_lcm_log(where, a.cameras, err);
+  if (kind == "lcmlog") return read_lcm_log(where, a, err);
   if (kind == "lcm") return read_live(where, a, err, progress);
   throw UsageError{"--input '" + a.input + "': unknown source '" + kind +
                    "' (lcm, lcmlog, csv, mcsc)"};

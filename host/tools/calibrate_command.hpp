@@ -55,6 +55,8 @@ inline constexpr const char* kCalibrateUsage =
     "                        measurements (a parametric bootstrap: honest in weak networks)\n"
     "  --cameras LIST        camera ids to wait for in each frame group (lcm:, lcmlog:; for a\n"
     "                        log default: every camera in it)\n"
+    "  --frame-range A-B     lcm:, lcmlog: only frames A to B (\"300-\", \"-299\": open ends);\n"
+    "                        lcm: stops after frame B\n"
     "  --frames N            lcm: stop after N frame groups\n"
     "  --idle-timeout S      lcm: stop S seconds after the last blob frame (default 5)\n"
     "  --progress            print progress on stderr (default: only when stderr is a terminal)\n"

@@ -14,21 +14,42 @@ namespace {
 
 using sensor::CameraModel;
 
-struct Similarity {
-  double scale = 1;
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+// The cameras of both sets, paired by id; the true ones the estimate lacks in `missing`.
+struct CommonCameras {
+  std::vector<const CameraModel*> truth, estimated;
+  std::vector<int> missing;
 };
+
+CommonCameras common_cameras(const std::vector<CameraModel>& truth,
+                             const std::vector<CameraModel>& estimated) {
+  std::map<int, const CameraModel*> by_id;
+  for (const CameraModel& c : estimated) by_id[c.id] = &c;
+  CommonCameras common;
+  for (const CameraModel& t : truth) {
+    const auto it = by_id.find(t.id);
+    if (it == by_id.end()) {
+      common.missing.push_back(t.id);
+      continue;
+    }
+    common.truth.push_back(&t);
+    common.estimated.push_back(it->second);
+  }
+  if (common.truth.size() < 3) {
+    throw std::invalid_argument("the calibration shares " + std::to_string(common.truth.size()) +
+                                " cameras with the truth; at least 3 are needed to align them");
+  }
+  return common;
+}
 
 // truth = scale * rotation * estimated + translation, least squares over the common centres.
 Similarity fit_similarity(const std::vector<const CameraModel*>& truth,
-                          const std::vector<const CameraModel*>& estimated) {
+                          const std::vector<const CameraModel*>& estimated, bool with_scale) {
   Eigen::Matrix3Xd from(3, estimated.size()), to(3, truth.size());
   for (std::size_t i = 0; i < truth.size(); ++i) {
     from.col(static_cast<Eigen::Index>(i)) = estimated[i]->projection_centre();
     to.col(static_cast<Eigen::Index>(i)) = truth[i]->projection_centre();
   }
-  const Eigen::Matrix4d t = Eigen::umeyama(from, to, true);
+  const Eigen::Matrix4d t = Eigen::umeyama(from, to, with_scale);
   Similarity s;
   s.scale = t.block<3, 1>(0, 0).norm();
   s.rotation = t.block<3, 3>(0, 0) / s.scale;
@@ -72,27 +93,21 @@ void reproject(const CameraModel& truth, const CameraModel& moved,
 
 }  // namespace
 
+Similarity fit_to_truth(const std::vector<CameraModel>& truth,
+                        const std::vector<CameraModel>& estimated, bool with_scale) {
+  const CommonCameras common = common_cameras(truth, estimated);
+  return fit_similarity(common.truth, common.estimated, with_scale);
+}
+
 CalibrationCheck check_calibration(const std::vector<CameraModel>& truth,
                                    const std::vector<CameraModel>& estimated,
                                    const std::vector<Eigen::Vector3d>& targets) {
-  std::map<int, const CameraModel*> by_id;
-  for (const CameraModel& c : estimated) by_id[c.id] = &c;
+  const CommonCameras common = common_cameras(truth, estimated);
+  const auto& common_truth = common.truth;
+  const auto& common_estimated = common.estimated;
   CalibrationCheck check;
-  std::vector<const CameraModel*> common_truth, common_estimated;
-  for (const CameraModel& t : truth) {
-    const auto it = by_id.find(t.id);
-    if (it == by_id.end()) {
-      check.missing.push_back(t.id);
-      continue;
-    }
-    common_truth.push_back(&t);
-    common_estimated.push_back(it->second);
-  }
-  if (common_truth.size() < 3) {
-    throw std::invalid_argument("the calibration shares " + std::to_string(common_truth.size()) +
-                                " cameras with the truth; at least 3 are needed to align them");
-  }
-  const Similarity s = fit_similarity(common_truth, common_estimated);
+  check.missing = common.missing;
+  const Similarity s = fit_similarity(common_truth, common_estimated, true);
   check.scale = s.scale;
   double sum_squared = 0;
   long count = 0;

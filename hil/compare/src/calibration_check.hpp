@@ -39,6 +39,24 @@ struct CalibrationCheck {
   double reprojection_rms_px = 0;    // all cameras
 };
 
+// truth = scale * rotation * estimated + translation.
+struct Similarity {
+  double scale = 1;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Vector3d apply(const Eigen::Vector3d& estimated) const {
+    return scale * rotation * estimated + translation;
+  }
+};
+
+// The transformation of the estimated cameras' frame onto the truth's, least squares over the
+// projection centres of the cameras both sets hold (paired by id): a similarity, or with
+// `with_scale` false a rigid motion (a wand calibration's scale is meant to be metric, so points
+// measured through it are compared after a rigid motion only). Throws std::invalid_argument when
+// fewer than three cameras are common.
+Similarity fit_to_truth(const std::vector<sensor::CameraModel>& truth,
+                        const std::vector<sensor::CameraModel>& estimated, bool with_scale);
+
 // `targets`: true object points [mm] to reproject. Throws std::invalid_argument when fewer than
 // three cameras are common to both sets (the similarity is then not determined).
 CalibrationCheck check_calibration(const std::vector<sensor::CameraModel>& truth,

@@ -116,6 +116,11 @@ std::vector<Marker> parse_markers(const json& list, const std::string& where) {
     const json& cameras = member(list[i], "cameras", where);
     if (!cameras.is_array()) fail(where, path + "cameras is not an array");
     m.cameras = static_cast<int>(cameras.size());
+    if (list[i].contains("id")) {
+      const json& id = list[i]["id"];
+      if (!id.is_number_integer()) fail(where, path + "id is not a whole number");
+      m.id = id.get<long>();
+    }
     markers.push_back(m);
   }
   return markers;

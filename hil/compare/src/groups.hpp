@@ -38,6 +38,7 @@ struct CameraBlobs {
 struct Marker {
   double x = 0, y = 0, z = 0;  // mm
   int cameras = 0;             // how many saw it
+  long id = -1;                // the tracker's trajectory id; -1: none
 };
 
 struct Group {

@@ -31,7 +31,7 @@ double distance(const Marker& m, const std::array<double, 3>& t) {
 // One frame: pairs within the radius, nearest first, each marker and target used once.
 void check_frame(const std::vector<Marker>& markers, const std::vector<int>& targets,
                  const std::map<int, std::array<double, 3>>& positions, double radius,
-                 MarkersCheck& c) {
+                 std::map<int, long>& last_id, MarkersCheck& c) {
   std::vector<std::tuple<double, std::size_t, int>> pairs;
   for (std::size_t m = 0; m < markers.size(); ++m) {
     for (const auto& [target, position] : positions) {
@@ -49,6 +49,10 @@ void check_frame(const std::vector<Marker>& markers, const std::vector<int>& tar
       ++c.found;
       c.squared_error_sum += d * d;
     }
+    if (markers[m].id < 0) continue;
+    const auto [last, first_time] = last_id.try_emplace(target, markers[m].id);
+    if (!first_time && last->second != markers[m].id) ++c.id_switches;
+    last->second = markers[m].id;
   }
   c.visible_targets += static_cast<long>(targets.size());
   c.markers += static_cast<long>(markers.size());
@@ -67,8 +71,22 @@ double MarkersCheck::ghost_share() const {
   return markers > 0 ? static_cast<double>(ghosts) / static_cast<double>(markers) : 0.0;
 }
 
+double MarkersCheck::id_switches_per_1000() const {
+  return found > 0 ? 1000.0 * static_cast<double>(id_switches) / static_cast<double>(found) : 0.0;
+}
+
 double MarkersCheck::rms_mm() const {
   return found > 0 ? std::sqrt(squared_error_sum / static_cast<double>(found)) : 0.0;
+}
+
+void move_markers(std::vector<Group>& groups, const Similarity& motion) {
+  for (Group& g : groups) {
+    if (!g.markers) continue;
+    for (Marker& m : *g.markers) {
+      const Eigen::Vector3d moved = motion.apply({m.x, m.y, m.z});
+      m.x = moved.x(), m.y = moved.y(), m.z = moved.z();
+    }
+  }
 }
 
 TruePositions read_true_positions(const std::filesystem::path& targets_csv) {
@@ -85,23 +103,30 @@ MarkersCheck check_markers(const Truth& truth, const TruePositions& positions,
                            const std::vector<Group>& groups, double match_radius_mm) {
   MarkersCheck c;
   static const std::map<int, std::array<double, 3>> kNone;
+  std::map<int, long> last_id;  // by target, within a phase (each phase numbers its own)
+  int phase = -1;
   for (const Group& g : groups) {
     if (!g.markers) continue;
     ++c.frames;
+    const auto frame = truth.frames.find(g.frame);
+    const int frame_phase = frame == truth.frames.end() ? -1 : frame->second.phase;
+    if (frame_phase != phase) last_id.clear(), phase = frame_phase;
     const auto it = positions.find(g.frame);
     check_frame(*g.markers, visible_targets(truth, g.frame),
-                it == positions.end() ? kNone : it->second, match_radius_mm, c);
+                it == positions.end() ? kNone : it->second, match_radius_mm, last_id, c);
   }
   return c;
 }
 
 std::string format_markers_check(const MarkersCheck& c) {
-  char line[320];
+  char line[400];
   std::snprintf(line, sizeof line,
                 "markers: %ld frames, %ld of %ld visible targets found (%.2f %%), %ld ghosts of "
-                "%ld markers (%.2f %%), 3D RMS %.3f mm, %ld seen by two cameras only\n",
+                "%ld markers (%.2f %%), 3D RMS %.3f mm, %ld seen by two cameras only, %ld id "
+                "switches (%.2f per 1000 found)\n",
                 c.frames, c.found, c.visible_targets, 100 * c.found_share(), c.ghosts, c.markers,
-                100 * c.ghost_share(), c.rms_mm(), c.two_camera_markers);
+                100 * c.ghost_share(), c.rms_mm(), c.two_camera_markers, c.id_switches,
+                c.id_switches_per_1000());
   return line;
 }
 

@@ -27,6 +27,8 @@ BodySource open_bvh_body(const PersonSpec& person, const Scenario& scenario) {
       out.joints.emplace_back(nodes[i].name, frame.positions_mm[i]);
     for (const body::Ellipsoid& e : frame.ellipsoids)
       out.ellipsoids.push_back({e.centre_mm, e.axes, e.radii_mm});
+    for (const body::Segment& segment : retargeter->skeleton().segments())
+      out.segments.push_back(segment.name);
     return out;
   };
 }

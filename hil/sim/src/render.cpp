@@ -75,7 +75,9 @@ struct RaysFromOrigin {
   }
 };
 
-void paint_body(const View& view, const FrameContent& content, cv::Mat& radiance, cv::Mat& mask) {
+// Returns the distance to the body along each pixel's ray (infinity where it misses).
+cv::Mat paint_body(const View& view, const FrameContent& content, cv::Mat& radiance,
+                   cv::Mat& mask) {
   cv::Mat depth(view.height, view.width, CV_32F,
                 cv::Scalar(std::numeric_limits<float>::infinity()));
   for (std::size_t i = 0; i < content.body.size(); ++i) {
@@ -90,11 +92,31 @@ void paint_body(const View& view, const FrameContent& content, cv::Mat& radiance
         if (!t || *t >= depth.at<float>(y, x)) continue;
         depth.at<float>(y, x) = static_cast<float>(*t);
         radiance.at<float>(y, x) =
+            static_cast<float>(content.body_brightness) *
             body_shade(e, view.centre_mm + *t * dir, content.light_dir, static_cast<int>(i));
         mask.at<uint8_t>(y, x) = 255;
       }
     }
   }
+  return depth;
+}
+
+// Takes away the coverage of pixels where the body is nearer than the sphere's front; returns the
+// share of the coverage left.
+double hide_behind_body(const View& view, const Sphere& s, const cv::Rect& box,
+                        const cv::Mat& body_depth, cv::Mat& coverage) {
+  if (body_depth.empty()) return 1.0;
+  const double front = (s.centre_mm - view.centre_mm).norm() - s.radius_mm;
+  double before = 0, after = 0;
+  for (int y = 0; y < box.height; ++y) {
+    for (int x = 0; x < box.width; ++x) {
+      float& c = coverage.at<float>(y, x);
+      before += c;
+      if (body_depth.at<float>(box.y + y, box.x + x) < front) c = 0;
+      after += c;
+    }
+  }
+  return before > 0 ? after / before : 1.0;
 }
 
 // Floor points whose path to the light is blocked by the body are darkened.
@@ -151,7 +173,8 @@ void paint_shadow(const View& view, const FrameContent& content, cv::Mat& radian
 }
 
 // Paints a sphere as a disc of exactly covered pixels, averaged over its exposure path.
-SphereTruth paint_sphere(const View& view, const Sphere& s, cv::Mat& radiance) {
+SphereTruth paint_sphere(const View& view, const Sphere& s, const cv::Mat& body_depth,
+                         cv::Mat& radiance) {
   SphereTruth truth;
   const auto centre = view.project(s.centre_mm);
   if (!centre) return truth;
@@ -185,6 +208,7 @@ SphereTruth paint_sphere(const View& view, const Sphere& s, cv::Mat& radiance) {
         p.x() - box.x, p.y() - box.y, truth.radius_px, box.width, box.height,
         [&](int x, int y, double a) { coverage.at<float>(y, x) += static_cast<float>(a * share); });
   }
+  if (hide_behind_body(view, s, box, body_depth, coverage) < kVisibleShare) truth.visible = false;
   // The target hides what is behind it: blend towards its brightness by coverage.
   cv::Mat patch = radiance(box);
   patch += coverage.mul(cv::Scalar(s.brightness_dn) - patch);
@@ -223,11 +247,13 @@ RenderedView render_view(const View& view, const FrameContent& content, const Im
                          ? view.room.clone()
                          : cv::Mat(view.height, view.width, CV_32F, cv::Scalar(image.dark_dn));
   out.mask = cv::Mat(view.height, view.width, CV_8UC1, cv::Scalar(0));
+  cv::Mat body_depth;
   if (!content.body.empty()) {
-    paint_body(view, content, radiance, out.mask);
+    body_depth = paint_body(view, content, radiance, out.mask);
     paint_shadow(view, content, radiance, out.mask);
   }
-  for (const auto& s : content.spheres) out.spheres.push_back(paint_sphere(view, s, radiance));
+  for (const auto& s : content.spheres)
+    out.spheres.push_back(paint_sphere(view, s, body_depth, radiance));
   radiance *= content.gain;
   if (image.noise_sigma_dn > 0) add_noise(radiance, image.noise_sigma_dn, noise_seed);
   radiance.convertTo(out.image, CV_8U);  // rounds to nearest and saturates at 0 and 255

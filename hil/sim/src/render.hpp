@@ -1,5 +1,6 @@
-// Renders one camera's image of one frame: background (dark or room), wand targets or the LED
-// as exactly covered discs, the person as textured ellipsoids with their shadow on the floor,
+// Renders one camera's image of one frame: background (dark or room), wand targets, the LED or the
+// person's markers as exactly covered discs (hidden where the person is nearer), the person as
+// textured ellipsoids with their shadow on the floor,
 // then lamp gain (drift, flicker) and sensor noise. Also returns the exact truth: each target's
 // projection and the person's silhouette mask.
 #pragma once
@@ -37,14 +38,21 @@ struct FrameContent {
   std::vector<Ellipsoid> body;
   Eigen::Vector3d light_dir = Eigen::Vector3d(0.3, 0.2, -1).normalized();
   double shadow_darkening = 0.45;
-  double gain = 1.0;  // lamp drift and flicker
+  double body_brightness = 1.0;  // scales the person's shading (dim in infrared)
+  double gain = 1.0;             // lamp drift and flicker
 };
 
 struct SphereTruth {
-  bool visible = false;  // centre in front of the camera and inside the image
+  // Centre in front of the camera and inside the image, and at least kVisibleShare of the disc
+  // not hidden by the person (a marker on the far side of the body is not visible).
+  bool visible = false;
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
   double radius_px = 0;
 };
+
+// A disc partly hidden by the person still makes a spot, but one whose centre is off: it does not
+// count as seen.
+constexpr double kVisibleShare = 0.98;
 
 struct RenderedView {
   cv::Mat image;  // CV_8UC1

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "body/hanim_model.hpp"
+
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -219,6 +221,26 @@ void read_led(Section& s, LedSpec& l) {
   l.off_frames = s.integer("off_frames", l.off_frames, 0, 100000);
 }
 
+// person.markers: a list of {segment: NAME, at: [x, y, z]}; names are the H-Anim body's segments.
+void read_markers(Section& s, const YAML::Node& list, std::vector<MarkerSpec>& markers) {
+  if (!list.IsSequence()) s.fail(list, "person.markers must be a list of {segment, at}");
+  std::set<std::string> names;
+  const body::Skeleton skeleton = body::hanim_skeleton();
+  for (const auto& segment : skeleton.segments()) names.insert(segment.name);
+  for (const YAML::Node& node : list) {
+    Section m = s.nested(node, "person.markers[]");
+    MarkerSpec marker;
+    marker.line = m.line();
+    m.require("segment");
+    m.require("at");
+    marker.segment = m.text("segment", "", names);
+    marker.at = m.vec3("at", marker.at);
+    if (!(marker.at.norm() > 1e-9)) m.fail(node, "person.markers[].at must not be [0, 0, 0]");
+    m.finish();
+    markers.push_back(marker);
+  }
+}
+
 void read_person(Section& s, PersonSpec& p, const std::filesystem::path& file) {
   s.require("bvh");
   p.bvh = s.text("bvh", "");
@@ -228,6 +250,10 @@ void read_person(Section& s, PersonSpec& p, const std::filesystem::path& file) {
   if (p.light_dir.z() >= 0)
     s.fail(s.child("light_dir"), "person.light_dir must point down (z < 0)");
   p.shadow_darkening = s.number("shadow_darkening", p.shadow_darkening, 0, 1);
+  p.marker_radius_mm = s.number("marker_radius_mm", p.marker_radius_mm, 0.5, 50);
+  p.marker_brightness_dn = s.number("marker_brightness_dn", p.marker_brightness_dn, 1, 255);
+  p.body_brightness = s.number("body_brightness", p.body_brightness, 0, 1);
+  if (s.has("markers")) read_markers(s, s.child("markers"), p.markers);
   (void)file;
 }
 

@@ -59,6 +59,16 @@ struct LedSpec {
   int on_frames = 1, off_frames = 0;  // switched LED: on for on_frames, then off
 };
 
+// A retro-reflective marker on the person: on the surface of an H-Anim segment's ellipsoid
+// (host/src/body/hanim_model.cpp), where the direction `at` from its centre leaves it, given in
+// the segment's own axes (x from the segment's first node to its second, then y and z across; see
+// body::Segment). The marker's centre sits its radius (plus a 2 mm base) outside the surface.
+struct MarkerSpec {
+  std::string segment;
+  Eigen::Vector3d at = Eigen::Vector3d::UnitY();
+  int line = 0;
+};
+
 struct PersonSpec {
   // Resolved against the scenario's folder, then $SYNCAP_DATA (default ../shared/data, as the
   // tests'); when found in neither, `bvh_not_found` says where it was looked for.
@@ -68,6 +78,12 @@ struct PersonSpec {
   double speed = 1.0;
   Eigen::Vector3d light_dir{0.3, 0.2, -1.0};  // direction the light travels, for the shadow
   double shadow_darkening = 0.45;
+  std::vector<MarkerSpec> markers;  // none: a person without markers
+  double marker_radius_mm = 7;      // 14 mm markers, as in gait labs
+  double marker_brightness_dn = 250;
+  // The person's brightness as a share of the lit room's (an infrared mocap camera behind a
+  // filter sees the skin and clothes dim beside the markers).
+  double body_brightness = 1.0;
 };
 
 struct PhaseSpec {

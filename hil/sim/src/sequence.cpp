@@ -33,6 +33,22 @@ double mean_offset(const std::vector<double>& offsets) {
 
 }  // namespace
 
+std::optional<Eigen::Vector3d> marker_centre(const BodyFrame& body, const MarkerSpec& marker,
+                                             double radius_mm) {
+  for (std::size_t i = 0; i < body.segments.size() && i < body.ellipsoids.size(); ++i) {
+    if (body.segments[i] != marker.segment) continue;
+    const Ellipsoid& e = body.ellipsoids[i];
+    const Eigen::Vector3d d = marker.at.normalized();
+    // Where the direction leaves the ellipsoid, and the surface's normal there (local axes).
+    const Eigen::Vector3d surface = d / d.cwiseQuotient(e.radii_mm).norm();
+    const Eigen::Vector3d normal =
+        surface.cwiseQuotient(e.radii_mm.cwiseProduct(e.radii_mm)).normalized();
+    constexpr double kBaseMm = 2;  // the marker's base between skin and sphere
+    return Eigen::Vector3d(e.centre_mm + e.axes * (surface + (radius_mm + kBaseMm) * normal));
+  }
+  return std::nullopt;
+}
+
 Sequence::Sequence(const Scenario& scenario, const BodySourceFactory& bodies)
     : scenario_(scenario) {
   int first = 0;
@@ -105,6 +121,15 @@ FrameState Sequence::at(int frame) {
     st.content.body = st.body.ellipsoids;
     st.content.light_dir = ph.person.light_dir.normalized();
     st.content.shadow_darkening = ph.person.shadow_darkening;
+    st.content.body_brightness = ph.person.body_brightness;
+    for (const MarkerSpec& marker : ph.person.markers) {
+      Sphere sphere;
+      sphere.radius_mm = ph.person.marker_radius_mm;
+      sphere.brightness_dn = ph.person.marker_brightness_dn;
+      // The scenario's names were checked against the same skeleton.
+      sphere.centre_mm = marker_centre(st.body, marker, sphere.radius_mm).value();
+      st.content.spheres.push_back(sphere);
+    }
   }
   return st;
 }

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,11 +14,18 @@
 
 namespace syncap::sim {
 
-// The person at time t: joint positions and one ellipsoid per bone, mm, Z up.
+// The person at time t: joint positions and one ellipsoid per segment (with its H-Anim name),
+// mm, Z up.
 struct BodyFrame {
   std::vector<std::pair<std::string, Eigen::Vector3d>> joints;
   std::vector<Ellipsoid> ellipsoids;
+  std::vector<std::string> segments;  // the ellipsoids' names
 };
+
+// The centre of `marker` on `body` (its segment's ellipsoid), or nothing when the body has no
+// segment of that name.
+std::optional<Eigen::Vector3d> marker_centre(const BodyFrame& body, const MarkerSpec& marker,
+                                             double radius_mm);
 using BodySource = std::function<BodyFrame(double t_s)>;
 // Opens the motion of a person phase (its BVH); throws with file and line on a broken file.
 using BodySourceFactory = std::function<BodySource(const PersonSpec&, const Scenario&)>;

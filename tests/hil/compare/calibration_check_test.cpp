@@ -26,8 +26,7 @@ std::vector<CameraModel> true_cameras() {
 }
 
 // What a free-network calibration gives: the same cameras in another datum.
-std::vector<CameraModel> in_other_datum(std::vector<CameraModel> cameras) {
-  const double scale = 0.25;
+std::vector<CameraModel> in_other_datum(std::vector<CameraModel> cameras, double scale = 0.25) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
   const Eigen::Vector3d t(100, -50, 20);
   for (CameraModel& c : cameras) {
@@ -44,6 +43,26 @@ std::vector<Eigen::Vector3d> targets() {
     points.emplace_back(-800 + 32 * i, 600 * std::sin(i), 200 + 30 * i);
   }
   return points;
+}
+
+// Points measured through a calibration in another datum, moved back by the rigid fit: exact
+// when the calibration's scale is right; a scale error stays visible (not absorbed).
+TEST(CalibrationCheck, RigidFitMovesMeasuredPointsIntoTheTruthsFrame) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  const Eigen::Vector3d t(100, -50, 20);
+  const Eigen::Vector3d point(300, -200, 1500);
+  const Similarity exact = fit_to_truth(true_cameras(), in_other_datum(true_cameras(), 1.0), false);
+  EXPECT_NEAR(exact.scale, 1.0, 1e-12);
+  EXPECT_LT((exact.apply(r * point + t) - point).norm(), 1e-6);
+  // 0.1 % too large: the rigid fit keeps the scale, the similarity takes it out.
+  const auto scaled = in_other_datum(true_cameras(), 1.001);
+  const Similarity rigid = fit_to_truth(true_cameras(), scaled, false);
+  const Similarity similar = fit_to_truth(true_cameras(), scaled, true);
+  EXPECT_NEAR(rigid.scale, 1.0, 1e-12);
+  EXPECT_NEAR(similar.scale, 1 / 1.001, 1e-9);
+  const Eigen::Vector3d measured = 1.001 * r * point + t;
+  EXPECT_LT((similar.apply(measured) - point).norm(), 1e-6);
+  EXPECT_GT((rigid.apply(measured) - point).norm(), 0.5);  // part of 0.1 % of ~4 m
 }
 
 TEST(CalibrationCheck, AlignsAFreeNetworkOntoTheTruth) {

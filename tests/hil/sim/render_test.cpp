@@ -6,6 +6,7 @@
 
 #include "disc_coverage.hpp"
 #include "motion.hpp"
+#include "sequence.hpp"
 #include "view.hpp"
 
 namespace syncap::sim {
@@ -129,6 +130,63 @@ TEST(RenderView, SilhouetteEqualsEveryPixelTestedAgainstEveryEllipsoid) {
   const cv::Mat truth = silhouette_brute_force(view, content.body);
   EXPECT_EQ(cv::countNonZero(out.mask != truth), 0);
   EXPECT_GT(cv::countNonZero(truth), 2000);
+}
+
+// The camera looks along +Y at a torso centred on y = 0 (its front surface at y = -120): a marker
+// in front of it is painted and visible, one behind it is hidden (no bright pixel, not visible),
+// one half behind the torso's edge is painted in part and not visible.
+TEST(RenderView, TheBodyHidesMarkersBehindIt) {
+  const View view = pinhole_view();
+  FrameContent content;
+  content.body = {small_body()[0]};
+  content.body_brightness = 0.3;
+  Sphere front, behind, edge;
+  front.centre_mm = {-60, -140, 1250};
+  behind.centre_mm = {60, 140, 1150};
+  edge.centre_mm = {180 * 0.99, 0, 1200};  // at the torso's widest, half behind its outline
+  for (Sphere* s : {&front, &behind, &edge}) s->radius_mm = 12;
+  content.spheres = {front, behind, edge};
+  ImageSpec image;
+  image.noise_sigma_dn = 0;
+  const RenderedView out = render_view(view, content, image, 1);
+  ASSERT_EQ(out.spheres.size(), 3u);
+  EXPECT_TRUE(out.spheres[0].visible);
+  EXPECT_FALSE(out.spheres[1].visible);
+  EXPECT_FALSE(out.spheres[2].visible);
+  const auto brightest_near = [&](const SphereTruth& t) {
+    const cv::Rect box(static_cast<int>(t.pixel.x()) - 3, static_cast<int>(t.pixel.y()) - 3, 7, 7);
+    double high = 0;
+    cv::minMaxLoc(out.image(box), nullptr, &high);
+    return high;
+  };
+  EXPECT_GT(brightest_near(out.spheres[0]), 200);
+  EXPECT_LT(brightest_near(out.spheres[1]), 60);   // the dim torso only
+  EXPECT_GT(brightest_near(out.spheres[2]), 150);  // the part outside the outline
+}
+
+// A marker sits where the direction leaves its segment's ellipsoid, its radius plus a 2 mm base
+// out along the surface normal, and turns with the segment.
+TEST(MarkerCentre, SitsOnTheSegmentsSurfaceAndTurnsWithIt) {
+  BodyFrame body;
+  Ellipsoid e;
+  e.centre_mm = {0, 0, 1000};
+  e.radii_mm = {100, 50, 80};
+  body.ellipsoids = {e};
+  body.segments = {"skull"};
+  MarkerSpec tip{"skull", {1, 0, 0}, 1};
+  EXPECT_LT((*marker_centre(body, tip, 10) - Eigen::Vector3d(112, 0, 1000)).norm(), 1e-9);
+  MarkerSpec side{"skull", {0, 0, -1}, 1};
+  EXPECT_LT((*marker_centre(body, side, 10) - Eigen::Vector3d(0, 0, 1000 - 92)).norm(), 1e-9);
+  // Oblique: the surface point is on the ellipsoid, the offset along its normal.
+  MarkerSpec oblique{"skull", {1, 1, 0}, 1};
+  const Eigen::Vector3d p = *marker_centre(body, oblique, 10) - e.centre_mm;
+  const double t = 1 / std::hypot(1 / 100.0, 1 / 50.0);  // the surface point is (t, t, 0)
+  const Eigen::Vector3d normal = Eigen::Vector3d(t / 1e4, t / 2500, 0).normalized();
+  EXPECT_LT((p - (Eigen::Vector3d(t, t, 0) + 12 * normal)).norm(), 1e-9);
+  // The segment turned by 90 deg about z: the tip marker turns with it.
+  body.ellipsoids[0].axes = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
+  EXPECT_LT((*marker_centre(body, tip, 10) - Eigen::Vector3d(0, 112, 1000)).norm(), 1e-9);
+  EXPECT_FALSE(marker_centre(body, MarkerSpec{"pelvis", {1, 0, 0}, 1}, 10));
 }
 
 TEST(RenderView, ShadowDarkensTheFloorBesideTheFeet) {

@@ -101,6 +101,46 @@ phases: [{type: room, frames: 2}]
             "broken.yaml:4: cameras.poses[0] needs 'position_mm'");
 }
 
+const char* kMarkers = R"(
+cameras:
+  count: 2
+phases:
+  - type: person
+    frames: 5
+    bvh: motion.bvh
+    body_brightness: 0.3
+    marker_radius_mm: 10
+    markers:
+      - {segment: l_thigh, at: [0, 0, 1]}
+      - {segment: skull, at: [1, 0, 0]}
+)";
+
+TEST(Scenario, PersonMarkersAreReadWithTheirSegments) {
+  const Scenario s = parse_scenario(kMarkers, "markers.yaml");
+  const PersonSpec& p = s.phases.at(0).person;
+  ASSERT_EQ(p.markers.size(), 2u);
+  EXPECT_EQ(p.markers[0].segment, "l_thigh");
+  EXPECT_EQ(p.markers[0].at, Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(p.markers[1].segment, "skull");
+  EXPECT_DOUBLE_EQ(p.marker_radius_mm, 10);
+  EXPECT_DOUBLE_EQ(p.marker_brightness_dn, 250);
+  EXPECT_DOUBLE_EQ(p.body_brightness, 0.3);
+}
+
+TEST(Scenario, ABrokenMarkerNamesItsLine) {
+  std::string text = kMarkers;
+  text.replace(text.find("l_thigh"), 7, "l_tail");
+  EXPECT_NE(error_of(text).find("broken.yaml:11: person.markers[].segment 'l_tail' is not one of"),
+            std::string::npos)
+      << error_of(text);
+  text = kMarkers;
+  text.replace(text.find("[1, 0, 0]"), 9, "[0, 0, 0]");
+  EXPECT_EQ(error_of(text), "broken.yaml:12: person.markers[].at must not be [0, 0, 0]");
+  text = kMarkers;
+  text.replace(text.find("at: [0, 0, 1]"), 13, "on: [0, 0, 1]");
+  EXPECT_EQ(error_of(text), "broken.yaml:11: person.markers[] needs 'at'");
+}
+
 TEST(Scenario, MissingFileIsNamed) {
   try {
     load_scenario("/nonexistent/s.yaml");

@@ -1,10 +1,14 @@
 // The simulator's person driven by the real captured motion (../shared/data/motion).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "body_source.hpp"
 #include "camera_rig.hpp"
 #include "render.hpp"
 #include "scenario.hpp"
+#include "sequence.hpp"
 #include "syncap_test_data.hpp"
 
 namespace syncap::sim {
@@ -36,6 +40,53 @@ phases:
       EXPECT_GT(cv::countNonZero(truth), 100) << "t " << t << " camera " << camera.id;
     }
   }
+}
+
+// The shipped mocap scenario's markers ride on their segments through the real motion: each
+// keeps its place in its segment's axes (the segment moves and turns, the marker with it), and
+// about half of the markers' projections are hidden by the body (the far side), none off-image.
+TEST(SimPersonData, MarkersRideOnTheirSegmentsAndTheBodyHidesSome) {
+  SYNCAP_REQUIRE_DATA(bvh, "motion/mixamo-free.bvh");
+  const Scenario sc = load_scenario(std::filesystem::path(SYNCAP_SOURCE_DIR) / "hil" / "scenarios" /
+                                    "markers-8cam-body.yaml");
+  const PhaseSpec& phase = sc.phases.at(1);
+  ASSERT_GE(phase.person.markers.size(), 24u);
+  PersonSpec person = phase.person;
+  person.bvh = bvh;
+  person.bvh_not_found.clear();
+  const BodySource body = open_bvh_body(person, sc);
+  const auto rig = build_rig(sc);
+  long projections = 0, visible = 0;
+  for (double t : {0.0, 0.9, 1.8}) {
+    const BodyFrame frame = body(t);
+    FrameContent content;
+    content.body = frame.ellipsoids;
+    for (const MarkerSpec& marker : person.markers) {
+      const auto centre = marker_centre(frame, marker, person.marker_radius_mm);
+      ASSERT_TRUE(centre) << marker.segment;
+      const auto index = std::find(frame.segments.begin(), frame.segments.end(), marker.segment) -
+                         frame.segments.begin();
+      const Ellipsoid& e = frame.ellipsoids.at(static_cast<std::size_t>(index));
+      const Eigen::Vector3d local = e.axes.transpose() * (*centre - e.centre_mm);
+      // Its direction in the segment's axes is the scenario's (the surface point plus the normal
+      // offset stays on the same side of every axis).
+      EXPECT_GT(local.normalized().dot(marker.at.normalized()), 0.5) << marker.segment;
+      Sphere sphere;
+      sphere.centre_mm = *centre;
+      sphere.radius_mm = person.marker_radius_mm;
+      content.spheres.push_back(sphere);
+    }
+    for (const auto& camera : rig) {
+      const RenderedView out = render_view(make_view(camera, sc), content, sc.image, 1);
+      for (const SphereTruth& s : out.spheres) {
+        ++projections;
+        visible += s.visible;
+      }
+    }
+  }
+  const double share = static_cast<double>(visible) / static_cast<double>(projections);
+  EXPECT_GT(share, 0.35);
+  EXPECT_LT(share, 0.75);
 }
 
 }  // namespace
