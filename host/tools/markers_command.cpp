@@ -32,6 +32,7 @@ struct MarkersArgs {
   matching::MatchOptions matching;
   std::vector<double> volume;
   int max_lag = 30;
+  bool keep_not_round = false;
 };
 
 // Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
@@ -72,6 +73,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
       ->expected(6);
   app.add_option("--sigma-px", a.matching.sigma_px, "a ray's standard deviation (0.2)");
   app.add_option("--tolerance-px", a.matching.tolerance_px, "a ray's largest miss (2)");
+  app.add_flag("--keep-not-round", a.keep_not_round,
+               "also match blobs the edge flagged NOT_ROUND (left out by default)");
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
@@ -140,7 +143,8 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
         << '\n';
     return kExitUsage;
   }
-  auto marker_stage = std::make_unique<reconstruction::MarkerStage>(cameras, a.matching);
+  auto marker_stage =
+      std::make_unique<reconstruction::MarkerStage>(cameras, a.matching, a.keep_not_round);
   const reconstruction::MarkerStage* markers = marker_stage.get();
   tracking::TrackHistory history;
   auto tracking_stage =

@@ -60,9 +60,11 @@ struct LedSpec {
 };
 
 // A retro-reflective marker on the person: on the surface of an H-Anim segment's ellipsoid
-// (host/src/body/hanim_model.cpp), where the direction `at` from its centre leaves it, given in
-// the segment's own axes (x from the segment's first node to its second, then y and z across; see
-// body::Segment). The marker's centre sits its radius (plus a 2 mm base) outside the surface.
+// (host/src/body/hanim_model.cpp) at `at`, a direction on the ellipsoid's unit sphere in the
+// segment's own axes (x from the segment's first node to its second, then y and z across; see
+// body::Segment): the surface point is radii * at / |at|, so [0.9, 0, 0.44] is near the segment's
+// far end on its z side. The marker's centre sits its radius (plus a 2 mm base) outside the
+// surface, along the normal.
 struct MarkerSpec {
   std::string segment;
   Eigen::Vector3d at = Eigen::Vector3d::UnitY();

@@ -38,9 +38,8 @@ std::optional<Eigen::Vector3d> marker_centre(const BodyFrame& body, const Marker
   for (std::size_t i = 0; i < body.segments.size() && i < body.ellipsoids.size(); ++i) {
     if (body.segments[i] != marker.segment) continue;
     const Ellipsoid& e = body.ellipsoids[i];
-    const Eigen::Vector3d d = marker.at.normalized();
-    // Where the direction leaves the ellipsoid, and the surface's normal there (local axes).
-    const Eigen::Vector3d surface = d / d.cwiseQuotient(e.radii_mm).norm();
+    // `at` is a direction on the segment's unit sphere: the surface point is its radii times it.
+    const Eigen::Vector3d surface = e.radii_mm.cwiseProduct(marker.at.normalized());
     const Eigen::Vector3d normal =
         surface.cwiseQuotient(e.radii_mm.cwiseProduct(e.radii_mm)).normalized();
     constexpr double kBaseMm = 2;  // the marker's base between skin and sphere

@@ -38,7 +38,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
   const bool markers = !o.calibration.empty();
   if (markers) {
     auto stage = std::make_unique<reconstruction::MarkerStage>(sensor::read_cameras(o.calibration),
-                                                               o.matching);
+                                                               o.matching, o.keep_not_round);
     s.markers = stage.get();
     s.chain.push_back(std::move(stage));
     s.chain.push_back(std::make_unique<reconstruction::TrackingStage>());

@@ -62,6 +62,9 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                  "a ray's standard deviation in its image: blob noise and the calibration's RMS "
                  "(default 0.2)")
       ->check(CLI::Range(0.001, 10.0));
+  app.add_flag("--keep-not-round", o.keep_not_round,
+               "also match blobs the edge flagged NOT_ROUND (by default they are left out: a "
+               "partly hidden or merged spot's centroid is off)");
   app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
 }
 

@@ -22,7 +22,8 @@ struct HostOptions {
   bool quiet = false;
   std::string calibration;  // cameras.json: the markers are reconstructed live
   matching::MatchOptions matching;
-  bool marker_message = true;  // publish marker_frame_t on SYNCAP_MARKERS
+  bool keep_not_round = false;  // also match blobs the edge flagged NOT_ROUND
+  bool marker_message = true;   // publish marker_frame_t on SYNCAP_MARKERS
 };
 
 // "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and

@@ -2,8 +2,9 @@
 
 namespace syncap::reconstruction {
 
-MarkerStage::MarkerStage(std::vector<sensor::CameraModel> cameras, matching::MatchOptions options)
-    : matcher_(cameras, options) {
+MarkerStage::MarkerStage(std::vector<sensor::CameraModel> cameras, matching::MatchOptions options,
+                         bool keep_not_round)
+    : matcher_(cameras, options), keep_not_round_(keep_not_round) {
   for (std::size_t i = 0; i < cameras.size(); ++i) index_of_camera_[cameras[i].id] = i;
 }
 
@@ -17,7 +18,13 @@ void MarkerStage::process(pipeline::FrameWork& work) {
       stats_.blobs_of_unknown_cameras += static_cast<long>(frame.blobs.size());
       continue;
     }
-    for (const blob_t& b : frame.blobs) pixels[index->second].emplace_back(b.x, b.y);
+    for (const blob_t& b : frame.blobs) {
+      if (!keep_not_round_ && (b.flags & blob_t::FLAG_NOT_ROUND)) {
+        ++stats_.blobs_not_round;
+        continue;
+      }
+      pixels[index->second].emplace_back(b.x, b.y);
+    }
   }
   const matching::MatchResult result = matcher_.match(pixels);
   for (const matching::MatchedPoint& p : result.points) {

@@ -177,12 +177,15 @@ TEST(MarkerCentre, SitsOnTheSegmentsSurfaceAndTurnsWithIt) {
   EXPECT_LT((*marker_centre(body, tip, 10) - Eigen::Vector3d(112, 0, 1000)).norm(), 1e-9);
   MarkerSpec side{"skull", {0, 0, -1}, 1};
   EXPECT_LT((*marker_centre(body, side, 10) - Eigen::Vector3d(0, 0, 1000 - 92)).norm(), 1e-9);
-  // Oblique: the surface point is on the ellipsoid, the offset along its normal.
+  // Oblique: `at` is a direction on the unit sphere, scaled by the radii onto the surface; the
+  // offset goes along the surface's normal there.
   MarkerSpec oblique{"skull", {1, 1, 0}, 1};
   const Eigen::Vector3d p = *marker_centre(body, oblique, 10) - e.centre_mm;
-  const double t = 1 / std::hypot(1 / 100.0, 1 / 50.0);  // the surface point is (t, t, 0)
-  const Eigen::Vector3d normal = Eigen::Vector3d(t / 1e4, t / 2500, 0).normalized();
-  EXPECT_LT((p - (Eigen::Vector3d(t, t, 0) + 12 * normal)).norm(), 1e-9);
+  const Eigen::Vector3d surface(100 / std::sqrt(2.0), 50 / std::sqrt(2.0), 0);
+  const Eigen::Vector3d normal =
+      Eigen::Vector3d(surface.x() / 1e4, surface.y() / 2500, 0).normalized();
+  EXPECT_NEAR(std::pow(surface.x() / 100, 2) + std::pow(surface.y() / 50, 2), 1.0, 1e-12);
+  EXPECT_LT((p - (surface + 12 * normal)).norm(), 1e-9);
   // The segment turned by 90 deg about z: the tip marker turns with it.
   body.ellipsoids[0].axes = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
   EXPECT_LT((*marker_centre(body, tip, 10) - Eigen::Vector3d(0, 112, 1000)).norm(), 1e-9);

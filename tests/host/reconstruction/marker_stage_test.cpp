@@ -66,6 +66,42 @@ TEST(MarkerStage, TheMarkersOfAGroupAreFoundWithTheirCameraIds) {
   EXPECT_EQ(stage.stats().blobs_used, 120);
 }
 
+// A blob the edge flagged NOT_ROUND (a partly hidden or merged spot, here 0.3 px off) is left out
+// and counted; with keep_not_round it takes part and pulls its marker away.
+TEST(MarkerStage, BlobsFlaggedNotRoundAreLeftOutUnlessKept) {
+  const auto cameras = test::marker_ring(6);
+  std::mt19937 rng(5);
+  test::MarkerFrameOptions o;
+  o.hidden = 0;
+  o.spurious_per_camera = 0;
+  o.noise_px = 0.0;
+  const auto truth = test::random_markers(rng, 1);
+  const test::MarkerFrame f = test::observe(cameras, truth, o, rng);
+  struct Outcome {
+    double error_mm = 1e9;
+    MarkerStageStats stats;
+  };
+  auto run = [&](bool keep) {
+    pipeline::FrameWork w = work_of(f, cameras);
+    blob_t& cut = w.group.blobs[cameras[0].id].blobs.at(0);
+    cut.x += 0.3f;
+    cut.flags = blob_t::FLAG_NOT_ROUND;
+    MarkerStage stage(cameras, {}, keep);
+    stage.process(w);
+    Outcome out;
+    out.stats = stage.stats();
+    if (w.markers.size() == 1) out.error_mm = (w.markers[0].position - truth[0]).norm();
+    return out;
+  };
+  const Outcome left_out = run(false), kept = run(true);
+  EXPECT_EQ(left_out.stats.blobs_not_round, 1);
+  EXPECT_EQ(left_out.stats.blobs_used, 5);
+  EXPECT_LT(left_out.error_mm, 1e-3);  // five exact rays (float pixels)
+  EXPECT_EQ(kept.stats.blobs_not_round, 0);
+  EXPECT_EQ(kept.stats.blobs_used, 6);
+  EXPECT_GT(kept.error_mm, 10 * left_out.error_mm);
+}
+
 TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
   pipeline::FrameWork w;
   w.group.frame_number = 7;
