@@ -16,26 +16,50 @@ while [ $# -gt 0 ]; do
 done
 build=${SYNCAP_BUILD_DIR:-build}
 
-echo "demo: [1/4] installing packages and building into $build/"
+echo "demo: [1/5] installing packages and building into $build/"
 scripts/build.sh > "${TMPDIR:-/tmp}/syncap-demo-build.log" 2>&1 ||
   { tail -n 30 "${TMPDIR:-/tmp}/syncap-demo-build.log"; echo "demo: build failed" >&2; exit 1; }
 
-echo "demo: [2/4] thin slice: trigger -> 2 replaying edge processes -> host, private namespace"
+echo "demo: [2/5] thin slice: trigger -> 2 replaying edge processes -> host, private namespace"
 echo "      ($frames pulses at 30 Hz; simulated GPIO chip; edges replay a rendered wand scene)"
 status=0
 hil/netns-run hil/run-slice --build "$build" --out "$out" --frames "$frames" || status=$?
 
-echo "demo: [3/4] replay bench: hil/run ring-6cam-person --short (six fake GigE cameras"
+echo "demo: [3/5] replay bench: hil/run ring-6cam-person --short (six fake GigE cameras"
 echo "      triggered through the simulated GPIO chip, six edges, the host; compared with the truth)"
 bench_status=0
 hil/run ring-6cam-person --short --build "$build" --out "$out/ring-6cam-person" || bench_status=$?
 [ "$bench_status" -eq 77 ] && bench_status=0  # skipped: motion data absent (said above)
 [ "$bench_status" -eq 0 ] || status=$bench_status
 
-echo "demo: [4/4] outputs in $out/:"
+echo "demo: [4/5] live 3D markers: hil/run markers-8cam-body (eight fake cameras, a wand phase,"
+echo "      then a person wearing 33 markers); the host reconstructs and tracks them live and"
+echo "      publishes them on SYNCAP_MARKERS; as lcm-logger received them during the run:"
+markers_out=$out/markers-8cam-body
+markers_status=0
+hil/run markers-8cam-body --max-phase-frames 60 --marker-limits 0.99,0.01,3 --max-rms-px 0.3 \
+  --build "$build" --out "$markers_out" > "$markers_out.log" 2>&1 || markers_status=$?
+if [ "$markers_status" -eq 77 ]; then
+  markers_status=0
+  grep SKIP "$markers_out.log" || true
+elif [ -s "$markers_out/traffic.lcmlog" ]; then
+  # Each marker message as it arrived: the logger's receive time against the trigger's pulse.
+  "$build/bin/syncap" log "$markers_out/traffic.lcmlog" --channel SYNCAP_MARKERS 2>/dev/null |
+    jq -r 'select(.fields.frame_number % 20 == 5) | .fields as $f
+      | "      frame \($f.frame_number): \($f.total_markers) markers from \($f.cameras) cameras, "
+        + "arrived \(((.timestamp_us * 1000 - $f.trigger_realtime_ns) / 1e6) | floor) ms after"
+        + " its pulse; marker \($f.markers[0].id) at (\($f.markers[0].x | floor),"
+        + " \($f.markers[0].y | floor), \($f.markers[0].z | floor)) mm"'
+  grep -E '^== (calibrated )?(markers|PASS|FAIL)' "$markers_out.log" | sed 's/^/      /'
+fi
+[ "$markers_status" -eq 0 ] || status=$markers_status
+
+echo "demo: [5/5] outputs in $out/:"
 echo "      groups.jsonl      one JSON line per frame group the host formed (thin slice)"
 echo "      traffic.lcmlog    all LCM traffic (decode: $build/bin/syncap log $out/traffic.lcmlog)"
 echo "      render/           the slice's rendered frames and truth"
 echo "      ring-6cam-person/ the bench run: render/ (images, truth), groups.jsonl, compare.json, logs"
+echo "      markers-8cam-body/ the mocap run: offline/ and calibrated/ markers (.jsonl, .c3d, .trc),"
+echo "                        calibration/ (from the run's wand phase), traffic.lcmlog"
 echo "      *.log             each process' own output"
 exit "$status"

@@ -76,6 +76,37 @@ void to_json(nlohmann::ordered_json& json, const camera_status_t& msg) {
   };
 }
 
+void to_json(nlohmann::ordered_json& json, const marker_t& msg) {
+  json = {
+      {"id", msg.id},
+      {"x", msg.x},
+      {"y", msg.y},
+      {"z", msg.z},
+      {"sigma_x", msg.sigma_x},
+      {"sigma_y", msg.sigma_y},
+      {"sigma_z", msg.sigma_z},
+      {"residual_px", msg.residual_px},
+      {"cameras", msg.cameras},
+      {"flags", msg.flags},
+  };
+}
+
+void to_json(nlohmann::ordered_json& json, const marker_frame_t& msg) {
+  json = {
+      {"frame_number", msg.frame_number},
+      {"trigger_monotonic_ns", msg.trigger_monotonic_ns},
+      {"trigger_realtime_ns", msg.trigger_realtime_ns},
+      {"host_us", msg.host_us},
+      {"flags", msg.flags},
+      {"cameras", msg.cameras},
+      {"part_index", msg.part_index},
+      {"part_count", msg.part_count},
+      {"total_markers", msg.total_markers},
+      {"num_markers", msg.num_markers},
+      {"markers", msg.markers},
+  };
+}
+
 // The trigger module's heartbeat (proto/msg/trigger_status_t.lcm).
 void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg);
 void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg) {
@@ -173,11 +204,12 @@ KnownType known() {
   return {Message::getHash(), &decode_as<Message>};
 }
 
-const std::array<KnownType, 8>& known_types() {
-  static const std::array<KnownType, 8> types{known<trigger_t>(),        known<blob_t>(),
-                                              known<blob_frame_t>(),     known<silhouette_part_t>(),
-                                              known<camera_status_t>(),  known<edge_command_t>(),
-                                              known<trigger_status_t>(), known<clip_polygon_t>()};
+const std::array<KnownType, 10>& known_types() {
+  static const std::array<KnownType, 10> types{
+      known<trigger_t>(),         known<blob_t>(),          known<blob_frame_t>(),
+      known<silhouette_part_t>(), known<camera_status_t>(), known<edge_command_t>(),
+      known<trigger_status_t>(),  known<clip_polygon_t>(),  known<marker_t>(),
+      known<marker_frame_t>()};
   return types;
 }
 

@@ -13,6 +13,8 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/marker_frame_t.hpp"
+#include "syncap/marker_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
 
@@ -27,6 +29,8 @@ void to_json(nlohmann::ordered_json& json, const silhouette_part_t& msg);
 void to_json(nlohmann::ordered_json& json, const camera_status_t& msg);
 void to_json(nlohmann::ordered_json& json, const edge_command_t& msg);
 void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg);
+void to_json(nlohmann::ordered_json& json, const marker_t& msg);
+void to_json(nlohmann::ordered_json& json, const marker_frame_t& msg);
 
 }  // namespace syncap
 

@@ -329,6 +329,35 @@ TEST(LogJson, ClipPolygonRoundTrips) {
       "x":[10,600,300],"y":[470,470,200],"mac":"0000000000000000000000000000000000000000000000000000000000000000"})"));
 }
 
+TEST(LogJson, MarkerFrameRoundTripsWithItsMarkers) {
+  marker_frame_t msg{};
+  msg.frame_number = 7;
+  msg.trigger_realtime_ns = 1'700'000'000'000'000'000;
+  msg.host_us = 412;
+  msg.flags = marker_frame_t::FLAG_COMPLETE;
+  msg.cameras = 8;
+  msg.part_count = 1;
+  marker_t m{};
+  m.id = 3;
+  m.x = 12.5f;
+  m.y = -1.25f;
+  m.z = 1000.0f;
+  m.sigma_x = m.sigma_y = m.sigma_z = 0.25f;
+  m.residual_px = 0.125f;
+  m.cameras = 5;
+  m.flags = marker_t::FLAG_TWO_CAMERAS;
+  msg.markers = {m};
+  msg.num_markers = msg.total_markers = 1;
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"frame_number":7,"trigger_monotonic_ns":0,
+      "trigger_realtime_ns":1700000000000000000,"host_us":412,"flags":1,"cameras":8,
+      "part_index":0,"part_count":1,"total_markers":1,"num_markers":1,
+      "markers":[{"id":3,"x":12.5,"y":-1.25,"z":1000.0,"sigma_x":0.25,"sigma_y":0.25,
+      "sigma_z":0.25,"residual_px":0.125,"cameras":5,"flags":1}]})"));
+}
+
 TEST(LogJson, InvalidUtf8InStringsIsReplacedNotFatal) {
   camera_status_t msg{};
   msg.message = "bad \xff byte";
