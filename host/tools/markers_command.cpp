@@ -33,6 +33,7 @@ struct MarkersArgs {
   std::vector<double> volume;
   int max_lag = 30;
   bool keep_not_round = false;
+  tracking::TrackerOptions tracking;
 };
 
 // Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
@@ -75,6 +76,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   app.add_option("--tolerance-px", a.matching.tolerance_px, "a ray's largest miss (2)");
   app.add_flag("--keep-not-round", a.keep_not_round,
                "also match blobs the edge flagged NOT_ROUND (left out by default)");
+  host_app::add_tracking_options(app, a.tracking);
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
@@ -147,8 +149,7 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
       std::make_unique<reconstruction::MarkerStage>(cameras, a.matching, a.keep_not_round);
   const reconstruction::MarkerStage* markers = marker_stage.get();
   tracking::TrackHistory history;
-  auto tracking_stage =
-      std::make_unique<reconstruction::TrackingStage>(tracking::TrackerOptions{}, &history);
+  auto tracking_stage = std::make_unique<reconstruction::TrackingStage>(a.tracking, &history);
   const reconstruction::TrackingStage* tracker = tracking_stage.get();
   std::vector<std::unique_ptr<pipeline::Stage>> stages;
   stages.push_back(std::move(marker_stage));

@@ -28,10 +28,32 @@ double distance(const Marker& m, const std::array<double, 3>& t) {
   return std::hypot(m.x - t[0], m.y - t[1], m.z - t[2]);
 }
 
+// Which trajectory id each target was last found with, and which target each id last meant.
+struct IdHistory {
+  std::map<int, long> id_of_target;
+  std::map<long, int> target_of_id;
+  void clear() { id_of_target.clear(), target_of_id.clear(); }
+  // A target found under another id than before: a switch when that id meant another target
+  // (two trajectories exchanged their markers), else a break (a new trajectory for it).
+  void see(int target, long id, MarkersCheck& c) {
+    const auto [last, first_time] = id_of_target.try_emplace(target, id);
+    if (!first_time && last->second != id) {
+      const auto owner = target_of_id.find(id);
+      if (owner != target_of_id.end() && owner->second != target) {
+        ++c.id_switches;
+      } else {
+        ++c.track_breaks;
+      }
+    }
+    last->second = id;
+    target_of_id[id] = target;
+  }
+};
+
 // One frame: pairs within the radius, nearest first, each marker and target used once.
 void check_frame(const std::vector<Marker>& markers, const std::vector<int>& targets,
                  const std::map<int, std::array<double, 3>>& positions, double radius,
-                 std::map<int, long>& last_id, MarkersCheck& c) {
+                 IdHistory& ids, MarkersCheck& c) {
   std::vector<std::tuple<double, std::size_t, int>> pairs;
   for (std::size_t m = 0; m < markers.size(); ++m) {
     for (const auto& [target, position] : positions) {
@@ -49,10 +71,7 @@ void check_frame(const std::vector<Marker>& markers, const std::vector<int>& tar
       ++c.found;
       c.squared_error_sum += d * d;
     }
-    if (markers[m].id < 0) continue;
-    const auto [last, first_time] = last_id.try_emplace(target, markers[m].id);
-    if (!first_time && last->second != markers[m].id) ++c.id_switches;
-    last->second = markers[m].id;
+    if (markers[m].id >= 0) ids.see(target, markers[m].id, c);
   }
   c.visible_targets += static_cast<long>(targets.size());
   c.markers += static_cast<long>(markers.size());
@@ -73,6 +92,10 @@ double MarkersCheck::ghost_share() const {
 
 double MarkersCheck::id_switches_per_1000() const {
   return found > 0 ? 1000.0 * static_cast<double>(id_switches) / static_cast<double>(found) : 0.0;
+}
+
+double MarkersCheck::track_breaks_per_1000() const {
+  return found > 0 ? 1000.0 * static_cast<double>(track_breaks) / static_cast<double>(found) : 0.0;
 }
 
 double MarkersCheck::rms_mm() const {
@@ -103,30 +126,30 @@ MarkersCheck check_markers(const Truth& truth, const TruePositions& positions,
                            const std::vector<Group>& groups, double match_radius_mm) {
   MarkersCheck c;
   static const std::map<int, std::array<double, 3>> kNone;
-  std::map<int, long> last_id;  // by target, within a phase (each phase numbers its own)
+  IdHistory ids;  // within a phase (each phase numbers its own targets)
   int phase = -1;
   for (const Group& g : groups) {
     if (!g.markers) continue;
     ++c.frames;
     const auto frame = truth.frames.find(g.frame);
     const int frame_phase = frame == truth.frames.end() ? -1 : frame->second.phase;
-    if (frame_phase != phase) last_id.clear(), phase = frame_phase;
+    if (frame_phase != phase) ids.clear(), phase = frame_phase;
     const auto it = positions.find(g.frame);
     check_frame(*g.markers, visible_targets(truth, g.frame),
-                it == positions.end() ? kNone : it->second, match_radius_mm, last_id, c);
+                it == positions.end() ? kNone : it->second, match_radius_mm, ids, c);
   }
   return c;
 }
 
 std::string format_markers_check(const MarkersCheck& c) {
-  char line[400];
+  char line[480];
   std::snprintf(line, sizeof line,
                 "markers: %ld frames, %ld of %ld visible targets found (%.2f %%), %ld ghosts of "
                 "%ld markers (%.2f %%), 3D RMS %.3f mm, %ld seen by two cameras only, %ld id "
-                "switches (%.2f per 1000 found)\n",
+                "switches (%.2f per 1000 found), %ld track breaks (%.2f per 1000 found)\n",
                 c.frames, c.found, c.visible_targets, 100 * c.found_share(), c.ghosts, c.markers,
                 100 * c.ghost_share(), c.rms_mm(), c.two_camera_markers, c.id_switches,
-                c.id_switches_per_1000());
+                c.id_switches_per_1000(), c.track_breaks, c.track_breaks_per_1000());
   return line;
 }
 

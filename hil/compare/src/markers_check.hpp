@@ -2,7 +2,8 @@
 // on the replay bench"): for every reported frame, each true target that two or more cameras see
 // (projections.csv) is found when a marker lies within the match radius of it (one marker per
 // target, nearest first); a marker near no target is a ghost. A found target whose marker has
-// another trajectory id than when it was last found is an id switch.
+// another trajectory id than when it was last found is an id switch (the id meant another target)
+// or a track break (a new id).
 #pragma once
 
 #include <filesystem>
@@ -25,9 +26,13 @@ struct MarkersCheck {
   long two_camera_markers = 0;
   double squared_error_sum = 0;  // of the found, mm^2
   // A target found with another trajectory id than when it was last found (ids from the
-  // tracker; markers without one are not counted).
+  // tracker; markers without one are not counted): a switch when that id last meant another
+  // target (two trajectories exchanged markers), a break when it did not (a new trajectory for
+  // the target, e.g. after it was hidden longer than the tracker bridges).
   long id_switches = 0;
+  long track_breaks = 0;
   double id_switches_per_1000() const;
+  double track_breaks_per_1000() const;
   double found_share() const;
   double ghost_share() const;
   double rms_mm() const;
@@ -44,7 +49,8 @@ MarkersCheck check_markers(const Truth& truth, const TruePositions& positions,
                            const std::vector<Group>& groups, double match_radius_mm);
 
 // "markers: 2970 of 2980 visible targets found (99.66 %), 3 ghosts of 2973 markers (0.10 %),
-// 3D RMS 0.21 mm, 12 seen by two cameras only, 2 id switches (0.67 per 1000 found)".
+// 3D RMS 0.21 mm, 12 seen by two cameras only, 2 id switches (0.67 per 1000 found), 5 track
+// breaks (1.68 per 1000 found)".
 std::string format_markers_check(const MarkersCheck& check);
 
 }  // namespace syncap::compare

@@ -41,7 +41,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
                                                                o.matching, o.keep_not_round);
     s.markers = stage.get();
     s.chain.push_back(std::move(stage));
-    s.chain.push_back(std::make_unique<reconstruction::TrackingStage>());
+    s.chain.push_back(std::make_unique<reconstruction::TrackingStage>(o.tracking));
     if (o.marker_message) {
       auto message = std::make_unique<outputs::MarkerMessageStage>(
           [&lcm](const marker_frame_t& m) { lcm.publish(proto::kMarkersChannel, &m); });

@@ -23,6 +23,14 @@ std::set<int> parse_camera_list(const std::string& text) {
   return ids;
 }
 
+void add_tracking_options(CLI::App& app, tracking::TrackerOptions& options) {
+  app.add_option_function<double>(
+         "--acceleration", [&options](double m_s2) { options.acceleration_mm_s2 = m_s2 * 1000.0; },
+         "the markers' accelerations the tracker allows for, m/s^2 (default 10): larger "
+         "widens every track's gate")
+      ->check(CLI::Range(0.1, 1000.0));
+}
+
 Eigen::AlignedBox3d parse_volume(const std::vector<double>& v) {
   if (v.size() != 6 || !(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]))
     throw CLI::ValidationError("--volume",
@@ -65,6 +73,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   app.add_flag("--keep-not-round", o.keep_not_round,
                "also match blobs the edge flagged NOT_ROUND (by default they are left out: a "
                "partly hidden or merged spot's centroid is off)");
+  add_tracking_options(app, o.tracking);
   app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
 }
 

@@ -8,6 +8,11 @@
 #include <vector>
 
 #include "matching/marker_matcher.hpp"
+#include "tracking/marker_tracker.hpp"
+
+namespace CLI {
+class App;
+}
 
 namespace syncap::host_app {
 
@@ -24,11 +29,15 @@ struct HostOptions {
   matching::MatchOptions matching;
   bool keep_not_round = false;  // also match blobs the edge flagged NOT_ROUND
   bool marker_message = true;   // publish marker_frame_t on SYNCAP_MARKERS
+  tracking::TrackerOptions tracking;
 };
 
 // "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and
 // syncap markers share it).
 std::set<int> parse_camera_list(const std::string& text);
+// --acceleration (m/s^2, the tracker's process noise) on `app`, into `options` (in mm/s^2);
+// syncap-host and syncap markers share it.
+void add_tracking_options(CLI::App& app, tracking::TrackerOptions& options);
 // XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm] as a box, min < max; CLI::ValidationError naming --volume.
 Eigen::AlignedBox3d parse_volume(const std::vector<double>& values);
 

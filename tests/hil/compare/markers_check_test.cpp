@@ -56,21 +56,23 @@ TEST(MarkersCheck, CountsFoundGhostsAndTheErrorOfTheFound) {
   EXPECT_NEAR(c.rms_mm(), std::sqrt((0.09 + 0.16 + 0) / 3), 1e-12);
 }
 
-TEST(MarkersCheck, AnIdSwitchIsATargetFoundUnderAnotherIdWithinAPhase) {
+TEST(MarkersCheck, AnIdSwitchIsATargetFoundUnderAnotherTargetsIdWithinAPhase) {
   const std::vector<Group> groups = {
       group(0, {{0, 0, 1000, 2, 1}, {100, 0, 1000, 2, 2}}),
       group(1, {{0, 0, 1000, 2, 1}, {100, 0, 1000, 2, 2}}),
       group(2, {{0, 0, 1000, 2, 2}, {100, 0, 1000, 2, 1}}),  // swapped: two switches
-      group(3, {{0, 0, 1000, 2, 2}}),                        // target 1 hidden
-      // Phase 1 numbers its own targets: new ids are no switch.
+      group(3, {{0, 0, 1000, 2, 7}}),                        // a new id: a break; 1 hidden
+      // Phase 1 numbers its own targets: new ids are neither.
       group(4, {{0, 0, 1000, 2, 10}, {100, 0, 1000, 2, 11}}),
       group(5, {{0, 0, 1000, 2, 10}, {100, 0, 1000, 2, 11}}),
   };
   const MarkersCheck c = check_markers(two_camera_truth(), positions(), groups, 5);
   EXPECT_EQ(c.id_switches, 2);
+  EXPECT_EQ(c.track_breaks, 1);
   EXPECT_EQ(c.found, 11);
   EXPECT_NEAR(c.id_switches_per_1000(), 2000.0 / 11, 1e-9);
-  EXPECT_NE(format_markers_check(c).find("2 id switches (181.82 per 1000 found)"),
+  EXPECT_NE(format_markers_check(c).find(
+                "2 id switches (181.82 per 1000 found), 1 track breaks (90.91 per 1000 found)"),
             std::string::npos)
       << format_markers_check(c);
 }

@@ -17,7 +17,8 @@ ParsedHostOptions parse(std::vector<std::string> args, std::string* err_text = n
 TEST(HostOptions, MarkersOptionsAreParsed) {
   const ParsedHostOptions p =
       parse({"--cameras", "0,2,5", "--volume", "-1000,-1000,0,1000,1000,2000", "--sigma-px", "0.3",
-             "--tolerance-px", "1.5", "--no-marker-message", "--max-lag", "30"});
+             "--tolerance-px", "1.5", "--no-marker-message", "--max-lag", "30", "--keep-not-round",
+             "--acceleration", "25"});
   ASSERT_TRUE(p.options.has_value());
   EXPECT_EQ(p.options->cameras, (std::set<int>{0, 2, 5}));
   ASSERT_TRUE(p.options->matching.volume.has_value());
@@ -26,6 +27,8 @@ TEST(HostOptions, MarkersOptionsAreParsed) {
   EXPECT_DOUBLE_EQ(p.options->matching.tolerance_px, 1.5);
   EXPECT_FALSE(p.options->marker_message);
   EXPECT_EQ(p.options->max_lag, 30);
+  EXPECT_TRUE(p.options->keep_not_round);
+  EXPECT_DOUBLE_EQ(p.options->tracking.acceleration_mm_s2, 25000);
 }
 
 TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
@@ -37,6 +40,8 @@ TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
   EXPECT_EQ(parse({"--calibration", "/nonexistent/cameras.json"}, &err).exit_status, 2);
   EXPECT_NE(err.find("/nonexistent/cameras.json"), std::string::npos) << err;
   EXPECT_EQ(parse({"--max-lag", "-1"}, &err).exit_status, 2);
+  EXPECT_EQ(parse({"--acceleration", "0"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("--acceleration"), std::string::npos) << err;
   EXPECT_EQ(parse({"--colour"}, &err).exit_status, 2);
   EXPECT_NE(err.find("--colour"), std::string::npos) << err;
 }
@@ -46,9 +51,10 @@ TEST(HostOptions, HelpNamesEveryOption) {
   const ParsedHostOptions p = parse({"--help"}, &text);
   EXPECT_FALSE(p.options.has_value());
   EXPECT_EQ(p.exit_status, 0);
-  for (const char* option : {"--cameras", "--max-lag", "--frames", "--until-last", "--idle-timeout",
-                             "--out", "--lcm-url", "--quiet", "--calibration", "--volume",
-                             "--tolerance-px", "--sigma-px", "--no-marker-message"})
+  for (const char* option :
+       {"--cameras", "--max-lag", "--frames", "--until-last", "--idle-timeout", "--out",
+        "--lcm-url", "--quiet", "--calibration", "--volume", "--tolerance-px", "--sigma-px",
+        "--no-marker-message", "--keep-not-round", "--acceleration"})
     EXPECT_NE(text.find(option), std::string::npos) << option;
 }
 
