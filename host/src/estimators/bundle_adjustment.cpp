@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "estimators/adjustment_network.hpp"
 #include "estimators/cost_functors.hpp"
 #include "estimators/covariance.hpp"
 #include "geometry/triangulation.hpp"
@@ -76,9 +77,6 @@ constexpr double kRelaxedTolerance = 1e-6;
 
 const auto& kInteriorNames = sensor::InteriorBlock::kNames;
 const auto& kExteriorNames = sensor::ExteriorBlock::kNames;
-const char* const kPointNames[3] = {"X", "Y", "Z"};
-
-std::string quoted(const std::string& s) { return "\"" + s + "\""; }
 
 // ", N of them with the M points whose wrong ray could not be told", or nothing.
 std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
@@ -104,97 +102,6 @@ struct Term {
   std::vector<std::pair<BlockKind, int>> blocks;
   size_t measurement = 0;  // kImage: index into Network::measurements
 };
-
-// The network checked and resolved to indices.
-struct Resolved {
-  std::vector<int> station_model;
-  std::vector<int> measurement_station, measurement_point;
-  std::vector<std::pair<int, int>> distance_points;
-};
-
-template <typename Item>
-std::map<std::string, int> index_by_name(const std::vector<Item>& items, const char* what) {
-  std::map<std::string, int> index;
-  for (int i = 0; i < static_cast<int>(items.size()); ++i) {
-    if (!index.emplace(items[i].name, i).second) {
-      throw NetworkError(std::string("network: ") + what + " " + quoted(items[i].name) +
-                         " is defined twice");
-    }
-  }
-  return index;
-}
-
-void check_prior(const scene::ParameterPrior& prior, const std::string& owner, const char* name) {
-  if (prior.mode == ParameterMode::kObserved && !(prior.sigma > 0.0)) {
-    throw NetworkError("network: " + owner + ": parameter " + name +
-                       " is observed but its sigma is not positive");
-  }
-}
-
-Resolved resolve(const scene::Network& network) {
-  Resolved r;
-  const auto models = index_by_name(network.models, "camera model");
-  const auto stations = index_by_name(network.stations, "station");
-  const auto points = index_by_name(network.points, "point");
-  for (const auto& model : network.models) {
-    const std::string owner = "camera model " + quoted(model.name);
-    if (!(model.interior.c > 0.0)) throw NetworkError("network: " + owner + ": c must be positive");
-    if (model.sensor.width_px <= 0 || model.sensor.height_px <= 0 ||
-        !(model.sensor.pixel_width_mm > 0.0) || !(model.sensor.pixel_height_mm > 0.0)) {
-      throw NetworkError("network: " + owner + ": sensor size and pixel pitch must be positive");
-    }
-    for (int i = 0; i < kInteriorSize; ++i) check_prior(model.priors[i], owner, kInteriorNames[i]);
-  }
-  for (const auto& station : network.stations) {
-    const std::string owner = "station " + quoted(station.name);
-    const auto model = models.find(station.model);
-    if (model == models.end()) {
-      throw NetworkError("network: " + owner + ": unknown camera model " + quoted(station.model));
-    }
-    if (!station.has_approximation) {
-      throw NetworkError("network: " + owner +
-                         ": no approximate exterior orientation (relative orientation or the "
-                         "scene file must provide one)");
-    }
-    r.station_model.push_back(model->second);
-    for (int i = 0; i < kExteriorSize; ++i) {
-      check_prior(station.priors[i], owner, kExteriorNames[i]);
-    }
-  }
-  for (const auto& point : network.points) {
-    for (int i = 0; i < 3; ++i)
-      check_prior(point.priors[i], "point " + quoted(point.name), kPointNames[i]);
-  }
-  for (size_t m = 0; m < network.measurements.size(); ++m) {
-    const auto& meas = network.measurements[m];
-    const std::string place = "network: measurement " + std::to_string(m) + " (station " +
-                              quoted(meas.station) + ", point " + quoted(meas.point) + ", frame " +
-                              std::to_string(meas.frame_number) + "): ";
-    const auto station = stations.find(meas.station);
-    if (station == stations.end()) throw NetworkError(place + "unknown station");
-    const auto point = points.find(meas.point);
-    if (point == points.end()) throw NetworkError(place + "unknown point");
-    if (!(meas.sigma_px > 0.0)) throw NetworkError(place + "sigma_px must be positive");
-    if (!std::isfinite(meas.u) || !std::isfinite(meas.v)) {
-      throw NetworkError(place + "u and v must be finite");
-    }
-    r.measurement_station.push_back(station->second);
-    r.measurement_point.push_back(point->second);
-  }
-  for (size_t d = 0; d < network.distances.size(); ++d) {
-    const auto& dist = network.distances[d];
-    const std::string place = "network: distance " + std::to_string(d) + " (" +
-                              quoted(dist.point_a) + " - " + quoted(dist.point_b) + "): ";
-    const auto a = points.find(dist.point_a);
-    const auto b = points.find(dist.point_b);
-    if (a == points.end() || b == points.end()) throw NetworkError(place + "unknown point");
-    if (a->second == b->second) throw NetworkError(place + "both ends are the same point");
-    if (!(dist.distance > 0.0)) throw NetworkError(place + "distance must be positive");
-    if (!(dist.sigma >= 0.0)) throw NetworkError(place + "sigma must not be negative");
-    r.distance_points.emplace_back(a->second, b->second);
-  }
-  return r;
-}
 
 int find_root(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -246,12 +153,6 @@ class Adjuster {
   double snooping_sigma0() const {
     return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
-  bool point_held(int p) const {
-    for (const auto& prior : network_.points[p].priors) {
-      if (prior.mode == ParameterMode::kFree) return false;
-    }
-    return true;
-  }
 
   void triangulate_approximations();
   void choose_datum();
@@ -270,7 +171,7 @@ class Adjuster {
 
   const scene::Network& network_;
   const BundleOptions& options_;
-  const Resolved resolved_;
+  const ResolvedNetwork resolved_;
 
   std::vector<std::array<double, kInteriorSize>> interior_;
   std::vector<std::array<double, kExteriorSize>> exterior_;
@@ -305,7 +206,7 @@ void Adjuster::triangulate_approximations() {
   int triangulated = 0;
   for (size_t p = 0; p < point_.size(); ++p) {
     if (network_.points[p].has_approximation && !network_.design.ignore_approximates) continue;
-    if (point_held(static_cast<int>(p))) continue;  // a control point keeps its given value
+    if (point_held(network_.points[p])) continue;  // a control point keeps its given value
     NearestPoint nearest;
     std::set<int> stations;
     for (size_t m : rays[p]) {
@@ -392,7 +293,7 @@ void Adjuster::update_groups() {
   }
   std::vector<bool> active(n);
   for (int p = 0; p < n; ++p) {
-    active[p] = stations[p].size() >= 2 || (point_held(p) && !stations[p].empty());
+    active[p] = stations[p].size() >= 2 || (point_held(network_.points[p]) && !stations[p].empty());
   }
   for (size_t m = 0; m < status_.size(); ++m) {
     if (status_[m] == MeasurementStatus::kAccepted && !active[resolved_.measurement_point[m]]) {
@@ -834,7 +735,7 @@ bool Adjuster::reject_ambiguous_points() {
     const size_t m = result_.rejected[r].index;
     const int point = resolved_.measurement_point[m];
     const std::vector<size_t> rays = kept[point];
-    if (rays.size() != 2 || point_held(point)) continue;
+    if (rays.size() != 2 || point_held(network_.points[point])) continue;
     const double without_m = pair_square_sum(rays[0], rays[1]);
     const double a = pair_square_sum(m, rays[1]), b = pair_square_sum(m, rays[0]);
     if (std::max(a, b) <= kGross * critical || std::min(a, b) - without_m > critical) continue;
