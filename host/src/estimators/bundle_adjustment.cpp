@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "estimators/adjustment_network.hpp"
+#include "estimators/adjustment_parameters.hpp"
 #include "estimators/cost_functors.hpp"
 #include "estimators/covariance.hpp"
 #include "geometry/triangulation.hpp"
@@ -27,9 +28,6 @@ using geometry::NearestPoint;
 using scene::ParameterMode;
 using sensor::ExteriorBlock;
 using sensor::InteriorBlock;
-
-constexpr int kInteriorSize = InteriorBlock::kSize;
-constexpr int kExteriorSize = ExteriorBlock::kSize;
 
 // A residual whose redundancy share q_vv / q_ll is below this is not controlled by the network
 // (its point has barely more rays than unknowns): it cannot be standardised, and is not snooped.
@@ -87,14 +85,6 @@ std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
                              rays, rays / 2);
 }
 
-// Where an object point's values live: the parameter block of its group, at an offset.
-struct PointSlot {
-  int group = -1;  // -1: not adjusted (undetermined)
-  int offset = 0;
-};
-
-enum class BlockKind { kInterior, kExterior, kGroup };
-
 // One residual block of the Ceres problem, kept to evaluate its Jacobian after the solve.
 struct Term {
   enum class Kind { kImage, kParameter, kDistance } kind = Kind::kImage;
@@ -102,11 +92,6 @@ struct Term {
   std::vector<std::pair<BlockKind, int>> blocks;
   size_t measurement = 0;  // kImage: index into Network::measurements
 };
-
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
 
 // The directions of the null space of a free network's normal matrix: translations, rotations
 // about the points' centroid and, without distances, the scale, as changes of every exterior
@@ -120,13 +105,7 @@ struct DatumDefect {
 class Adjuster {
  public:
   Adjuster(const scene::Network& network, const BundleOptions& options)
-      : network_(network), options_(options), resolved_(resolve(network)) {
-    for (const auto& model : network.models)
-      interior_.push_back(sensor::interior_block(model.interior));
-    for (const auto& station : network.stations) {
-      exterior_.push_back(sensor::exterior_block(station.exterior));
-    }
-    for (const auto& point : network.points) point_.emplace_back(point.xyz.data());
+      : network_(network), options_(options), resolved_(resolve(network)), parameters_(network) {
     status_.assign(network.measurements.size(), MeasurementStatus::kAccepted);
     result_.measurements.resize(network.measurements.size());
   }
@@ -134,29 +113,12 @@ class Adjuster {
   BundleAdjustmentResult run();
 
  private:
-  int camera_size() const {
-    return static_cast<int>(interior_.size()) * kInteriorSize +
-           static_cast<int>(exterior_.size()) * kExteriorSize;
-  }
-  int interior_column(int model, int i) const { return model * kInteriorSize + i; }
-  int exterior_column(int station, int i) const {
-    return static_cast<int>(interior_.size()) * kInteriorSize + station * kExteriorSize + i;
-  }
-  sensor::CameraModel camera(int station) const {
-    sensor::CameraModel c;
-    c.sensor = network_.models[resolved_.station_model[station]].sensor;
-    c.interior = sensor::interior_from_block(interior_[resolved_.station_model[station]].data());
-    c.exterior = sensor::exterior_from_block(exterior_[station].data());
-    return c;
-  }
   // The sigma0 data snooping standardises with: the a posteriori one, or 1 (the a priori).
   double snooping_sigma0() const {
     return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
 
-  void triangulate_approximations();
   void choose_datum();
-  void update_groups();
   void build_problem(ceres::Problem* problem);
   bool solve(bool strict);
   void evaluate_residuals();
@@ -173,9 +135,7 @@ class Adjuster {
   const BundleOptions& options_;
   const ResolvedNetwork resolved_;
 
-  std::vector<std::array<double, kInteriorSize>> interior_;
-  std::vector<std::array<double, kExteriorSize>> exterior_;
-  std::vector<Eigen::Vector3d> point_;
+  AdjustmentParameters parameters_;
   std::vector<MeasurementStatus> status_;
   // Per measurement, the natural logarithm of the probability under H0 of its residual vector's
   // test statistic (both coordinates together; 0 when the network does not control it).
@@ -183,12 +143,6 @@ class Adjuster {
 
   // The minimal constraints of a free network: exterior values held although free.
   std::vector<std::array<bool, kExteriorSize>> datum_held_;
-
-  // Point groups of the current adjustment.
-  std::vector<PointSlot> slot_;
-  std::vector<std::vector<int>> group_points_;
-  std::vector<std::vector<double>> group_values_;
-  std::vector<int> active_distances_;
 
   std::vector<Term> terms_;
   ceres::Solver::Summary summary_;
@@ -200,40 +154,8 @@ class Adjuster {
   BundleAdjustmentResult result_;
 };
 
-void Adjuster::triangulate_approximations() {
-  std::vector<std::vector<size_t>> rays(point_.size());
-  for (size_t m = 0; m < status_.size(); ++m) rays[resolved_.measurement_point[m]].push_back(m);
-  int triangulated = 0;
-  for (size_t p = 0; p < point_.size(); ++p) {
-    if (network_.points[p].has_approximation && !network_.design.ignore_approximates) continue;
-    if (point_held(network_.points[p])) continue;  // a control point keeps its given value
-    NearestPoint nearest;
-    std::set<int> stations;
-    for (size_t m : rays[p]) {
-      const auto& meas = network_.measurements[m];
-      const int s = resolved_.measurement_station[m];
-      nearest.add(camera(s).back_project({meas.u, meas.v}));
-      stations.insert(s);
-    }
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(nearest.normal);
-    if (stations.size() < 2 || svd.singularValues()[2] < 1e-9 * svd.singularValues()[0]) {
-      result_.messages.push_back("point " + quoted(network_.points[p].name) +
-                                 ": no approximation and fewer than two distinct rays; not "
-                                 "adjusted");
-      for (size_t m : rays[p]) status_[m] = MeasurementStatus::kUndetermined;
-      continue;
-    }
-    point_[p] = nearest.solve();
-    ++triangulated;
-  }
-  if (triangulated > 0) {
-    result_.messages.push_back("triangulated " + std::to_string(triangulated) +
-                               " point approximations from the stations");
-  }
-}
-
 void Adjuster::choose_datum() {
-  datum_held_.assign(exterior_.size(), {false, false, false, false, false, false});
+  datum_held_.assign(parameters_.exterior.size(), {false, false, false, false, false, false});
   // Without UNIFIED LEAST SQUARES observed values are plain unknowns (thesis: "the parameters
   // are treated as being entirely unknown") and define nothing.
   const bool unified = network_.design.unified_least_squares;
@@ -248,25 +170,25 @@ void Adjuster::choose_datum() {
   for (const auto& point : network_.points) {
     for (const auto& prior : point.priors) given |= defines(prior);
   }
-  if (given || exterior_.empty()) {
+  if (given || parameters_.exterior.empty()) {
     result_.datum = Datum::kGivenParameters;
     result_.messages.push_back("datum: from the fixed and observed exterior/point parameters");
     return;
   }
   result_.datum = Datum::kInnerConstraints;
   // The station with the most measurements holds position and attitude ...
-  std::vector<long> count(exterior_.size(), 0);
+  std::vector<long> count(parameters_.exterior.size(), 0);
   for (size_t m = 0; m < status_.size(); ++m) ++count[resolved_.measurement_station[m]];
   const int first = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
   datum_held_[first].fill(true);
   std::string held = "station " + quoted(network_.stations[first].name) + " exterior";
   // ... and without distances the largest coordinate difference to another centre the scale.
-  if (network_.distances.empty() && exterior_.size() > 1) {
+  if (network_.distances.empty() && parameters_.exterior.size() > 1) {
     int best_station = -1, best_axis = 0;
     double best = 0.0;
-    for (int s = 0; s < static_cast<int>(exterior_.size()); ++s) {
+    for (int s = 0; s < static_cast<int>(parameters_.exterior.size()); ++s) {
       for (int k = 0; k < 3; ++k) {
-        const double d = std::abs(exterior_[s][k] - exterior_[first][k]);
+        const double d = std::abs(parameters_.exterior[s][k] - parameters_.exterior[first][k]);
         if (s != first && d > best) best = d, best_station = s, best_axis = k;
       }
     }
@@ -281,69 +203,11 @@ void Adjuster::choose_datum() {
                              "object points");
 }
 
-// Points with fewer than two rays from distinct stations (and not held by their priors) are not
-// adjusted; points linked by distances share a parameter block.
-void Adjuster::update_groups() {
-  const int n = static_cast<int>(point_.size());
-  std::vector<std::set<int>> stations(n);
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] == MeasurementStatus::kAccepted) {
-      stations[resolved_.measurement_point[m]].insert(resolved_.measurement_station[m]);
-    }
-  }
-  std::vector<bool> active(n);
-  for (int p = 0; p < n; ++p) {
-    active[p] = stations[p].size() >= 2 || (point_held(network_.points[p]) && !stations[p].empty());
-  }
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] == MeasurementStatus::kAccepted && !active[resolved_.measurement_point[m]]) {
-      status_[m] = MeasurementStatus::kUndetermined;
-    }
-  }
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  active_distances_.clear();
-  for (size_t d = 0; d < resolved_.distance_points.size(); ++d) {
-    const auto [a, b] = resolved_.distance_points[d];
-    if (!active[a] || !active[b]) continue;
-    active_distances_.push_back(static_cast<int>(d));
-    parent[find_root(parent, a)] = find_root(parent, b);
-  }
-  slot_.assign(n, PointSlot{});
-  group_points_.clear();
-  std::map<int, int> group_of_root;
-  for (int p = 0; p < n; ++p) {
-    if (!active[p]) continue;
-    const auto [it, inserted] =
-        group_of_root.emplace(find_root(parent, p), static_cast<int>(group_points_.size()));
-    if (inserted) group_points_.emplace_back();
-    slot_[p] = {it->second, 3 * static_cast<int>(group_points_[it->second].size())};
-    group_points_[it->second].push_back(p);
-  }
-  group_values_.assign(group_points_.size(), {});
-  for (size_t g = 0; g < group_points_.size(); ++g) {
-    for (int p : group_points_[g]) {
-      group_values_[g].insert(group_values_[g].end(), point_[p].data(), point_[p].data() + 3);
-    }
-  }
-}
-
 void Adjuster::build_problem(ceres::Problem* problem) {
   terms_.clear();
-  auto block = [&](BlockKind kind, int id) -> double* {
-    switch (kind) {
-      case BlockKind::kInterior:
-        return interior_[id].data();
-      case BlockKind::kExterior:
-        return exterior_[id].data();
-      case BlockKind::kGroup:
-        return group_values_[id].data();
-    }
-    return nullptr;
-  };
   auto add = [&](Term term) {
     std::vector<double*> blocks;
-    for (const auto& [kind, id] : term.blocks) blocks.push_back(block(kind, id));
+    for (const auto& [kind, id] : term.blocks) blocks.push_back(parameters_.block(kind, id));
     problem->AddResidualBlock(term.cost.get(), nullptr, blocks);
     terms_.push_back(std::move(term));
   };
@@ -353,25 +217,26 @@ void Adjuster::build_problem(ceres::Problem* problem) {
     const auto& meas = network_.measurements[m];
     const int s = resolved_.measurement_station[m];
     const int model = resolved_.station_model[s];
-    const PointSlot slot = slot_[resolved_.measurement_point[m]];
+    const PointSlot slot = parameters_.slot[resolved_.measurement_point[m]];
     Term term;
     term.kind = Term::Kind::kImage;
     term.measurement = m;
     term.cost = std::make_unique<PointInGroupCost>(
         new AnalyticReprojectionCost(network_.models[model].sensor, meas.u, meas.v, meas.sigma_px),
-        static_cast<int>(group_values_[slot.group].size()), slot.offset);
+        static_cast<int>(parameters_.group_values[slot.group].size()), slot.offset);
     term.blocks = {
         {BlockKind::kInterior, model}, {BlockKind::kExterior, s}, {BlockKind::kGroup, slot.group}};
     add(std::move(term));
   }
-  for (int d : active_distances_) {
+  for (int d : parameters_.active_distances) {
     const auto& dist = network_.distances[d];
     const auto [a, b] = resolved_.distance_points[d];
-    const int g = slot_[a].group;
+    const int g = parameters_.slot[a].group;
     Term term;
     term.kind = Term::Kind::kDistance;
     term.cost = std::make_unique<DistanceCost>(
-        static_cast<int>(group_values_[g].size()), slot_[a].offset, slot_[b].offset, dist.distance,
+        static_cast<int>(parameters_.group_values[g].size()), parameters_.slot[a].offset,
+        parameters_.slot[b].offset, dist.distance,
         dist.sigma > 0.0 ? dist.sigma : options_.exact_distance_sigma_mm);
     term.blocks = {{BlockKind::kGroup, g}};
     add(std::move(term));
@@ -394,8 +259,8 @@ void Adjuster::build_problem(ceres::Problem* problem) {
     }
   };
   const bool unified = network_.design.unified_least_squares;
-  for (int m = 0; m < static_cast<int>(interior_.size()); ++m) {
-    if (!problem->HasParameterBlock(interior_[m].data())) continue;
+  for (int m = 0; m < static_cast<int>(parameters_.interior.size()); ++m) {
+    if (!problem->HasParameterBlock(parameters_.interior[m].data())) continue;
     std::vector<int> held;
     const auto& model = network_.models[m];
     for (int i = 0; i < kInteriorSize; ++i) {
@@ -406,10 +271,10 @@ void Adjuster::build_problem(ceres::Problem* problem) {
                 sensor::interior_block(model.interior)[i], prior.sigma);
       }
     }
-    hold(interior_[m].data(), kInteriorSize, held);
+    hold(parameters_.interior[m].data(), kInteriorSize, held);
   }
-  for (int s = 0; s < static_cast<int>(exterior_.size()); ++s) {
-    if (!problem->HasParameterBlock(exterior_[s].data())) continue;
+  for (int s = 0; s < static_cast<int>(parameters_.exterior.size()); ++s) {
+    if (!problem->HasParameterBlock(parameters_.exterior[s].data())) continue;
     std::vector<int> held;
     const auto& station = network_.stations[s];
     for (int i = 0; i < kExteriorSize; ++i) {
@@ -420,22 +285,22 @@ void Adjuster::build_problem(ceres::Problem* problem) {
                 sensor::exterior_block(station.exterior)[i], prior.sigma);
       }
     }
-    hold(exterior_[s].data(), kExteriorSize, held);
+    hold(parameters_.exterior[s].data(), kExteriorSize, held);
   }
-  for (int g = 0; g < static_cast<int>(group_points_.size()); ++g) {
+  for (int g = 0; g < static_cast<int>(parameters_.group_points.size()); ++g) {
     std::vector<int> held;
-    const int size = static_cast<int>(group_values_[g].size());
-    for (int p : group_points_[g]) {
+    const int size = static_cast<int>(parameters_.group_values[g].size());
+    for (int p : parameters_.group_points[g]) {
       const auto& point = network_.points[p];
       for (int k = 0; k < 3; ++k) {
-        const int index = slot_[p].offset + k;
+        const int index = parameters_.slot[p].offset + k;
         if (point.priors[k].mode == ParameterMode::kFixed) held.push_back(index);
         if (point.priors[k].mode == ParameterMode::kObserved && unified) {
           observe(BlockKind::kGroup, g, size, index, point.xyz[k], point.priors[k].sigma);
         }
       }
     }
-    hold(group_values_[g].data(), size, held);
+    hold(parameters_.group_values[g].data(), size, held);
   }
 }
 
@@ -443,7 +308,7 @@ void Adjuster::build_problem(ceres::Problem* problem) {
 // snooping, which only rank residuals) stops at Ceres' default tolerances and accepts any usable
 // solution.
 bool Adjuster::solve(bool strict) {
-  update_groups();
+  parameters_.update_groups(resolved_, &status_);
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
@@ -454,14 +319,14 @@ bool Adjuster::solve(bool strict) {
   // Points (groups) first: the Schur complement leaves the reduced camera system.
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   int cameras = 0;
-  for (auto& values : group_values_) ordering->AddElementToGroup(values.data(), 0);
+  for (auto& values : parameters_.group_values) ordering->AddElementToGroup(values.data(), 0);
   auto add_camera_block = [&](double* values, int size) {
     if (!problem.HasParameterBlock(values)) return;
     ordering->AddElementToGroup(values, 1);
     cameras += size;
   };
-  for (auto& values : interior_) add_camera_block(values.data(), kInteriorSize);
-  for (auto& values : exterior_) add_camera_block(values.data(), kExteriorSize);
+  for (auto& values : parameters_.interior) add_camera_block(values.data(), kInteriorSize);
+  for (auto& values : parameters_.exterior) add_camera_block(values.data(), kExteriorSize);
   solver.linear_solver_ordering = ordering;
   solver.linear_solver_type = cameras <= 600 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
   solver.num_threads = options_.num_threads;
@@ -479,10 +344,7 @@ bool Adjuster::solve(bool strict) {
       solver.minimizer_progress_to_stdout ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
   ceres::Solve(solver, &problem, &summary_);
 
-  for (size_t g = 0; g < group_points_.size(); ++g) {
-    for (int p : group_points_[g])
-      point_[p] = Eigen::Map<Eigen::Vector3d>(&group_values_[g][slot_[p].offset]);
-  }
+  parameters_.read_points_from_groups();
   // The estimated values: all, less the constant blocks and the held values of subset manifolds.
   unknowns_ = 0;
   std::vector<double*> blocks;
@@ -504,9 +366,7 @@ void Adjuster::evaluate_residuals() {
   for (const Term& term : terms_) {
     std::vector<const double*> blocks;
     for (const auto& [kind, id] : term.blocks) {
-      blocks.push_back(kind == BlockKind::kInterior   ? interior_[id].data()
-                       : kind == BlockKind::kExterior ? exterior_[id].data()
-                                                      : group_values_[id].data());
+      blocks.push_back(parameters_.block(kind, id));
     }
     Eigen::VectorXd r(term.cost->num_residuals());
     if (!term.cost->Evaluate(blocks.data(), r.data(), nullptr)) r.setConstant(std::nan(""));
@@ -536,29 +396,29 @@ struct TermJacobian {
 };
 
 bool Adjuster::compute_cofactors() {
-  std::vector<bool> camera_free(camera_size(), true);
-  for (size_t m = 0; m < interior_.size(); ++m) {
+  std::vector<bool> camera_free(parameters_.camera_size(), true);
+  for (size_t m = 0; m < parameters_.interior.size(); ++m) {
     for (int i = 0; i < kInteriorSize; ++i) {
-      camera_free[interior_column(static_cast<int>(m), i)] =
+      camera_free[parameters_.interior_column(static_cast<int>(m), i)] =
           network_.models[m].priors[i].mode != ParameterMode::kFixed;
     }
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     for (int i = 0; i < kExteriorSize; ++i) {
-      camera_free[exterior_column(static_cast<int>(s), i)] =
+      camera_free[parameters_.exterior_column(static_cast<int>(s), i)] =
           network_.stations[s].priors[i].mode != ParameterMode::kFixed && !datum_held_[s][i];
     }
   }
-  std::vector<std::vector<bool>> group_free(group_points_.size());
-  for (size_t g = 0; g < group_points_.size(); ++g) {
-    for (int p : group_points_[g]) {
+  std::vector<std::vector<bool>> group_free(parameters_.group_points.size());
+  for (size_t g = 0; g < parameters_.group_points.size(); ++g) {
+    for (int p : parameters_.group_points[g]) {
       for (int k = 0; k < 3; ++k) {
         group_free[g].push_back(network_.points[p].priors[k].mode != ParameterMode::kFixed);
       }
     }
   }
   // A camera block no measurement reaches is not in the problem: it is held.
-  std::vector<bool> reached(camera_size(), false);
+  std::vector<bool> reached(parameters_.camera_size(), false);
   std::vector<TermJacobian> jacobians(terms_.size());
   for (size_t t = 0; t < terms_.size(); ++t) {
     const Term& term = terms_[t];
@@ -569,16 +429,18 @@ bool Adjuster::compute_cofactors() {
     for (const auto& [kind, id] : term.blocks) {
       int size = 0;
       if (kind == BlockKind::kInterior) {
-        blocks.push_back(interior_[id].data());
+        blocks.push_back(parameters_.interior[id].data());
         size = kInteriorSize;
-        for (int i = 0; i < size; ++i) tj.camera_columns.push_back(interior_column(id, i));
+        for (int i = 0; i < size; ++i)
+          tj.camera_columns.push_back(parameters_.interior_column(id, i));
       } else if (kind == BlockKind::kExterior) {
-        blocks.push_back(exterior_[id].data());
+        blocks.push_back(parameters_.exterior[id].data());
         size = kExteriorSize;
-        for (int i = 0; i < size; ++i) tj.camera_columns.push_back(exterior_column(id, i));
+        for (int i = 0; i < size; ++i)
+          tj.camera_columns.push_back(parameters_.exterior_column(id, i));
       } else {
-        blocks.push_back(group_values_[id].data());
-        size = static_cast<int>(group_values_[id].size());
+        blocks.push_back(parameters_.group_values[id].data());
+        size = static_cast<int>(parameters_.group_values[id].size());
         tj.group = id;
       }
       parts.emplace_back(term.cost->num_residuals(), size);
@@ -600,7 +462,7 @@ bool Adjuster::compute_cofactors() {
     }
     for (int c : tj.camera_columns) reached[c] = true;
   }
-  for (int c = 0; c < camera_size(); ++c) camera_free[c] = camera_free[c] && reached[c];
+  for (int c = 0; c < parameters_.camera_size(); ++c) camera_free[c] = camera_free[c] && reached[c];
 
   ArrowNormalEquations normal(camera_free, group_free);
   for (const TermJacobian& tj : jacobians) normal.add(tj.jacobian, tj.camera_columns, tj.group);
@@ -683,7 +545,7 @@ double Adjuster::pair_square_sum(size_t a, size_t b) const {
   NearestPoint nearest;
   for (int i = 0; i < 2; ++i) {
     const auto& meas = network_.measurements[index[i]];
-    cameras[i] = camera(resolved_.measurement_station[index[i]]);
+    cameras[i] = parameters_.camera(resolved_, resolved_.measurement_station[index[i]]);
     nearest.add(cameras[i].back_project({meas.u, meas.v}));
   }
   const auto residuals = [&](const Eigen::Vector3d& x) {
@@ -724,7 +586,7 @@ bool Adjuster::reject_ambiguous_points() {
   const double sigma0 = snooping_sigma0();
   const double critical = std::pow(network_.residual_test.critical_snooping * sigma0, 2);
   constexpr double kGross = 4.0;  // a gross error: v^T P v beyond 4 x critical (2 x critical |w|)
-  std::vector<std::vector<size_t>> kept(point_.size());
+  std::vector<std::vector<size_t>> kept(parameters_.points.size());
   for (size_t m = 0; m < status_.size(); ++m) {
     if (status_[m] == MeasurementStatus::kAccepted) {
       kept[resolved_.measurement_point[m]].push_back(m);
@@ -752,8 +614,8 @@ DatumDefect Adjuster::datum_defect() const {
   defect.size = scale ? 7 : 6;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   int count = 0;
-  for (const auto& points : group_points_) {
-    for (int p : points) centroid += point_[p], ++count;
+  for (const auto& points : parameters_.group_points) {
+    for (int p : points) centroid += parameters_.points[p], ++count;
   }
   if (count > 0) centroid /= count;
   // The change of a position under translation k (0-2), rotation about axis k (3-5), scale (6).
@@ -762,13 +624,14 @@ DatumDefect Adjuster::datum_defect() const {
     if (column < 6) return Eigen::Vector3d::Unit(column - 3).cross(x - centroid);
     return x - centroid;
   };
-  defect.camera = Eigen::MatrixXd::Zero(camera_size(), defect.size);
-  for (int s = 0; s < static_cast<int>(exterior_.size()); ++s) {
-    const Eigen::Vector3d centre(exterior_[s][0], exterior_[s][1], exterior_[s][2]);
-    const Eigen::Matrix3d r =
-        sensor::rotation_matrix(exterior_[s][3], exterior_[s][4], exterior_[s][5]);
+  defect.camera = Eigen::MatrixXd::Zero(parameters_.camera_size(), defect.size);
+  for (int s = 0; s < static_cast<int>(parameters_.exterior.size()); ++s) {
+    const Eigen::Vector3d centre(parameters_.exterior[s][0], parameters_.exterior[s][1],
+                                 parameters_.exterior[s][2]);
+    const Eigen::Matrix3d r = sensor::rotation_matrix(
+        parameters_.exterior[s][3], parameters_.exterior[s][4], parameters_.exterior[s][5]);
     for (int column = 0; column < defect.size; ++column) {
-      defect.camera.block(exterior_column(s, 0), column, 3, 1) = motion(centre, column);
+      defect.camera.block(parameters_.exterior_column(s, 0), column, 3, 1) = motion(centre, column);
       if (column < 3 || column > 5) continue;
       // The angles of the turned camera, by central differences (the angles are smooth away
       // from phi = +-pi/2).
@@ -777,16 +640,19 @@ DatumDefect Adjuster::datum_defect() const {
       const auto plus = sensor::angles_from_rotation(Eigen::AngleAxisd(step, axis) * r);
       const auto minus = sensor::angles_from_rotation(Eigen::AngleAxisd(-step, axis) * r);
       auto wrapped = [](double a) { return std::remainder(a, 2.0 * M_PI); };
-      defect.camera(exterior_column(s, 3), column) = wrapped(plus.omega - minus.omega) / (2 * step);
-      defect.camera(exterior_column(s, 4), column) = wrapped(plus.phi - minus.phi) / (2 * step);
-      defect.camera(exterior_column(s, 5), column) = wrapped(plus.kappa - minus.kappa) / (2 * step);
+      defect.camera(parameters_.exterior_column(s, 3), column) =
+          wrapped(plus.omega - minus.omega) / (2 * step);
+      defect.camera(parameters_.exterior_column(s, 4), column) =
+          wrapped(plus.phi - minus.phi) / (2 * step);
+      defect.camera(parameters_.exterior_column(s, 5), column) =
+          wrapped(plus.kappa - minus.kappa) / (2 * step);
     }
   }
-  for (const auto& points : group_points_) {
+  for (const auto& points : parameters_.group_points) {
     Eigen::MatrixXd rows(3 * points.size(), defect.size);
     for (size_t i = 0; i < points.size(); ++i) {
       for (int column = 0; column < defect.size; ++column) {
-        rows.block(3 * i, column, 3, 1) = motion(point_[points[i]], column);
+        rows.block(3 * i, column, 3, 1) = motion(parameters_.points[points[i]], column);
       }
     }
     defect.groups.push_back(rows);
@@ -805,7 +671,8 @@ void Adjuster::s_transform(ArrowCofactors* q) const {
   const Eigen::MatrixXd m = gp_gp.inverse();
   Eigen::MatrixXd y_camera;
   std::vector<Eigen::MatrixXd> y_groups;
-  q->solve(Eigen::MatrixXd::Zero(camera_size(), g.size), g.groups, &y_camera, &y_groups);
+  q->solve(Eigen::MatrixXd::Zero(parameters_.camera_size(), g.size), g.groups, &y_camera,
+           &y_groups);
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(g.size, g.size);
   for (size_t i = 0; i < g.groups.size(); ++i) c += g.groups[i].transpose() * y_groups[i];
   auto transform = [&](Eigen::MatrixXd* block, const Eigen::MatrixXd& rows,
@@ -824,12 +691,12 @@ void Adjuster::fill_result() {
   result_.covariance_computed = have_cofactors_;
   if (have_cofactors_) result_.camera_covariance = variance * cofactors_.camera_camera;
 
-  for (size_t m = 0; m < interior_.size(); ++m) {
+  for (size_t m = 0; m < parameters_.interior.size(); ++m) {
     ModelResult model;
     model.name = network_.models[m].name;
-    model.interior = sensor::interior_from_block(interior_[m].data());
+    model.interior = sensor::interior_from_block(parameters_.interior[m].data());
     if (have_cofactors_) {
-      const int at = interior_column(static_cast<int>(m), 0);
+      const int at = parameters_.interior_column(static_cast<int>(m), 0);
       model.interior_covariance = result_.camera_covariance.block<10, 10>(at, at);
       for (int i = 0; i < kInteriorSize; ++i) {
         model.interior_sigma[i] = std::sqrt(std::max(0.0, model.interior_covariance(i, i)));
@@ -847,18 +714,18 @@ void Adjuster::fill_result() {
     }
     result_.models.push_back(model);
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     StationResult station;
     station.name = network_.stations[s].name;
     station.camera_id = network_.stations[s].camera_id;
-    station.exterior = sensor::exterior_from_block(exterior_[s].data());
+    station.exterior = sensor::exterior_from_block(parameters_.exterior[s].data());
     for (int i = 0; have_cofactors_ && i < kExteriorSize; ++i) {
-      const int at = exterior_column(static_cast<int>(s), i);
+      const int at = parameters_.exterior_column(static_cast<int>(s), i);
       station.exterior_sigma[i] = std::sqrt(std::max(0.0, result_.camera_covariance(at, at)));
     }
     result_.stations.push_back(station);
   }
-  std::vector<double> square_sum(exterior_.size(), 0.0);
+  std::vector<double> square_sum(parameters_.exterior.size(), 0.0);
   for (size_t m = 0; m < status_.size(); ++m) {
     auto& station = result_.stations[resolved_.measurement_station[m]];
     auto& out = result_.measurements[m];
@@ -871,24 +738,24 @@ void Adjuster::fill_result() {
       ++station.rejected;
     }
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     auto& station = result_.stations[s];
     if (station.measurements > 0)
       station.rms_px = std::sqrt(square_sum[s] / (2.0 * station.measurements));
   }
-  for (size_t p = 0; p < point_.size(); ++p) {
+  for (size_t p = 0; p < parameters_.points.size(); ++p) {
     PointResult point;
     point.name = network_.points[p].name;
-    point.xyz = {point_[p].x(), point_[p].y(), point_[p].z()};
-    point.adjusted = slot_[p].group >= 0;
+    point.xyz = {parameters_.points[p].x(), parameters_.points[p].y(), parameters_.points[p].z()};
+    point.adjusted = parameters_.slot[p].group >= 0;
     if (point.adjusted && have_cofactors_) {
-      point.covariance = variance * cofactors_.group_group[slot_[p].group].block<3, 3>(
-                                        slot_[p].offset, slot_[p].offset);
+      point.covariance = variance * cofactors_.group_group[parameters_.slot[p].group].block<3, 3>(
+                                        parameters_.slot[p].offset, parameters_.slot[p].offset);
       for (int k = 0; k < 3; ++k) point.sigma[k] = std::sqrt(std::max(0.0, point.covariance(k, k)));
     }
     result_.points.push_back(point);
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     if (result_.stations[s].rejected > 0) {
       result_.messages.push_back("station " + quoted(result_.stations[s].name) + ": " +
                                  std::to_string(result_.stations[s].rejected) +
@@ -898,7 +765,7 @@ void Adjuster::fill_result() {
 }
 
 BundleAdjustmentResult Adjuster::run() {
-  triangulate_approximations();
+  parameters_.triangulate_approximations(resolved_, &status_, &result_.messages);
   choose_datum();
   const auto& design = network_.design;
   const auto& test = network_.residual_test;
