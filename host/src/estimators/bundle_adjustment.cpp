@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "estimators/adjustment_datum.hpp"
 #include "estimators/adjustment_network.hpp"
 #include "estimators/adjustment_parameters.hpp"
 #include "estimators/cost_functors.hpp"
@@ -93,15 +94,6 @@ struct Term {
   size_t measurement = 0;  // kImage: index into Network::measurements
 };
 
-// The directions of the null space of a free network's normal matrix: translations, rotations
-// about the points' centroid and, without distances, the scale, as changes of every exterior
-// orientation and object point (interior orientations do not change).
-struct DatumDefect {
-  int size = 0;
-  Eigen::MatrixXd camera;               // rows: camera parameters
-  std::vector<Eigen::MatrixXd> groups;  // rows: group values
-};
-
 class Adjuster {
  public:
   Adjuster(const scene::Network& network, const BundleOptions& options)
@@ -118,7 +110,6 @@ class Adjuster {
     return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
 
-  void choose_datum();
   void build_problem(ceres::Problem* problem);
   bool solve(bool strict);
   void evaluate_residuals();
@@ -128,8 +119,6 @@ class Adjuster {
   double pair_square_sum(size_t a, size_t b) const;
   bool reject_ambiguous_points();
   void fill_result();
-  DatumDefect datum_defect() const;
-  void s_transform(ArrowCofactors* q) const;
 
   const scene::Network& network_;
   const BundleOptions& options_;
@@ -141,8 +130,7 @@ class Adjuster {
   // test statistic (both coordinates together; 0 when the network does not control it).
   std::vector<double> log_p_;
 
-  // The minimal constraints of a free network: exterior values held although free.
-  std::vector<std::array<bool, kExteriorSize>> datum_held_;
+  DatumChoice datum_;
 
   std::vector<Term> terms_;
   ceres::Solver::Summary summary_;
@@ -153,55 +141,6 @@ class Adjuster {
 
   BundleAdjustmentResult result_;
 };
-
-void Adjuster::choose_datum() {
-  datum_held_.assign(parameters_.exterior.size(), {false, false, false, false, false, false});
-  // Without UNIFIED LEAST SQUARES observed values are plain unknowns (thesis: "the parameters
-  // are treated as being entirely unknown") and define nothing.
-  const bool unified = network_.design.unified_least_squares;
-  auto defines = [&](const scene::ParameterPrior& prior) {
-    return prior.mode == ParameterMode::kFixed ||
-           (prior.mode == ParameterMode::kObserved && unified);
-  };
-  bool given = false;
-  for (const auto& station : network_.stations) {
-    for (const auto& prior : station.priors) given |= defines(prior);
-  }
-  for (const auto& point : network_.points) {
-    for (const auto& prior : point.priors) given |= defines(prior);
-  }
-  if (given || parameters_.exterior.empty()) {
-    result_.datum = Datum::kGivenParameters;
-    result_.messages.push_back("datum: from the fixed and observed exterior/point parameters");
-    return;
-  }
-  result_.datum = Datum::kInnerConstraints;
-  // The station with the most measurements holds position and attitude ...
-  std::vector<long> count(parameters_.exterior.size(), 0);
-  for (size_t m = 0; m < status_.size(); ++m) ++count[resolved_.measurement_station[m]];
-  const int first = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
-  datum_held_[first].fill(true);
-  std::string held = "station " + quoted(network_.stations[first].name) + " exterior";
-  // ... and without distances the largest coordinate difference to another centre the scale.
-  if (network_.distances.empty() && parameters_.exterior.size() > 1) {
-    int best_station = -1, best_axis = 0;
-    double best = 0.0;
-    for (int s = 0; s < static_cast<int>(parameters_.exterior.size()); ++s) {
-      for (int k = 0; k < 3; ++k) {
-        const double d = std::abs(parameters_.exterior[s][k] - parameters_.exterior[first][k]);
-        if (s != first && d > best) best = d, best_station = s, best_axis = k;
-      }
-    }
-    if (best_station >= 0) {
-      datum_held_[best_station][best_axis] = true;
-      held += ", station " + quoted(network_.stations[best_station].name) + " " +
-              kExteriorNames[best_axis];
-    }
-  }
-  result_.messages.push_back("datum: free network; solved with " + held +
-                             " held, covariance S-transformed to inner constraints on the "
-                             "object points");
-}
 
 void Adjuster::build_problem(ceres::Problem* problem) {
   terms_.clear();
@@ -279,7 +218,7 @@ void Adjuster::build_problem(ceres::Problem* problem) {
     const auto& station = network_.stations[s];
     for (int i = 0; i < kExteriorSize; ++i) {
       const auto& prior = station.priors[i];
-      if (prior.mode == ParameterMode::kFixed || datum_held_[s][i]) held.push_back(i);
+      if (prior.mode == ParameterMode::kFixed || datum_.held[s][i]) held.push_back(i);
       if (prior.mode == ParameterMode::kObserved && unified) {
         observe(BlockKind::kExterior, s, kExteriorSize, i,
                 sensor::exterior_block(station.exterior)[i], prior.sigma);
@@ -406,7 +345,7 @@ bool Adjuster::compute_cofactors() {
   for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     for (int i = 0; i < kExteriorSize; ++i) {
       camera_free[parameters_.exterior_column(static_cast<int>(s), i)] =
-          network_.stations[s].priors[i].mode != ParameterMode::kFixed && !datum_held_[s][i];
+          network_.stations[s].priors[i].mode != ParameterMode::kFixed && !datum_.held[s][i];
     }
   }
   std::vector<std::vector<bool>> group_free(parameters_.group_points.size());
@@ -608,86 +547,10 @@ bool Adjuster::reject_ambiguous_points() {
   return any;
 }
 
-DatumDefect Adjuster::datum_defect() const {
-  DatumDefect defect;
-  const bool scale = network_.distances.empty();
-  defect.size = scale ? 7 : 6;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  int count = 0;
-  for (const auto& points : parameters_.group_points) {
-    for (int p : points) centroid += parameters_.points[p], ++count;
-  }
-  if (count > 0) centroid /= count;
-  // The change of a position under translation k (0-2), rotation about axis k (3-5), scale (6).
-  auto motion = [&](const Eigen::Vector3d& x, int column) -> Eigen::Vector3d {
-    if (column < 3) return Eigen::Vector3d::Unit(column);
-    if (column < 6) return Eigen::Vector3d::Unit(column - 3).cross(x - centroid);
-    return x - centroid;
-  };
-  defect.camera = Eigen::MatrixXd::Zero(parameters_.camera_size(), defect.size);
-  for (int s = 0; s < static_cast<int>(parameters_.exterior.size()); ++s) {
-    const Eigen::Vector3d centre(parameters_.exterior[s][0], parameters_.exterior[s][1],
-                                 parameters_.exterior[s][2]);
-    const Eigen::Matrix3d r = sensor::rotation_matrix(
-        parameters_.exterior[s][3], parameters_.exterior[s][4], parameters_.exterior[s][5]);
-    for (int column = 0; column < defect.size; ++column) {
-      defect.camera.block(parameters_.exterior_column(s, 0), column, 3, 1) = motion(centre, column);
-      if (column < 3 || column > 5) continue;
-      // The angles of the turned camera, by central differences (the angles are smooth away
-      // from phi = +-pi/2).
-      const double step = 1e-6;
-      const Eigen::Vector3d axis = Eigen::Vector3d::Unit(column - 3);
-      const auto plus = sensor::angles_from_rotation(Eigen::AngleAxisd(step, axis) * r);
-      const auto minus = sensor::angles_from_rotation(Eigen::AngleAxisd(-step, axis) * r);
-      auto wrapped = [](double a) { return std::remainder(a, 2.0 * M_PI); };
-      defect.camera(parameters_.exterior_column(s, 3), column) =
-          wrapped(plus.omega - minus.omega) / (2 * step);
-      defect.camera(parameters_.exterior_column(s, 4), column) =
-          wrapped(plus.phi - minus.phi) / (2 * step);
-      defect.camera(parameters_.exterior_column(s, 5), column) =
-          wrapped(plus.kappa - minus.kappa) / (2 * step);
-    }
-  }
-  for (const auto& points : parameters_.group_points) {
-    Eigen::MatrixXd rows(3 * points.size(), defect.size);
-    for (size_t i = 0; i < points.size(); ++i) {
-      for (int column = 0; column < defect.size; ++column) {
-        rows.block(3 * i, column, 3, 1) = motion(parameters_.points[points[i]], column);
-      }
-    }
-    defect.groups.push_back(rows);
-  }
-  return defect;
-}
-
-// Q' = S Q S^T with S = I - G (G_p^T G_p)^-1 G_p^T: G spans the datum defect, G_p is its object
-// point rows. Q' is the cofactor matrix of the solution whose object points do not move on
-// average under any similarity (inner constraints G_p^T dx = 0); the image residuals, sigma0 and
-// the interior orientation's cofactors do not depend on the datum.
-void Adjuster::s_transform(ArrowCofactors* q) const {
-  const DatumDefect g = datum_defect();
-  Eigen::MatrixXd gp_gp = Eigen::MatrixXd::Zero(g.size, g.size);
-  for (const auto& rows : g.groups) gp_gp += rows.transpose() * rows;
-  const Eigen::MatrixXd m = gp_gp.inverse();
-  Eigen::MatrixXd y_camera;
-  std::vector<Eigen::MatrixXd> y_groups;
-  q->solve(Eigen::MatrixXd::Zero(parameters_.camera_size(), g.size), g.groups, &y_camera,
-           &y_groups);
-  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(g.size, g.size);
-  for (size_t i = 0; i < g.groups.size(); ++i) c += g.groups[i].transpose() * y_groups[i];
-  auto transform = [&](Eigen::MatrixXd* block, const Eigen::MatrixXd& rows,
-                       const Eigen::MatrixXd& y) {
-    const Eigen::MatrixXd gm = rows * m;
-    *block += -gm * y.transpose() - y * gm.transpose() + gm * c * gm.transpose();
-  };
-  transform(&q->camera_camera, g.camera, y_camera);
-  for (size_t i = 0; i < g.groups.size(); ++i)
-    transform(&q->group_group[i], g.groups[i], y_groups[i]);
-}
-
 void Adjuster::fill_result() {
   const double variance = result_.sigma0 * result_.sigma0;
-  if (have_cofactors_ && result_.datum == Datum::kInnerConstraints) s_transform(&cofactors_);
+  if (have_cofactors_ && result_.datum == Datum::kInnerConstraints)
+    s_transform(network_, parameters_, &cofactors_);
   result_.covariance_computed = have_cofactors_;
   if (have_cofactors_) result_.camera_covariance = variance * cofactors_.camera_camera;
 
@@ -766,7 +629,8 @@ void Adjuster::fill_result() {
 
 BundleAdjustmentResult Adjuster::run() {
   parameters_.triangulate_approximations(resolved_, &status_, &result_.messages);
-  choose_datum();
+  datum_ = choose_datum(resolved_, parameters_, &result_.messages);
+  result_.datum = datum_.datum;
   const auto& design = network_.design;
   const auto& test = network_.residual_test;
   result_.critical_w = test.critical_snooping;
