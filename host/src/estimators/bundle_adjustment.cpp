@@ -15,6 +15,7 @@
 #include "estimators/adjustment_datum.hpp"
 #include "estimators/adjustment_network.hpp"
 #include "estimators/adjustment_parameters.hpp"
+#include "estimators/adjustment_problem.hpp"
 #include "estimators/cost_functors.hpp"
 #include "estimators/covariance.hpp"
 #include "geometry/triangulation.hpp"
@@ -71,9 +72,6 @@ double w_of_log_p(double log_p) {
   return 0.5 * (low + high);
 }
 
-// The convergence tolerance of the re-adjustments between rejections (Ceres' default).
-constexpr double kRelaxedTolerance = 1e-6;
-
 const auto& kInteriorNames = sensor::InteriorBlock::kNames;
 const auto& kExteriorNames = sensor::ExteriorBlock::kNames;
 
@@ -85,14 +83,6 @@ std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
   return util::printf_string(", %ld of them with the %ld points whose wrong ray could not be told",
                              rays, rays / 2);
 }
-
-// One residual block of the Ceres problem, kept to evaluate its Jacobian after the solve.
-struct Term {
-  enum class Kind { kImage, kParameter, kDistance } kind = Kind::kImage;
-  std::unique_ptr<ceres::CostFunction> cost;
-  std::vector<std::pair<BlockKind, int>> blocks;
-  size_t measurement = 0;  // kImage: index into Network::measurements
-};
 
 class Adjuster {
  public:
@@ -110,7 +100,6 @@ class Adjuster {
     return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
 
-  void build_problem(ceres::Problem* problem);
   bool solve(bool strict);
   void evaluate_residuals();
   bool compute_cofactors();
@@ -133,115 +122,12 @@ class Adjuster {
   DatumChoice datum_;
 
   std::vector<Term> terms_;
-  ceres::Solver::Summary summary_;
-  double weighted_square_sum_ = 0.0;  // v^T P v
   long unknowns_ = 0;
   ArrowCofactors cofactors_;
   bool have_cofactors_ = false;
 
   BundleAdjustmentResult result_;
 };
-
-void Adjuster::build_problem(ceres::Problem* problem) {
-  terms_.clear();
-  auto add = [&](Term term) {
-    std::vector<double*> blocks;
-    for (const auto& [kind, id] : term.blocks) blocks.push_back(parameters_.block(kind, id));
-    problem->AddResidualBlock(term.cost.get(), nullptr, blocks);
-    terms_.push_back(std::move(term));
-  };
-
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] != MeasurementStatus::kAccepted) continue;
-    const auto& meas = network_.measurements[m];
-    const int s = resolved_.measurement_station[m];
-    const int model = resolved_.station_model[s];
-    const PointSlot slot = parameters_.slot[resolved_.measurement_point[m]];
-    Term term;
-    term.kind = Term::Kind::kImage;
-    term.measurement = m;
-    term.cost = std::make_unique<PointInGroupCost>(
-        new AnalyticReprojectionCost(network_.models[model].sensor, meas.u, meas.v, meas.sigma_px),
-        static_cast<int>(parameters_.group_values[slot.group].size()), slot.offset);
-    term.blocks = {
-        {BlockKind::kInterior, model}, {BlockKind::kExterior, s}, {BlockKind::kGroup, slot.group}};
-    add(std::move(term));
-  }
-  for (int d : parameters_.active_distances) {
-    const auto& dist = network_.distances[d];
-    const auto [a, b] = resolved_.distance_points[d];
-    const int g = parameters_.slot[a].group;
-    Term term;
-    term.kind = Term::Kind::kDistance;
-    term.cost = std::make_unique<DistanceCost>(
-        static_cast<int>(parameters_.group_values[g].size()), parameters_.slot[a].offset,
-        parameters_.slot[b].offset, dist.distance,
-        dist.sigma > 0.0 ? dist.sigma : options_.exact_distance_sigma_mm);
-    term.blocks = {{BlockKind::kGroup, g}};
-    add(std::move(term));
-  }
-  // Parameter observations (eq 4.40), the observed value being the given approximation; and
-  // the constants of kFixed values.
-  auto observe = [&](BlockKind kind, int id, int size, int index, double observed, double sigma) {
-    Term term;
-    term.kind = Term::Kind::kParameter;
-    term.cost = std::make_unique<ParameterObservationCost>(size, index, observed, sigma);
-    term.blocks = {{kind, id}};
-    add(std::move(term));
-  };
-  auto hold = [&](double* values, int size, const std::vector<int>& held) {
-    if (!problem->HasParameterBlock(values) || held.empty()) return;
-    if (static_cast<int>(held.size()) == size) {
-      problem->SetParameterBlockConstant(values);
-    } else {
-      problem->SetManifold(values, new ceres::SubsetManifold(size, held));
-    }
-  };
-  const bool unified = network_.design.unified_least_squares;
-  for (int m = 0; m < static_cast<int>(parameters_.interior.size()); ++m) {
-    if (!problem->HasParameterBlock(parameters_.interior[m].data())) continue;
-    std::vector<int> held;
-    const auto& model = network_.models[m];
-    for (int i = 0; i < kInteriorSize; ++i) {
-      const auto& prior = model.priors[i];
-      if (prior.mode == ParameterMode::kFixed) held.push_back(i);
-      if (prior.mode == ParameterMode::kObserved && unified) {
-        observe(BlockKind::kInterior, m, kInteriorSize, i,
-                sensor::interior_block(model.interior)[i], prior.sigma);
-      }
-    }
-    hold(parameters_.interior[m].data(), kInteriorSize, held);
-  }
-  for (int s = 0; s < static_cast<int>(parameters_.exterior.size()); ++s) {
-    if (!problem->HasParameterBlock(parameters_.exterior[s].data())) continue;
-    std::vector<int> held;
-    const auto& station = network_.stations[s];
-    for (int i = 0; i < kExteriorSize; ++i) {
-      const auto& prior = station.priors[i];
-      if (prior.mode == ParameterMode::kFixed || datum_.held[s][i]) held.push_back(i);
-      if (prior.mode == ParameterMode::kObserved && unified) {
-        observe(BlockKind::kExterior, s, kExteriorSize, i,
-                sensor::exterior_block(station.exterior)[i], prior.sigma);
-      }
-    }
-    hold(parameters_.exterior[s].data(), kExteriorSize, held);
-  }
-  for (int g = 0; g < static_cast<int>(parameters_.group_points.size()); ++g) {
-    std::vector<int> held;
-    const int size = static_cast<int>(parameters_.group_values[g].size());
-    for (int p : parameters_.group_points[g]) {
-      const auto& point = network_.points[p];
-      for (int k = 0; k < 3; ++k) {
-        const int index = parameters_.slot[p].offset + k;
-        if (point.priors[k].mode == ParameterMode::kFixed) held.push_back(index);
-        if (point.priors[k].mode == ParameterMode::kObserved && unified) {
-          observe(BlockKind::kGroup, g, size, index, point.xyz[k], point.priors[k].sigma);
-        }
-      }
-    }
-    hold(parameters_.group_values[g].data(), size, held);
-  }
-}
 
 // A strict solve follows the design's convergence control; a relaxed one (the rounds of data
 // snooping, which only rank residuals) stops at Ceres' default tolerances and accepts any usable
@@ -252,78 +138,30 @@ bool Adjuster::solve(bool strict) {
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  build_problem(&problem);
-
-  ceres::Solver::Options solver;
-  // Points (groups) first: the Schur complement leaves the reduced camera system.
-  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  int cameras = 0;
-  for (auto& values : parameters_.group_values) ordering->AddElementToGroup(values.data(), 0);
-  auto add_camera_block = [&](double* values, int size) {
-    if (!problem.HasParameterBlock(values)) return;
-    ordering->AddElementToGroup(values, 1);
-    cameras += size;
-  };
-  for (auto& values : parameters_.interior) add_camera_block(values.data(), kInteriorSize);
-  for (auto& values : parameters_.exterior) add_camera_block(values.data(), kExteriorSize);
-  solver.linear_solver_ordering = ordering;
-  solver.linear_solver_type = cameras <= 600 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
-  solver.num_threads = options_.num_threads;
+  terms_ = build_problem(resolved_, options_, datum_, status_, &parameters_, &problem);
   const auto& design = network_.design;
-  solver.max_num_iterations = design.exact_iterations.value_or(design.max_iterations);
-  solver.function_tolerance =
-      std::max(design.convergence_tolerance, strict ? 0.0 : kRelaxedTolerance);
-  solver.parameter_tolerance = solver.function_tolerance;
-  solver.gradient_tolerance = 1e-4 * solver.function_tolerance;
-  if (strict && design.exact_iterations) {
-    solver.function_tolerance = solver.parameter_tolerance = solver.gradient_tolerance = 0.0;
-  }
-  solver.minimizer_progress_to_stdout = options_.log_iterations || design.output_iterations;
-  solver.logging_type =
-      solver.minimizer_progress_to_stdout ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
-  ceres::Solve(solver, &problem, &summary_);
-
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options(design, options_, strict, &parameters_, problem), &problem, &summary);
   parameters_.read_points_from_groups();
-  // The estimated values: all, less the constant blocks and the held values of subset manifolds.
-  unknowns_ = 0;
-  std::vector<double*> blocks;
-  problem.GetParameterBlocks(&blocks);
-  for (double* b : blocks) {
-    if (!problem.IsParameterBlockConstant(b)) unknowns_ += problem.ParameterBlockTangentSize(b);
-  }
+  unknowns_ = estimated_values(problem);
   ++result_.adjustments;
-  result_.iterations = static_cast<int>(summary_.iterations.size()) - 1;
-  result_.termination = summary_.BriefReport();
-  result_.converged = summary_.termination_type == ceres::CONVERGENCE;
-  if (!strict) return summary_.IsSolutionUsable();
+  result_.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result_.termination = summary.BriefReport();
+  result_.converged = summary.termination_type == ceres::CONVERGENCE;
+  if (!strict) return summary.IsSolutionUsable();
   return result_.converged || design.force_complete || design.exact_iterations.has_value();
 }
 
 void Adjuster::evaluate_residuals() {
-  weighted_square_sum_ = 0.0;
-  long residual_count = 0;
-  for (const Term& term : terms_) {
-    std::vector<const double*> blocks;
-    for (const auto& [kind, id] : term.blocks) {
-      blocks.push_back(parameters_.block(kind, id));
-    }
-    Eigen::VectorXd r(term.cost->num_residuals());
-    if (!term.cost->Evaluate(blocks.data(), r.data(), nullptr)) r.setConstant(std::nan(""));
-    weighted_square_sum_ += r.squaredNorm();
-    residual_count += r.size();
-    if (term.kind == Term::Kind::kImage) {
-      const double sigma = network_.measurements[term.measurement].sigma_px;
-      auto& out = result_.measurements[term.measurement];
-      out.residual_u = r[0] * sigma;
-      out.residual_v = r[1] * sigma;
-    }
-  }
-  result_.observations = residual_count;
+  const ResidualSums sums =
+      estimators::evaluate_residuals(terms_, parameters_, network_, &result_.measurements);
+  result_.observations = sums.count;
   result_.unknowns = unknowns_;
-  result_.redundancy = residual_count - unknowns_;
-  result_.sigma0 = result_.redundancy > 0
-                       ? std::sqrt(weighted_square_sum_ / static_cast<double>(result_.redundancy))
-                       : 0.0;
+  result_.redundancy = sums.count - unknowns_;
+  result_.sigma0 =
+      result_.redundancy > 0
+          ? std::sqrt(sums.weighted_square_sum / static_cast<double>(result_.redundancy))
+          : 0.0;
 }
 
 // The columns of a term's Jacobian: camera parameter indices of its interior/exterior blocks,
