@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "estimators/adjustment_covariance.hpp"
 #include "estimators/adjustment_datum.hpp"
 #include "estimators/adjustment_network.hpp"
 #include "estimators/adjustment_parameters.hpp"
@@ -164,89 +165,10 @@ void Adjuster::evaluate_residuals() {
           : 0.0;
 }
 
-// The columns of a term's Jacobian: camera parameter indices of its interior/exterior blocks,
-// then its group's values.
-struct TermJacobian {
-  Eigen::MatrixXd jacobian;
-  std::vector<int> camera_columns;
-  int group = -1;
-};
-
 bool Adjuster::compute_cofactors() {
-  std::vector<bool> camera_free(parameters_.camera_size(), true);
-  for (size_t m = 0; m < parameters_.interior.size(); ++m) {
-    for (int i = 0; i < kInteriorSize; ++i) {
-      camera_free[parameters_.interior_column(static_cast<int>(m), i)] =
-          network_.models[m].priors[i].mode != ParameterMode::kFixed;
-    }
-  }
-  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
-    for (int i = 0; i < kExteriorSize; ++i) {
-      camera_free[parameters_.exterior_column(static_cast<int>(s), i)] =
-          network_.stations[s].priors[i].mode != ParameterMode::kFixed && !datum_.held[s][i];
-    }
-  }
-  std::vector<std::vector<bool>> group_free(parameters_.group_points.size());
-  for (size_t g = 0; g < parameters_.group_points.size(); ++g) {
-    for (int p : parameters_.group_points[g]) {
-      for (int k = 0; k < 3; ++k) {
-        group_free[g].push_back(network_.points[p].priors[k].mode != ParameterMode::kFixed);
-      }
-    }
-  }
-  // A camera block no measurement reaches is not in the problem: it is held.
-  std::vector<bool> reached(parameters_.camera_size(), false);
-  std::vector<TermJacobian> jacobians(terms_.size());
-  for (size_t t = 0; t < terms_.size(); ++t) {
-    const Term& term = terms_[t];
-    TermJacobian& tj = jacobians[t];
-    std::vector<const double*> blocks;
-    std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> parts;
-    int columns = 0;
-    for (const auto& [kind, id] : term.blocks) {
-      int size = 0;
-      if (kind == BlockKind::kInterior) {
-        blocks.push_back(parameters_.interior[id].data());
-        size = kInteriorSize;
-        for (int i = 0; i < size; ++i)
-          tj.camera_columns.push_back(parameters_.interior_column(id, i));
-      } else if (kind == BlockKind::kExterior) {
-        blocks.push_back(parameters_.exterior[id].data());
-        size = kExteriorSize;
-        for (int i = 0; i < size; ++i)
-          tj.camera_columns.push_back(parameters_.exterior_column(id, i));
-      } else {
-        blocks.push_back(parameters_.group_values[id].data());
-        size = static_cast<int>(parameters_.group_values[id].size());
-        tj.group = id;
-      }
-      parts.emplace_back(term.cost->num_residuals(), size);
-      columns += size;
-    }
-    std::vector<double*> jacobian_pointers;
-    for (auto& part : parts) jacobian_pointers.push_back(part.data());
-    Eigen::VectorXd r(term.cost->num_residuals());
-    if (!term.cost->Evaluate(blocks.data(), r.data(), jacobian_pointers.data())) {
-      result_.messages.push_back("covariance: a residual cannot be evaluated at the solution");
-      return false;
-    }
-    // Blocks are ordered interior, exterior, group in every term, so the camera columns come first.
-    tj.jacobian.resize(term.cost->num_residuals(), columns);
-    int at = 0;
-    for (auto& part : parts) {
-      tj.jacobian.middleCols(at, part.cols()) = part;
-      at += static_cast<int>(part.cols());
-    }
-    for (int c : tj.camera_columns) reached[c] = true;
-  }
-  for (int c = 0; c < parameters_.camera_size(); ++c) camera_free[c] = camera_free[c] && reached[c];
-
-  ArrowNormalEquations normal(camera_free, group_free);
-  for (const TermJacobian& tj : jacobians) normal.add(tj.jacobian, tj.camera_columns, tj.group);
-  try {
-    cofactors_ = invert(normal);
-  } catch (const SingularNormalEquations& e) {
-    result_.messages.push_back(std::string("covariance not computed: ") + e.what());
+  std::vector<TermJacobian> jacobians;
+  if (!estimators::compute_cofactors(resolved_, parameters_, datum_, terms_, &cofactors_,
+                                     &jacobians, &result_.messages)) {
     return false;
   }
 
@@ -397,21 +319,8 @@ void Adjuster::fill_result() {
     model.name = network_.models[m].name;
     model.interior = sensor::interior_from_block(parameters_.interior[m].data());
     if (have_cofactors_) {
-      const int at = parameters_.interior_column(static_cast<int>(m), 0);
-      model.interior_covariance = result_.camera_covariance.block<10, 10>(at, at);
-      for (int i = 0; i < kInteriorSize; ++i) {
-        model.interior_sigma[i] = std::sqrt(std::max(0.0, model.interior_covariance(i, i)));
-        if (model.interior_sigma[i] > 0.0) model.estimated_interior.push_back(i);
-      }
-      const int n = static_cast<int>(model.estimated_interior.size());
-      model.interior_correlation.resize(n, n);
-      for (int a = 0; a < n; ++a) {
-        for (int b = 0; b < n; ++b) {
-          const int i = model.estimated_interior[a], j = model.estimated_interior[b];
-          model.interior_correlation(a, b) =
-              model.interior_covariance(i, j) / (model.interior_sigma[i] * model.interior_sigma[j]);
-        }
-      }
+      set_interior_precision(result_.camera_covariance,
+                             parameters_.interior_column(static_cast<int>(m), 0), &model);
     }
     result_.models.push_back(model);
   }
@@ -420,9 +329,9 @@ void Adjuster::fill_result() {
     station.name = network_.stations[s].name;
     station.camera_id = network_.stations[s].camera_id;
     station.exterior = sensor::exterior_from_block(parameters_.exterior[s].data());
-    for (int i = 0; have_cofactors_ && i < kExteriorSize; ++i) {
-      const int at = parameters_.exterior_column(static_cast<int>(s), i);
-      station.exterior_sigma[i] = std::sqrt(std::max(0.0, result_.camera_covariance(at, at)));
+    if (have_cofactors_) {
+      set_exterior_precision(result_.camera_covariance,
+                             parameters_.exterior_column(static_cast<int>(s), 0), &station);
     }
     result_.stations.push_back(station);
   }
@@ -450,9 +359,8 @@ void Adjuster::fill_result() {
     point.xyz = {parameters_.points[p].x(), parameters_.points[p].y(), parameters_.points[p].z()};
     point.adjusted = parameters_.slot[p].group >= 0;
     if (point.adjusted && have_cofactors_) {
-      point.covariance = variance * cofactors_.group_group[parameters_.slot[p].group].block<3, 3>(
-                                        parameters_.slot[p].offset, parameters_.slot[p].offset);
-      for (int k = 0; k < 3; ++k) point.sigma[k] = std::sqrt(std::max(0.0, point.covariance(k, k)));
+      const PointSlot slot = parameters_.slot[p];
+      set_point_precision(cofactors_.group_group[slot.group], slot.offset, variance, &point);
     }
     result_.points.push_back(point);
   }
