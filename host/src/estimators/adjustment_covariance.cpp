@@ -109,6 +109,20 @@ bool compute_cofactors(const ResolvedNetwork& resolved, const AdjustmentParamete
   return true;
 }
 
+Eigen::MatrixXd touched_cofactors(const TermJacobian& term, const ArrowCofactors& cofactors) {
+  const int nc = static_cast<int>(term.camera_columns.size());
+  const int ng = static_cast<int>(term.jacobian.cols()) - nc;
+  Eigen::MatrixXd q(nc + ng, nc + ng);
+  for (int a = 0; a < nc; ++a) {
+    for (int b = 0; b < nc; ++b)
+      q(a, b) = cofactors.camera_camera(term.camera_columns[a], term.camera_columns[b]);
+    for (int b = 0; b < ng; ++b)
+      q(a, nc + b) = q(nc + b, a) = cofactors.camera_group[term.group](term.camera_columns[a], b);
+  }
+  q.bottomRightCorner(ng, ng) = cofactors.group_group[term.group];
+  return q;
+}
+
 void set_interior_precision(const Eigen::MatrixXd& camera_covariance, int at, ModelResult* model) {
   model->interior_covariance = camera_covariance.block<10, 10>(at, at);
   for (int i = 0; i < kInteriorSize; ++i) {

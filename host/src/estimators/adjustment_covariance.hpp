@@ -32,6 +32,9 @@ bool compute_cofactors(const ResolvedNetwork& resolved, const AdjustmentParamete
                        ArrowCofactors* cofactors, std::vector<TermJacobian>* jacobians,
                        std::vector<std::string>* messages);
 
+// The cofactors of the values a term touches, in the order of its Jacobian's columns.
+Eigen::MatrixXd touched_cofactors(const TermJacobian& term, const ArrowCofactors& cofactors);
+
 // A model's interior covariance, sigmas and (Table 4.6) the correlations of its estimated values,
 // from the camera covariance; `at` is the model's first camera column.
 void set_interior_precision(const Eigen::MatrixXd& camera_covariance, int at, ModelResult* model);
