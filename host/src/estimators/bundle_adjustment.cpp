@@ -1,3 +1,11 @@
+// adjust(): the order of the work. One idea a file:
+//   adjustment_network     the network checked, names resolved to indices
+//   adjustment_parameters  the parameter blocks, their columns, the point groups, start values
+//   adjustment_datum       given parameters or a free network's minimal constraints, S-transform
+//   adjustment_problem     the Ceres problem and solver of one adjustment, its residuals
+//   adjustment_covariance  the cofactors at the solution and the result's precision
+//   data_snooping          the residuals' test statistics and the rejections
+//   bundle_adjustment_summary  format_summary
 #include "estimators/bundle_adjustment.hpp"
 
 #include <ceres/ceres.h>
@@ -13,12 +21,9 @@
 #include "estimators/adjustment_parameters.hpp"
 #include "estimators/adjustment_problem.hpp"
 #include "estimators/data_snooping.hpp"
-#include "util/printf_string.hpp"
 
 namespace syncap::estimators {
 namespace {
-
-const auto& kInteriorNames = sensor::InteriorBlock::kNames;
 
 class Adjuster {
  public:
@@ -36,10 +41,18 @@ class Adjuster {
     return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
 
+  double variance() const { return result_.sigma0 * result_.sigma0; }
+
+  void adjust_and_snoop();
   bool solve(bool strict);
   void evaluate_residuals();
   bool compute_cofactors();
+  void test_adjustment();
   void fill_result();
+  void fill_models();
+  void fill_stations();
+  void count_measurements();
+  void fill_points();
 
   const scene::Network& network_;
   const BundleOptions& options_;
@@ -53,6 +66,7 @@ class Adjuster {
 
   DatumChoice datum_;
 
+  // The current adjustment.
   std::vector<Term> terms_;
   long unknowns_ = 0;
   ArrowCofactors cofactors_;
@@ -109,13 +123,19 @@ bool Adjuster::compute_cofactors() {
   return true;
 }
 
+// The values of the last adjustment and, when it has cofactors, their precision: sigma0^2 times
+// the cofactors, of a free network S-transformed to the inner-constraint datum first.
 void Adjuster::fill_result() {
-  const double variance = result_.sigma0 * result_.sigma0;
   if (have_cofactors_ && result_.datum == Datum::kInnerConstraints)
     s_transform(network_, parameters_, &cofactors_);
   result_.covariance_computed = have_cofactors_;
-  if (have_cofactors_) result_.camera_covariance = variance * cofactors_.camera_camera;
+  if (have_cofactors_) result_.camera_covariance = variance() * cofactors_.camera_camera;
+  fill_models();
+  fill_stations();
+  fill_points();
+}
 
+void Adjuster::fill_models() {
   for (size_t m = 0; m < parameters_.interior.size(); ++m) {
     ModelResult model;
     model.name = network_.models[m].name;
@@ -126,6 +146,9 @@ void Adjuster::fill_result() {
     }
     result_.models.push_back(model);
   }
+}
+
+void Adjuster::fill_stations() {
   for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     StationResult station;
     station.name = network_.stations[s].name;
@@ -137,6 +160,19 @@ void Adjuster::fill_result() {
     }
     result_.stations.push_back(station);
   }
+  count_measurements();
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
+    if (result_.stations[s].rejected > 0) {
+      result_.messages.push_back("station " + quoted(result_.stations[s].name) + ": " +
+                                 std::to_string(result_.stations[s].rejected) +
+                                 " measurements removed");
+    }
+  }
+}
+
+// Each measurement's final status, and per station its accepted and removed measurements and
+// the rms of its accepted residuals.
+void Adjuster::count_measurements() {
   std::vector<double> square_sum(parameters_.exterior.size(), 0.0);
   for (size_t m = 0; m < status_.size(); ++m) {
     auto& station = result_.stations[resolved_.measurement_station[m]];
@@ -155,6 +191,9 @@ void Adjuster::fill_result() {
     if (station.measurements > 0)
       station.rms_px = std::sqrt(square_sum[s] / (2.0 * station.measurements));
   }
+}
+
+void Adjuster::fill_points() {
   for (size_t p = 0; p < parameters_.points.size(); ++p) {
     PointResult point;
     point.name = network_.points[p].name;
@@ -162,29 +201,18 @@ void Adjuster::fill_result() {
     point.adjusted = parameters_.slot[p].group >= 0;
     if (point.adjusted && have_cofactors_) {
       const PointSlot slot = parameters_.slot[p];
-      set_point_precision(cofactors_.group_group[slot.group], slot.offset, variance, &point);
+      set_point_precision(cofactors_.group_group[slot.group], slot.offset, variance(), &point);
     }
     result_.points.push_back(point);
   }
-  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
-    if (result_.stations[s].rejected > 0) {
-      result_.messages.push_back("station " + quoted(result_.stations[s].name) + ": " +
-                                 std::to_string(result_.stations[s].rejected) +
-                                 " measurements removed");
-    }
-  }
 }
 
-BundleAdjustmentResult Adjuster::run() {
-  parameters_.triangulate_approximations(resolved_, &status_, &result_.messages);
-  datum_ = choose_datum(resolved_, parameters_, &result_.messages);
-  result_.datum = datum_.datum;
+// Adjusts, computes the cofactors and rejects one blunder at a time until none is left.
+// Snooping rounds are relaxed; the last adjustment, after the last rejection, is strict.
+void Adjuster::adjust_and_snoop() {
   const auto& design = network_.design;
-  const auto& test = network_.residual_test;
-  result_.critical_w = test.critical_snooping;
-  const bool snoop =
-      design.statistical_tests && design.calculate_covariance && test.iterative_rejection;
-  // Snooping rounds are relaxed; the last adjustment, after the last rejection, is strict.
+  const bool snoop = design.statistical_tests && design.calculate_covariance &&
+                     network_.residual_test.iterative_rejection;
   bool strict = !snoop;
   DataSnooping snooping(resolved_, parameters_, &status_, &result_.rejected);
   while (true) {
@@ -206,14 +234,27 @@ BundleAdjustmentResult Adjuster::run() {
     }
     have_cofactors_ = false;
   }
-  if (have_cofactors_ && design.statistical_tests) {
-    result_.tests_computed = true;
-    result_.variance_test = test_variance_factor(result_.sigma0 * result_.sigma0,
-                                                 result_.redundancy, test.alpha_variance);
-    const std::vector<double> w =
-        goodness_of_fit_sample(result_, status_, test.snoop_with_a_posteriori_sigma0);
-    result_.goodness_of_fit = test_goodness_of_fit(w, test.alpha_goodness);
-  }
+}
+
+// The tests of thesis section 4.1.4 on the last adjustment.
+void Adjuster::test_adjustment() {
+  const auto& test = network_.residual_test;
+  result_.tests_computed = true;
+  result_.variance_test = test_variance_factor(result_.sigma0 * result_.sigma0, result_.redundancy,
+                                               test.alpha_variance);
+  const std::vector<double> w =
+      goodness_of_fit_sample(result_, status_, test.snoop_with_a_posteriori_sigma0);
+  result_.goodness_of_fit = test_goodness_of_fit(w, test.alpha_goodness);
+}
+
+BundleAdjustmentResult Adjuster::run() {
+  parameters_.triangulate_approximations(resolved_, &status_, &result_.messages);
+  datum_ = choose_datum(resolved_, parameters_, &result_.messages);
+  result_.datum = datum_.datum;
+  const auto& test = network_.residual_test;
+  result_.critical_w = test.critical_snooping;
+  adjust_and_snoop();
+  if (have_cofactors_ && network_.design.statistical_tests) test_adjustment();
   if (!result_.rejected.empty()) {
     result_.messages.push_back("data snooping removed " + std::to_string(result_.rejected.size()) +
                                " measurements (|w| > " + std::to_string(test.critical_snooping) +
@@ -223,57 +264,7 @@ BundleAdjustmentResult Adjuster::run() {
   return std::move(result_);
 }
 
-using util::printf_string;
-
 }  // namespace
-
-std::string format_summary(const BundleAdjustmentResult& r) {
-  std::string out;
-  out += printf_string("adjustments %d, last %d iterations, %s\n", r.adjustments, r.iterations,
-                       r.converged ? "converged" : "NOT converged");
-  out += printf_string("observations %ld, unknowns %ld, redundancy %ld, sigma0 %.4f\n",
-                       r.observations, r.unknowns, r.redundancy, r.sigma0);
-  if (r.tests_computed) {
-    const auto& v = r.variance_test;
-    out +=
-        printf_string("variance factor %.4f in [%.4f, %.4f] (chi-square, alpha %.3g): %s\n",
-                      v.variance_factor, v.lower, v.upper, v.alpha, v.passed ? "passed" : "FAILED");
-    const auto& g = r.goodness_of_fit;
-    out += printf_string(
-        "goodness of fit y %.2f <= %.2f (%d classes, %ld residuals): %s; KS D %.4f p %.3f\n",
-        g.statistic, g.critical, g.bins, g.samples, g.passed ? "passed" : "FAILED", g.ks_distance,
-        g.ks_p_value);
-    out += printf_string("data snooping |w| > %.2f: %zu removed%s\n", r.critical_w,
-                         r.rejected.size(), ambiguous_note(r.rejected).c_str());
-  }
-  for (const auto& m : r.models) {
-    out += "camera model " + m.name + ":";
-    const auto values = sensor::interior_block(m.interior);
-    for (int i = 0; i < kInteriorSize; ++i) {
-      out += printf_string(" %s %.6g +- %.2g", kInteriorNames[i], values[i], m.interior_sigma[i]);
-    }
-    out += "\n";
-  }
-  for (const auto& s : r.stations) {
-    out += printf_string("station %s: rms %.3f px, %ld measurements, %ld removed\n", s.name.c_str(),
-                         s.rms_px, s.measurements, s.rejected);
-  }
-  for (const auto& m : r.models) {
-    const int n = static_cast<int>(m.estimated_interior.size());
-    if (n == 0) continue;
-    out += "Camera " + m.name;
-    for (int i : m.estimated_interior) out += printf_string(" %6s", kInteriorNames[i]);
-    out += "\n";
-    for (int a = 0; a < n; ++a) {
-      out += printf_string("%-6s", kInteriorNames[m.estimated_interior[a]]);
-      for (int b = 0; b < n; ++b) {
-        out += b < a ? std::string(7, ' ') : printf_string(" %6.3f", m.interior_correlation(a, b));
-      }
-      out += "\n";
-    }
-  }
-  return out;
-}
 
 BundleAdjustmentResult adjust(const scene::Network& network, const BundleOptions& options) {
   Adjuster adjuster(network, options);
