@@ -1,225 +1,34 @@
+// adjust(): the order of the work. One idea a file:
+//   adjustment_network     the network checked, names resolved to indices
+//   adjustment_parameters  the parameter blocks, their columns, the point groups, start values
+//   adjustment_datum       given parameters or a free network's minimal constraints, S-transform
+//   adjustment_problem     the Ceres problem and solver of one adjustment, its residuals
+//   adjustment_covariance  the cofactors at the solution and the result's precision
+//   data_snooping          the residuals' test statistics and the rejections
+//   bundle_adjustment_summary  format_summary
 #include "estimators/bundle_adjustment.hpp"
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Dense>
-#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <map>
-#include <memory>
-#include <numeric>
-#include <set>
-#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "estimators/cost_functors.hpp"
-#include "estimators/covariance.hpp"
-#include "geometry/triangulation.hpp"
-#include "sensor/camera_model.hpp"
-#include "sensor/rotation.hpp"
-#include "util/printf_string.hpp"
+#include "estimators/adjustment_covariance.hpp"
+#include "estimators/adjustment_datum.hpp"
+#include "estimators/adjustment_network.hpp"
+#include "estimators/adjustment_parameters.hpp"
+#include "estimators/adjustment_problem.hpp"
+#include "estimators/data_snooping.hpp"
 
 namespace syncap::estimators {
 namespace {
 
-using geometry::NearestPoint;
-using scene::ParameterMode;
-using sensor::ExteriorBlock;
-using sensor::InteriorBlock;
-
-constexpr int kInteriorSize = InteriorBlock::kSize;
-constexpr int kExteriorSize = ExteriorBlock::kSize;
-
-// A residual whose redundancy share q_vv / q_ll is below this is not controlled by the network
-// (its point has barely more rays than unknowns): it cannot be standardised, and is not snooped.
-constexpr double kMinRedundancyShare = 1e-6;
-
-// log(erfc(x)) for x >= 0, without underflow (asymptotic series beyond x = 25).
-double log_erfc(double x) {
-  if (x < 25.0) return std::log(std::erfc(x));
-  const double x2 = x * x;
-  return -x2 - std::log(x * std::sqrt(M_PI)) + std::log1p(-0.5 / x2 + 0.75 / (x2 * x2));
-}
-
-// The log probability, under H0, of a measurement's residual test statistic: T = v^T Q_vv^+ v /
-// sigma0^2 over the directions the network controls (whitened residual v, its cofactor block
-// q_vv), chi-square with as many degrees of freedom as those directions.
-double log_p_of_point(const Eigen::Matrix2d& q_vv, const Eigen::Vector2d& v, double sigma0) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(q_vv);
-  double t = 0.0;
-  int dof = 0;
-  for (int k = 0; k < 2; ++k) {
-    const double share = eigen.eigenvalues()(k);
-    if (!(share > kMinRedundancyShare)) continue;
-    const double along = eigen.eigenvectors().col(k).dot(v) / sigma0;
-    t += along * along / share;
-    ++dof;
-  }
-  if (dof == 0) return 0.0;
-  return dof == 2 ? -0.5 * t : log_erfc(std::sqrt(0.5 * t));  // chi2(2): p = exp(-t/2)
-}
-
-// The 1-D |w| of the same probability: log_erfc(w / sqrt 2) = log_p, by bisection.
-double w_of_log_p(double log_p) {
-  if (log_p >= 0.0) return 0.0;
-  double low = 0.0, high = 1.0;
-  while (log_erfc(high / std::sqrt(2.0)) > log_p) high *= 2.0;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (low + high);
-    (log_erfc(mid / std::sqrt(2.0)) > log_p ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
-}
-
-// The convergence tolerance of the re-adjustments between rejections (Ceres' default).
-constexpr double kRelaxedTolerance = 1e-6;
-
-const auto& kInteriorNames = sensor::InteriorBlock::kNames;
-const auto& kExteriorNames = sensor::ExteriorBlock::kNames;
-const char* const kPointNames[3] = {"X", "Y", "Z"};
-
-std::string quoted(const std::string& s) { return "\"" + s + "\""; }
-
-// ", N of them with the M points whose wrong ray could not be told", or nothing.
-std::string ambiguous_note(const std::vector<RejectedMeasurement>& rejected) {
-  long rays = 0;
-  for (const auto& r : rejected) rays += r.ambiguous;
-  if (rays == 0) return "";
-  return util::printf_string(", %ld of them with the %ld points whose wrong ray could not be told",
-                             rays, rays / 2);
-}
-
-// Where an object point's values live: the parameter block of its group, at an offset.
-struct PointSlot {
-  int group = -1;  // -1: not adjusted (undetermined)
-  int offset = 0;
-};
-
-enum class BlockKind { kInterior, kExterior, kGroup };
-
-// One residual block of the Ceres problem, kept to evaluate its Jacobian after the solve.
-struct Term {
-  enum class Kind { kImage, kParameter, kDistance } kind = Kind::kImage;
-  std::unique_ptr<ceres::CostFunction> cost;
-  std::vector<std::pair<BlockKind, int>> blocks;
-  size_t measurement = 0;  // kImage: index into Network::measurements
-};
-
-// The network checked and resolved to indices.
-struct Resolved {
-  std::vector<int> station_model;
-  std::vector<int> measurement_station, measurement_point;
-  std::vector<std::pair<int, int>> distance_points;
-};
-
-template <typename Item>
-std::map<std::string, int> index_by_name(const std::vector<Item>& items, const char* what) {
-  std::map<std::string, int> index;
-  for (int i = 0; i < static_cast<int>(items.size()); ++i) {
-    if (!index.emplace(items[i].name, i).second) {
-      throw NetworkError(std::string("network: ") + what + " " + quoted(items[i].name) +
-                         " is defined twice");
-    }
-  }
-  return index;
-}
-
-void check_prior(const scene::ParameterPrior& prior, const std::string& owner, const char* name) {
-  if (prior.mode == ParameterMode::kObserved && !(prior.sigma > 0.0)) {
-    throw NetworkError("network: " + owner + ": parameter " + name +
-                       " is observed but its sigma is not positive");
-  }
-}
-
-Resolved resolve(const scene::Network& network) {
-  Resolved r;
-  const auto models = index_by_name(network.models, "camera model");
-  const auto stations = index_by_name(network.stations, "station");
-  const auto points = index_by_name(network.points, "point");
-  for (const auto& model : network.models) {
-    const std::string owner = "camera model " + quoted(model.name);
-    if (!(model.interior.c > 0.0)) throw NetworkError("network: " + owner + ": c must be positive");
-    if (model.sensor.width_px <= 0 || model.sensor.height_px <= 0 ||
-        !(model.sensor.pixel_width_mm > 0.0) || !(model.sensor.pixel_height_mm > 0.0)) {
-      throw NetworkError("network: " + owner + ": sensor size and pixel pitch must be positive");
-    }
-    for (int i = 0; i < kInteriorSize; ++i) check_prior(model.priors[i], owner, kInteriorNames[i]);
-  }
-  for (const auto& station : network.stations) {
-    const std::string owner = "station " + quoted(station.name);
-    const auto model = models.find(station.model);
-    if (model == models.end()) {
-      throw NetworkError("network: " + owner + ": unknown camera model " + quoted(station.model));
-    }
-    if (!station.has_approximation) {
-      throw NetworkError("network: " + owner +
-                         ": no approximate exterior orientation (relative orientation or the "
-                         "scene file must provide one)");
-    }
-    r.station_model.push_back(model->second);
-    for (int i = 0; i < kExteriorSize; ++i) {
-      check_prior(station.priors[i], owner, kExteriorNames[i]);
-    }
-  }
-  for (const auto& point : network.points) {
-    for (int i = 0; i < 3; ++i)
-      check_prior(point.priors[i], "point " + quoted(point.name), kPointNames[i]);
-  }
-  for (size_t m = 0; m < network.measurements.size(); ++m) {
-    const auto& meas = network.measurements[m];
-    const std::string place = "network: measurement " + std::to_string(m) + " (station " +
-                              quoted(meas.station) + ", point " + quoted(meas.point) + ", frame " +
-                              std::to_string(meas.frame_number) + "): ";
-    const auto station = stations.find(meas.station);
-    if (station == stations.end()) throw NetworkError(place + "unknown station");
-    const auto point = points.find(meas.point);
-    if (point == points.end()) throw NetworkError(place + "unknown point");
-    if (!(meas.sigma_px > 0.0)) throw NetworkError(place + "sigma_px must be positive");
-    if (!std::isfinite(meas.u) || !std::isfinite(meas.v)) {
-      throw NetworkError(place + "u and v must be finite");
-    }
-    r.measurement_station.push_back(station->second);
-    r.measurement_point.push_back(point->second);
-  }
-  for (size_t d = 0; d < network.distances.size(); ++d) {
-    const auto& dist = network.distances[d];
-    const std::string place = "network: distance " + std::to_string(d) + " (" +
-                              quoted(dist.point_a) + " - " + quoted(dist.point_b) + "): ";
-    const auto a = points.find(dist.point_a);
-    const auto b = points.find(dist.point_b);
-    if (a == points.end() || b == points.end()) throw NetworkError(place + "unknown point");
-    if (a->second == b->second) throw NetworkError(place + "both ends are the same point");
-    if (!(dist.distance > 0.0)) throw NetworkError(place + "distance must be positive");
-    if (!(dist.sigma >= 0.0)) throw NetworkError(place + "sigma must not be negative");
-    r.distance_points.emplace_back(a->second, b->second);
-  }
-  return r;
-}
-
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
-// The directions of the null space of a free network's normal matrix: translations, rotations
-// about the points' centroid and, without distances, the scale, as changes of every exterior
-// orientation and object point (interior orientations do not change).
-struct DatumDefect {
-  int size = 0;
-  Eigen::MatrixXd camera;               // rows: camera parameters
-  std::vector<Eigen::MatrixXd> groups;  // rows: group values
-};
-
 class Adjuster {
  public:
   Adjuster(const scene::Network& network, const BundleOptions& options)
-      : network_(network), options_(options), resolved_(resolve(network)) {
-    for (const auto& model : network.models)
-      interior_.push_back(sensor::interior_block(model.interior));
-    for (const auto& station : network.stations) {
-      exterior_.push_back(sensor::exterior_block(station.exterior));
-    }
-    for (const auto& point : network.points) point_.emplace_back(point.xyz.data());
+      : network_(network), options_(options), resolved_(resolve(network)), parameters_(network) {
     status_.assign(network.measurements.size(), MeasurementStatus::kAccepted);
     result_.measurements.resize(network.measurements.size());
   }
@@ -227,71 +36,38 @@ class Adjuster {
   BundleAdjustmentResult run();
 
  private:
-  int camera_size() const {
-    return static_cast<int>(interior_.size()) * kInteriorSize +
-           static_cast<int>(exterior_.size()) * kExteriorSize;
-  }
-  int interior_column(int model, int i) const { return model * kInteriorSize + i; }
-  int exterior_column(int station, int i) const {
-    return static_cast<int>(interior_.size()) * kInteriorSize + station * kExteriorSize + i;
-  }
-  sensor::CameraModel camera(int station) const {
-    sensor::CameraModel c;
-    c.sensor = network_.models[resolved_.station_model[station]].sensor;
-    c.interior = sensor::interior_from_block(interior_[resolved_.station_model[station]].data());
-    c.exterior = sensor::exterior_from_block(exterior_[station].data());
-    return c;
-  }
   // The sigma0 data snooping standardises with: the a posteriori one, or 1 (the a priori).
   double snooping_sigma0() const {
     return network_.residual_test.snoop_with_a_posteriori_sigma0 ? result_.sigma0 : 1.0;
   }
-  bool point_held(int p) const {
-    for (const auto& prior : network_.points[p].priors) {
-      if (prior.mode == ParameterMode::kFree) return false;
-    }
-    return true;
-  }
 
-  void triangulate_approximations();
-  void choose_datum();
-  void update_groups();
-  void build_problem(ceres::Problem* problem);
+  double variance() const { return result_.sigma0 * result_.sigma0; }
+
+  void adjust_and_snoop();
   bool solve(bool strict);
   void evaluate_residuals();
   bool compute_cofactors();
-  bool reject_worst_blunder();
-  void reject(size_t m, double w, bool ambiguous = false);
-  double pair_square_sum(size_t a, size_t b) const;
-  bool reject_ambiguous_points();
+  void test_adjustment();
   void fill_result();
-  DatumDefect datum_defect() const;
-  void s_transform(ArrowCofactors* q) const;
+  void fill_models();
+  void fill_stations();
+  void count_measurements();
+  void fill_points();
 
   const scene::Network& network_;
   const BundleOptions& options_;
-  const Resolved resolved_;
+  const ResolvedNetwork resolved_;
 
-  std::vector<std::array<double, kInteriorSize>> interior_;
-  std::vector<std::array<double, kExteriorSize>> exterior_;
-  std::vector<Eigen::Vector3d> point_;
+  AdjustmentParameters parameters_;
   std::vector<MeasurementStatus> status_;
   // Per measurement, the natural logarithm of the probability under H0 of its residual vector's
   // test statistic (both coordinates together; 0 when the network does not control it).
   std::vector<double> log_p_;
 
-  // The minimal constraints of a free network: exterior values held although free.
-  std::vector<std::array<bool, kExteriorSize>> datum_held_;
+  DatumChoice datum_;
 
-  // Point groups of the current adjustment.
-  std::vector<PointSlot> slot_;
-  std::vector<std::vector<int>> group_points_;
-  std::vector<std::vector<double>> group_values_;
-  std::vector<int> active_distances_;
-
+  // The current adjustment.
   std::vector<Term> terms_;
-  ceres::Solver::Summary summary_;
-  double weighted_square_sum_ = 0.0;  // v^T P v
   long unknowns_ = 0;
   ArrowCofactors cofactors_;
   bool have_cofactors_ = false;
@@ -299,665 +75,105 @@ class Adjuster {
   BundleAdjustmentResult result_;
 };
 
-void Adjuster::triangulate_approximations() {
-  std::vector<std::vector<size_t>> rays(point_.size());
-  for (size_t m = 0; m < status_.size(); ++m) rays[resolved_.measurement_point[m]].push_back(m);
-  int triangulated = 0;
-  for (size_t p = 0; p < point_.size(); ++p) {
-    if (network_.points[p].has_approximation && !network_.design.ignore_approximates) continue;
-    if (point_held(static_cast<int>(p))) continue;  // a control point keeps its given value
-    NearestPoint nearest;
-    std::set<int> stations;
-    for (size_t m : rays[p]) {
-      const auto& meas = network_.measurements[m];
-      const int s = resolved_.measurement_station[m];
-      nearest.add(camera(s).back_project({meas.u, meas.v}));
-      stations.insert(s);
-    }
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(nearest.normal);
-    if (stations.size() < 2 || svd.singularValues()[2] < 1e-9 * svd.singularValues()[0]) {
-      result_.messages.push_back("point " + quoted(network_.points[p].name) +
-                                 ": no approximation and fewer than two distinct rays; not "
-                                 "adjusted");
-      for (size_t m : rays[p]) status_[m] = MeasurementStatus::kUndetermined;
-      continue;
-    }
-    point_[p] = nearest.solve();
-    ++triangulated;
-  }
-  if (triangulated > 0) {
-    result_.messages.push_back("triangulated " + std::to_string(triangulated) +
-                               " point approximations from the stations");
-  }
-}
-
-void Adjuster::choose_datum() {
-  datum_held_.assign(exterior_.size(), {false, false, false, false, false, false});
-  // Without UNIFIED LEAST SQUARES observed values are plain unknowns (thesis: "the parameters
-  // are treated as being entirely unknown") and define nothing.
-  const bool unified = network_.design.unified_least_squares;
-  auto defines = [&](const scene::ParameterPrior& prior) {
-    return prior.mode == ParameterMode::kFixed ||
-           (prior.mode == ParameterMode::kObserved && unified);
-  };
-  bool given = false;
-  for (const auto& station : network_.stations) {
-    for (const auto& prior : station.priors) given |= defines(prior);
-  }
-  for (const auto& point : network_.points) {
-    for (const auto& prior : point.priors) given |= defines(prior);
-  }
-  if (given || exterior_.empty()) {
-    result_.datum = Datum::kGivenParameters;
-    result_.messages.push_back("datum: from the fixed and observed exterior/point parameters");
-    return;
-  }
-  result_.datum = Datum::kInnerConstraints;
-  // The station with the most measurements holds position and attitude ...
-  std::vector<long> count(exterior_.size(), 0);
-  for (size_t m = 0; m < status_.size(); ++m) ++count[resolved_.measurement_station[m]];
-  const int first = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
-  datum_held_[first].fill(true);
-  std::string held = "station " + quoted(network_.stations[first].name) + " exterior";
-  // ... and without distances the largest coordinate difference to another centre the scale.
-  if (network_.distances.empty() && exterior_.size() > 1) {
-    int best_station = -1, best_axis = 0;
-    double best = 0.0;
-    for (int s = 0; s < static_cast<int>(exterior_.size()); ++s) {
-      for (int k = 0; k < 3; ++k) {
-        const double d = std::abs(exterior_[s][k] - exterior_[first][k]);
-        if (s != first && d > best) best = d, best_station = s, best_axis = k;
-      }
-    }
-    if (best_station >= 0) {
-      datum_held_[best_station][best_axis] = true;
-      held += ", station " + quoted(network_.stations[best_station].name) + " " +
-              kExteriorNames[best_axis];
-    }
-  }
-  result_.messages.push_back("datum: free network; solved with " + held +
-                             " held, covariance S-transformed to inner constraints on the "
-                             "object points");
-}
-
-// Points with fewer than two rays from distinct stations (and not held by their priors) are not
-// adjusted; points linked by distances share a parameter block.
-void Adjuster::update_groups() {
-  const int n = static_cast<int>(point_.size());
-  std::vector<std::set<int>> stations(n);
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] == MeasurementStatus::kAccepted) {
-      stations[resolved_.measurement_point[m]].insert(resolved_.measurement_station[m]);
-    }
-  }
-  std::vector<bool> active(n);
-  for (int p = 0; p < n; ++p) {
-    active[p] = stations[p].size() >= 2 || (point_held(p) && !stations[p].empty());
-  }
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] == MeasurementStatus::kAccepted && !active[resolved_.measurement_point[m]]) {
-      status_[m] = MeasurementStatus::kUndetermined;
-    }
-  }
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  active_distances_.clear();
-  for (size_t d = 0; d < resolved_.distance_points.size(); ++d) {
-    const auto [a, b] = resolved_.distance_points[d];
-    if (!active[a] || !active[b]) continue;
-    active_distances_.push_back(static_cast<int>(d));
-    parent[find_root(parent, a)] = find_root(parent, b);
-  }
-  slot_.assign(n, PointSlot{});
-  group_points_.clear();
-  std::map<int, int> group_of_root;
-  for (int p = 0; p < n; ++p) {
-    if (!active[p]) continue;
-    const auto [it, inserted] =
-        group_of_root.emplace(find_root(parent, p), static_cast<int>(group_points_.size()));
-    if (inserted) group_points_.emplace_back();
-    slot_[p] = {it->second, 3 * static_cast<int>(group_points_[it->second].size())};
-    group_points_[it->second].push_back(p);
-  }
-  group_values_.assign(group_points_.size(), {});
-  for (size_t g = 0; g < group_points_.size(); ++g) {
-    for (int p : group_points_[g]) {
-      group_values_[g].insert(group_values_[g].end(), point_[p].data(), point_[p].data() + 3);
-    }
-  }
-}
-
-void Adjuster::build_problem(ceres::Problem* problem) {
-  terms_.clear();
-  auto block = [&](BlockKind kind, int id) -> double* {
-    switch (kind) {
-      case BlockKind::kInterior:
-        return interior_[id].data();
-      case BlockKind::kExterior:
-        return exterior_[id].data();
-      case BlockKind::kGroup:
-        return group_values_[id].data();
-    }
-    return nullptr;
-  };
-  auto add = [&](Term term) {
-    std::vector<double*> blocks;
-    for (const auto& [kind, id] : term.blocks) blocks.push_back(block(kind, id));
-    problem->AddResidualBlock(term.cost.get(), nullptr, blocks);
-    terms_.push_back(std::move(term));
-  };
-
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] != MeasurementStatus::kAccepted) continue;
-    const auto& meas = network_.measurements[m];
-    const int s = resolved_.measurement_station[m];
-    const int model = resolved_.station_model[s];
-    const PointSlot slot = slot_[resolved_.measurement_point[m]];
-    Term term;
-    term.kind = Term::Kind::kImage;
-    term.measurement = m;
-    term.cost = std::make_unique<PointInGroupCost>(
-        new AnalyticReprojectionCost(network_.models[model].sensor, meas.u, meas.v, meas.sigma_px),
-        static_cast<int>(group_values_[slot.group].size()), slot.offset);
-    term.blocks = {
-        {BlockKind::kInterior, model}, {BlockKind::kExterior, s}, {BlockKind::kGroup, slot.group}};
-    add(std::move(term));
-  }
-  for (int d : active_distances_) {
-    const auto& dist = network_.distances[d];
-    const auto [a, b] = resolved_.distance_points[d];
-    const int g = slot_[a].group;
-    Term term;
-    term.kind = Term::Kind::kDistance;
-    term.cost = std::make_unique<DistanceCost>(
-        static_cast<int>(group_values_[g].size()), slot_[a].offset, slot_[b].offset, dist.distance,
-        dist.sigma > 0.0 ? dist.sigma : options_.exact_distance_sigma_mm);
-    term.blocks = {{BlockKind::kGroup, g}};
-    add(std::move(term));
-  }
-  // Parameter observations (eq 4.40), the observed value being the given approximation; and
-  // the constants of kFixed values.
-  auto observe = [&](BlockKind kind, int id, int size, int index, double observed, double sigma) {
-    Term term;
-    term.kind = Term::Kind::kParameter;
-    term.cost = std::make_unique<ParameterObservationCost>(size, index, observed, sigma);
-    term.blocks = {{kind, id}};
-    add(std::move(term));
-  };
-  auto hold = [&](double* values, int size, const std::vector<int>& held) {
-    if (!problem->HasParameterBlock(values) || held.empty()) return;
-    if (static_cast<int>(held.size()) == size) {
-      problem->SetParameterBlockConstant(values);
-    } else {
-      problem->SetManifold(values, new ceres::SubsetManifold(size, held));
-    }
-  };
-  const bool unified = network_.design.unified_least_squares;
-  for (int m = 0; m < static_cast<int>(interior_.size()); ++m) {
-    if (!problem->HasParameterBlock(interior_[m].data())) continue;
-    std::vector<int> held;
-    const auto& model = network_.models[m];
-    for (int i = 0; i < kInteriorSize; ++i) {
-      const auto& prior = model.priors[i];
-      if (prior.mode == ParameterMode::kFixed) held.push_back(i);
-      if (prior.mode == ParameterMode::kObserved && unified) {
-        observe(BlockKind::kInterior, m, kInteriorSize, i,
-                sensor::interior_block(model.interior)[i], prior.sigma);
-      }
-    }
-    hold(interior_[m].data(), kInteriorSize, held);
-  }
-  for (int s = 0; s < static_cast<int>(exterior_.size()); ++s) {
-    if (!problem->HasParameterBlock(exterior_[s].data())) continue;
-    std::vector<int> held;
-    const auto& station = network_.stations[s];
-    for (int i = 0; i < kExteriorSize; ++i) {
-      const auto& prior = station.priors[i];
-      if (prior.mode == ParameterMode::kFixed || datum_held_[s][i]) held.push_back(i);
-      if (prior.mode == ParameterMode::kObserved && unified) {
-        observe(BlockKind::kExterior, s, kExteriorSize, i,
-                sensor::exterior_block(station.exterior)[i], prior.sigma);
-      }
-    }
-    hold(exterior_[s].data(), kExteriorSize, held);
-  }
-  for (int g = 0; g < static_cast<int>(group_points_.size()); ++g) {
-    std::vector<int> held;
-    const int size = static_cast<int>(group_values_[g].size());
-    for (int p : group_points_[g]) {
-      const auto& point = network_.points[p];
-      for (int k = 0; k < 3; ++k) {
-        const int index = slot_[p].offset + k;
-        if (point.priors[k].mode == ParameterMode::kFixed) held.push_back(index);
-        if (point.priors[k].mode == ParameterMode::kObserved && unified) {
-          observe(BlockKind::kGroup, g, size, index, point.xyz[k], point.priors[k].sigma);
-        }
-      }
-    }
-    hold(group_values_[g].data(), size, held);
-  }
-}
-
 // A strict solve follows the design's convergence control; a relaxed one (the rounds of data
 // snooping, which only rank residuals) stops at Ceres' default tolerances and accepts any usable
 // solution.
 bool Adjuster::solve(bool strict) {
-  update_groups();
+  parameters_.update_groups(resolved_, &status_);
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  build_problem(&problem);
-
-  ceres::Solver::Options solver;
-  // Points (groups) first: the Schur complement leaves the reduced camera system.
-  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  int cameras = 0;
-  for (auto& values : group_values_) ordering->AddElementToGroup(values.data(), 0);
-  auto add_camera_block = [&](double* values, int size) {
-    if (!problem.HasParameterBlock(values)) return;
-    ordering->AddElementToGroup(values, 1);
-    cameras += size;
-  };
-  for (auto& values : interior_) add_camera_block(values.data(), kInteriorSize);
-  for (auto& values : exterior_) add_camera_block(values.data(), kExteriorSize);
-  solver.linear_solver_ordering = ordering;
-  solver.linear_solver_type = cameras <= 600 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
-  solver.num_threads = options_.num_threads;
+  terms_ = build_problem(resolved_, options_, datum_, status_, &parameters_, &problem);
   const auto& design = network_.design;
-  solver.max_num_iterations = design.exact_iterations.value_or(design.max_iterations);
-  solver.function_tolerance =
-      std::max(design.convergence_tolerance, strict ? 0.0 : kRelaxedTolerance);
-  solver.parameter_tolerance = solver.function_tolerance;
-  solver.gradient_tolerance = 1e-4 * solver.function_tolerance;
-  if (strict && design.exact_iterations) {
-    solver.function_tolerance = solver.parameter_tolerance = solver.gradient_tolerance = 0.0;
-  }
-  solver.minimizer_progress_to_stdout = options_.log_iterations || design.output_iterations;
-  solver.logging_type =
-      solver.minimizer_progress_to_stdout ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
-  ceres::Solve(solver, &problem, &summary_);
-
-  for (size_t g = 0; g < group_points_.size(); ++g) {
-    for (int p : group_points_[g])
-      point_[p] = Eigen::Map<Eigen::Vector3d>(&group_values_[g][slot_[p].offset]);
-  }
-  // The estimated values: all, less the constant blocks and the held values of subset manifolds.
-  unknowns_ = 0;
-  std::vector<double*> blocks;
-  problem.GetParameterBlocks(&blocks);
-  for (double* b : blocks) {
-    if (!problem.IsParameterBlockConstant(b)) unknowns_ += problem.ParameterBlockTangentSize(b);
-  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options(design, options_, strict, &parameters_, problem), &problem, &summary);
+  parameters_.read_points_from_groups();
+  unknowns_ = estimated_values(problem);
   ++result_.adjustments;
-  result_.iterations = static_cast<int>(summary_.iterations.size()) - 1;
-  result_.termination = summary_.BriefReport();
-  result_.converged = summary_.termination_type == ceres::CONVERGENCE;
-  if (!strict) return summary_.IsSolutionUsable();
+  result_.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result_.termination = summary.BriefReport();
+  result_.converged = summary.termination_type == ceres::CONVERGENCE;
+  if (!strict) return summary.IsSolutionUsable();
   return result_.converged || design.force_complete || design.exact_iterations.has_value();
 }
 
 void Adjuster::evaluate_residuals() {
-  weighted_square_sum_ = 0.0;
-  long residual_count = 0;
-  for (const Term& term : terms_) {
-    std::vector<const double*> blocks;
-    for (const auto& [kind, id] : term.blocks) {
-      blocks.push_back(kind == BlockKind::kInterior   ? interior_[id].data()
-                       : kind == BlockKind::kExterior ? exterior_[id].data()
-                                                      : group_values_[id].data());
-    }
-    Eigen::VectorXd r(term.cost->num_residuals());
-    if (!term.cost->Evaluate(blocks.data(), r.data(), nullptr)) r.setConstant(std::nan(""));
-    weighted_square_sum_ += r.squaredNorm();
-    residual_count += r.size();
-    if (term.kind == Term::Kind::kImage) {
-      const double sigma = network_.measurements[term.measurement].sigma_px;
-      auto& out = result_.measurements[term.measurement];
-      out.residual_u = r[0] * sigma;
-      out.residual_v = r[1] * sigma;
-    }
-  }
-  result_.observations = residual_count;
+  const ResidualSums sums =
+      estimators::evaluate_residuals(terms_, parameters_, network_, &result_.measurements);
+  result_.observations = sums.count;
   result_.unknowns = unknowns_;
-  result_.redundancy = residual_count - unknowns_;
-  result_.sigma0 = result_.redundancy > 0
-                       ? std::sqrt(weighted_square_sum_ / static_cast<double>(result_.redundancy))
-                       : 0.0;
+  result_.redundancy = sums.count - unknowns_;
+  result_.sigma0 =
+      result_.redundancy > 0
+          ? std::sqrt(sums.weighted_square_sum / static_cast<double>(result_.redundancy))
+          : 0.0;
 }
 
-// The columns of a term's Jacobian: camera parameter indices of its interior/exterior blocks,
-// then its group's values.
-struct TermJacobian {
-  Eigen::MatrixXd jacobian;
-  std::vector<int> camera_columns;
-  int group = -1;
-};
-
 bool Adjuster::compute_cofactors() {
-  std::vector<bool> camera_free(camera_size(), true);
-  for (size_t m = 0; m < interior_.size(); ++m) {
-    for (int i = 0; i < kInteriorSize; ++i) {
-      camera_free[interior_column(static_cast<int>(m), i)] =
-          network_.models[m].priors[i].mode != ParameterMode::kFixed;
-    }
-  }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
-    for (int i = 0; i < kExteriorSize; ++i) {
-      camera_free[exterior_column(static_cast<int>(s), i)] =
-          network_.stations[s].priors[i].mode != ParameterMode::kFixed && !datum_held_[s][i];
-    }
-  }
-  std::vector<std::vector<bool>> group_free(group_points_.size());
-  for (size_t g = 0; g < group_points_.size(); ++g) {
-    for (int p : group_points_[g]) {
-      for (int k = 0; k < 3; ++k) {
-        group_free[g].push_back(network_.points[p].priors[k].mode != ParameterMode::kFixed);
-      }
-    }
-  }
-  // A camera block no measurement reaches is not in the problem: it is held.
-  std::vector<bool> reached(camera_size(), false);
-  std::vector<TermJacobian> jacobians(terms_.size());
-  for (size_t t = 0; t < terms_.size(); ++t) {
-    const Term& term = terms_[t];
-    TermJacobian& tj = jacobians[t];
-    std::vector<const double*> blocks;
-    std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> parts;
-    int columns = 0;
-    for (const auto& [kind, id] : term.blocks) {
-      int size = 0;
-      if (kind == BlockKind::kInterior) {
-        blocks.push_back(interior_[id].data());
-        size = kInteriorSize;
-        for (int i = 0; i < size; ++i) tj.camera_columns.push_back(interior_column(id, i));
-      } else if (kind == BlockKind::kExterior) {
-        blocks.push_back(exterior_[id].data());
-        size = kExteriorSize;
-        for (int i = 0; i < size; ++i) tj.camera_columns.push_back(exterior_column(id, i));
-      } else {
-        blocks.push_back(group_values_[id].data());
-        size = static_cast<int>(group_values_[id].size());
-        tj.group = id;
-      }
-      parts.emplace_back(term.cost->num_residuals(), size);
-      columns += size;
-    }
-    std::vector<double*> jacobian_pointers;
-    for (auto& part : parts) jacobian_pointers.push_back(part.data());
-    Eigen::VectorXd r(term.cost->num_residuals());
-    if (!term.cost->Evaluate(blocks.data(), r.data(), jacobian_pointers.data())) {
-      result_.messages.push_back("covariance: a residual cannot be evaluated at the solution");
-      return false;
-    }
-    // Blocks are ordered interior, exterior, group in every term, so the camera columns come first.
-    tj.jacobian.resize(term.cost->num_residuals(), columns);
-    int at = 0;
-    for (auto& part : parts) {
-      tj.jacobian.middleCols(at, part.cols()) = part;
-      at += static_cast<int>(part.cols());
-    }
-    for (int c : tj.camera_columns) reached[c] = true;
-  }
-  for (int c = 0; c < camera_size(); ++c) camera_free[c] = camera_free[c] && reached[c];
-
-  ArrowNormalEquations normal(camera_free, group_free);
-  for (const TermJacobian& tj : jacobians) normal.add(tj.jacobian, tj.camera_columns, tj.group);
-  try {
-    cofactors_ = invert(normal);
-  } catch (const SingularNormalEquations& e) {
-    result_.messages.push_back(std::string("covariance not computed: ") + e.what());
+  std::vector<TermJacobian> jacobians;
+  if (!estimators::compute_cofactors(resolved_, parameters_, datum_, terms_, &cofactors_,
+                                     &jacobians, &result_.messages)) {
     return false;
   }
 
-  // q_vv = q_ll - a Q_xx a^T per image coordinate, from the cofactors of the values it touches;
-  // whitened, q_ll = 1.
-  const double sigma0 = snooping_sigma0();
-  log_p_.assign(network_.measurements.size(), 0.0);
-  for (size_t t = 0; t < terms_.size(); ++t) {
-    if (terms_[t].kind != Term::Kind::kImage) continue;
-    const TermJacobian& tj = jacobians[t];
-    const int nc = static_cast<int>(tj.camera_columns.size());
-    const int ng = static_cast<int>(tj.jacobian.cols()) - nc;
-    Eigen::MatrixXd q(nc + ng, nc + ng);
-    for (int a = 0; a < nc; ++a) {
-      for (int b = 0; b < nc; ++b)
-        q(a, b) = cofactors_.camera_camera(tj.camera_columns[a], tj.camera_columns[b]);
-      for (int b = 0; b < ng; ++b)
-        q(a, nc + b) = q(nc + b, a) = cofactors_.camera_group[tj.group](tj.camera_columns[a], b);
-    }
-    q.bottomRightCorner(ng, ng) = cofactors_.group_group[tj.group];
-    const Eigen::Matrix2d h = tj.jacobian * q * tj.jacobian.transpose();
-    auto& out = result_.measurements[terms_[t].measurement];
-    const double sigma_px = network_.measurements[terms_[t].measurement].sigma_px;
-    out.redundancy_u = 1.0 - h(0, 0);
-    out.redundancy_v = 1.0 - h(1, 1);
-    auto standardised = [&](double v_px, double share) {
-      return share > kMinRedundancyShare ? v_px / sigma_px / (sigma0 * std::sqrt(share)) : 0.0;
-    };
-    out.w_u = standardised(out.residual_u, out.redundancy_u);
-    out.w_v = standardised(out.residual_v, out.redundancy_v);
-    const Eigen::Vector2d v(out.residual_u / sigma_px, out.residual_v / sigma_px);
-    log_p_[terms_[t].measurement] = log_p_of_point(Eigen::Matrix2d::Identity() - h, v, sigma0);
-  }
+  test_residuals(network_, terms_, jacobians, cofactors_, snooping_sigma0(), &result_.measurements,
+                 &log_p_);
   have_cofactors_ = true;
   return true;
 }
 
-// Data snooping tests a measurement's two coordinates together: a blunder displaces an image
-// point in some direction, and split over u and v it can hide behind a good ray of the same
-// point whose single coordinate looks worse (a 4-ray point of the strawlab data did just that).
-// The most improbable measurement goes first; its statistic is reported, and tested, as the 1-D
-// |w| of equal probability, so the critical value keeps its meaning (eq 4.31).
-bool Adjuster::reject_worst_blunder() {
-  const auto& test = network_.residual_test;
-  if (!test.iterative_rejection ||
-      static_cast<int>(result_.rejected.size()) >= test.max_rejections) {
-    return false;
-  }
-  double worst = 0.0;
-  size_t worst_index = 0;
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] != MeasurementStatus::kAccepted) continue;
-    if (log_p_[m] < worst) worst = log_p_[m], worst_index = m;
-  }
-  const double w = w_of_log_p(worst);
-  if (!(w > test.critical_snooping)) return false;
-  reject(worst_index, w);
-  return true;
-}
-
-void Adjuster::reject(size_t m, double w, bool ambiguous) {
-  status_[m] = MeasurementStatus::kRejectedBlunder;
-  const auto& meas = network_.measurements[m];
-  result_.rejected.push_back({m, meas.station, meas.point, meas.frame_number, w, ambiguous});
-}
-
-// v^T P v of two rays after their point is triangulated from them alone, with the current
-// cameras: 1 degree of freedom, 0 for rays that meet. From the point nearest to both rays, a few
-// Gauss-Newton steps on the image residuals (numeric derivatives: 3 unknowns, 4 residuals).
-double Adjuster::pair_square_sum(size_t a, size_t b) const {
-  const std::array<size_t, 2> index{a, b};
-  std::array<sensor::CameraModel, 2> cameras;
-  NearestPoint nearest;
-  for (int i = 0; i < 2; ++i) {
-    const auto& meas = network_.measurements[index[i]];
-    cameras[i] = camera(resolved_.measurement_station[index[i]]);
-    nearest.add(cameras[i].back_project({meas.u, meas.v}));
-  }
-  const auto residuals = [&](const Eigen::Vector3d& x) {
-    Eigen::Vector4d r;
-    for (int i = 0; i < 2; ++i) {
-      const auto& meas = network_.measurements[index[i]];
-      r.segment<2>(2 * i) =
-          (cameras[i].project(x).pixel - Eigen::Vector2d(meas.u, meas.v)) / meas.sigma_px;
-    }
-    return r;
-  };
-  Eigen::Vector3d x = nearest.solve();
-  for (int step = 0; step < 5; ++step) {
-    const Eigen::Vector4d r = residuals(x);
-    Eigen::Matrix<double, 4, 3> jacobian;
-    for (int k = 0; k < 3; ++k) {
-      const double h = 1e-6 * std::max(1.0, x.norm());
-      jacobian.col(k) = (residuals(x + h * Eigen::Vector3d::Unit(k)) - r) / h;
-    }
-    const Eigen::Vector3d dx =
-        (jacobian.transpose() * jacobian).ldlt().solve(-jacobian.transpose() * r);
-    if (!dx.allFinite()) break;
-    x += dx;
-  }
-  return residuals(x).squaredNorm();
-}
-
-// Once no measurement is left to reject, the points that lost a ray to data snooping and kept
-// two are looked at again, with the cleaned cameras. A blunder along the epipolar line of one
-// good ray can make the other good ray look worst; rejecting that one keeps the blunder,
-// undetectable in a two-ray point. Each two-ray subset of the three rays stands for the
-// hypothesis that the third ray is the wrong one, its v^T P v for the evidence against it.
-// When a gross error is there (a subset far beyond the critical value) but the evidence for
-// the rejection (the kept pair) over the best other hypothesis is less than the critical value,
-// the data cannot tell which ray was wrong: the kept rays go too, and with them the point.
-// True when any went.
-bool Adjuster::reject_ambiguous_points() {
-  const double sigma0 = snooping_sigma0();
-  const double critical = std::pow(network_.residual_test.critical_snooping * sigma0, 2);
-  constexpr double kGross = 4.0;  // a gross error: v^T P v beyond 4 x critical (2 x critical |w|)
-  std::vector<std::vector<size_t>> kept(point_.size());
-  for (size_t m = 0; m < status_.size(); ++m) {
-    if (status_[m] == MeasurementStatus::kAccepted) {
-      kept[resolved_.measurement_point[m]].push_back(m);
-    }
-  }
-  bool any = false;
-  for (size_t r = 0; r < result_.rejected.size(); ++r) {
-    const size_t m = result_.rejected[r].index;
-    const int point = resolved_.measurement_point[m];
-    const std::vector<size_t> rays = kept[point];
-    if (rays.size() != 2 || point_held(point)) continue;
-    const double without_m = pair_square_sum(rays[0], rays[1]);
-    const double a = pair_square_sum(m, rays[1]), b = pair_square_sum(m, rays[0]);
-    if (std::max(a, b) <= kGross * critical || std::min(a, b) - without_m > critical) continue;
-    for (size_t k : rays) reject(k, w_of_log_p(log_p_[k]), true);
-    kept[point].clear();
-    any = true;
-  }
-  return any;
-}
-
-DatumDefect Adjuster::datum_defect() const {
-  DatumDefect defect;
-  const bool scale = network_.distances.empty();
-  defect.size = scale ? 7 : 6;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  int count = 0;
-  for (const auto& points : group_points_) {
-    for (int p : points) centroid += point_[p], ++count;
-  }
-  if (count > 0) centroid /= count;
-  // The change of a position under translation k (0-2), rotation about axis k (3-5), scale (6).
-  auto motion = [&](const Eigen::Vector3d& x, int column) -> Eigen::Vector3d {
-    if (column < 3) return Eigen::Vector3d::Unit(column);
-    if (column < 6) return Eigen::Vector3d::Unit(column - 3).cross(x - centroid);
-    return x - centroid;
-  };
-  defect.camera = Eigen::MatrixXd::Zero(camera_size(), defect.size);
-  for (int s = 0; s < static_cast<int>(exterior_.size()); ++s) {
-    const Eigen::Vector3d centre(exterior_[s][0], exterior_[s][1], exterior_[s][2]);
-    const Eigen::Matrix3d r =
-        sensor::rotation_matrix(exterior_[s][3], exterior_[s][4], exterior_[s][5]);
-    for (int column = 0; column < defect.size; ++column) {
-      defect.camera.block(exterior_column(s, 0), column, 3, 1) = motion(centre, column);
-      if (column < 3 || column > 5) continue;
-      // The angles of the turned camera, by central differences (the angles are smooth away
-      // from phi = +-pi/2).
-      const double step = 1e-6;
-      const Eigen::Vector3d axis = Eigen::Vector3d::Unit(column - 3);
-      const auto plus = sensor::angles_from_rotation(Eigen::AngleAxisd(step, axis) * r);
-      const auto minus = sensor::angles_from_rotation(Eigen::AngleAxisd(-step, axis) * r);
-      auto wrapped = [](double a) { return std::remainder(a, 2.0 * M_PI); };
-      defect.camera(exterior_column(s, 3), column) = wrapped(plus.omega - minus.omega) / (2 * step);
-      defect.camera(exterior_column(s, 4), column) = wrapped(plus.phi - minus.phi) / (2 * step);
-      defect.camera(exterior_column(s, 5), column) = wrapped(plus.kappa - minus.kappa) / (2 * step);
-    }
-  }
-  for (const auto& points : group_points_) {
-    Eigen::MatrixXd rows(3 * points.size(), defect.size);
-    for (size_t i = 0; i < points.size(); ++i) {
-      for (int column = 0; column < defect.size; ++column) {
-        rows.block(3 * i, column, 3, 1) = motion(point_[points[i]], column);
-      }
-    }
-    defect.groups.push_back(rows);
-  }
-  return defect;
-}
-
-// Q' = S Q S^T with S = I - G (G_p^T G_p)^-1 G_p^T: G spans the datum defect, G_p is its object
-// point rows. Q' is the cofactor matrix of the solution whose object points do not move on
-// average under any similarity (inner constraints G_p^T dx = 0); the image residuals, sigma0 and
-// the interior orientation's cofactors do not depend on the datum.
-void Adjuster::s_transform(ArrowCofactors* q) const {
-  const DatumDefect g = datum_defect();
-  Eigen::MatrixXd gp_gp = Eigen::MatrixXd::Zero(g.size, g.size);
-  for (const auto& rows : g.groups) gp_gp += rows.transpose() * rows;
-  const Eigen::MatrixXd m = gp_gp.inverse();
-  Eigen::MatrixXd y_camera;
-  std::vector<Eigen::MatrixXd> y_groups;
-  q->solve(Eigen::MatrixXd::Zero(camera_size(), g.size), g.groups, &y_camera, &y_groups);
-  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(g.size, g.size);
-  for (size_t i = 0; i < g.groups.size(); ++i) c += g.groups[i].transpose() * y_groups[i];
-  auto transform = [&](Eigen::MatrixXd* block, const Eigen::MatrixXd& rows,
-                       const Eigen::MatrixXd& y) {
-    const Eigen::MatrixXd gm = rows * m;
-    *block += -gm * y.transpose() - y * gm.transpose() + gm * c * gm.transpose();
-  };
-  transform(&q->camera_camera, g.camera, y_camera);
-  for (size_t i = 0; i < g.groups.size(); ++i)
-    transform(&q->group_group[i], g.groups[i], y_groups[i]);
-}
-
+// The values of the last adjustment and, when it has cofactors, their precision: sigma0^2 times
+// the cofactors, of a free network S-transformed to the inner-constraint datum first.
 void Adjuster::fill_result() {
-  const double variance = result_.sigma0 * result_.sigma0;
-  if (have_cofactors_ && result_.datum == Datum::kInnerConstraints) s_transform(&cofactors_);
+  if (have_cofactors_ && result_.datum == Datum::kInnerConstraints)
+    s_transform(network_, parameters_, &cofactors_);
   result_.covariance_computed = have_cofactors_;
-  if (have_cofactors_) result_.camera_covariance = variance * cofactors_.camera_camera;
+  if (have_cofactors_) result_.camera_covariance = variance() * cofactors_.camera_camera;
+  fill_models();
+  fill_stations();
+  fill_points();
+}
 
-  for (size_t m = 0; m < interior_.size(); ++m) {
+void Adjuster::fill_models() {
+  for (size_t m = 0; m < parameters_.interior.size(); ++m) {
     ModelResult model;
     model.name = network_.models[m].name;
-    model.interior = sensor::interior_from_block(interior_[m].data());
+    model.interior = sensor::interior_from_block(parameters_.interior[m].data());
     if (have_cofactors_) {
-      const int at = interior_column(static_cast<int>(m), 0);
-      model.interior_covariance = result_.camera_covariance.block<10, 10>(at, at);
-      for (int i = 0; i < kInteriorSize; ++i) {
-        model.interior_sigma[i] = std::sqrt(std::max(0.0, model.interior_covariance(i, i)));
-        if (model.interior_sigma[i] > 0.0) model.estimated_interior.push_back(i);
-      }
-      const int n = static_cast<int>(model.estimated_interior.size());
-      model.interior_correlation.resize(n, n);
-      for (int a = 0; a < n; ++a) {
-        for (int b = 0; b < n; ++b) {
-          const int i = model.estimated_interior[a], j = model.estimated_interior[b];
-          model.interior_correlation(a, b) =
-              model.interior_covariance(i, j) / (model.interior_sigma[i] * model.interior_sigma[j]);
-        }
-      }
+      set_interior_precision(result_.camera_covariance,
+                             parameters_.interior_column(static_cast<int>(m), 0), &model);
     }
     result_.models.push_back(model);
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
+}
+
+void Adjuster::fill_stations() {
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     StationResult station;
     station.name = network_.stations[s].name;
     station.camera_id = network_.stations[s].camera_id;
-    station.exterior = sensor::exterior_from_block(exterior_[s].data());
-    for (int i = 0; have_cofactors_ && i < kExteriorSize; ++i) {
-      const int at = exterior_column(static_cast<int>(s), i);
-      station.exterior_sigma[i] = std::sqrt(std::max(0.0, result_.camera_covariance(at, at)));
+    station.exterior = sensor::exterior_from_block(parameters_.exterior[s].data());
+    if (have_cofactors_) {
+      set_exterior_precision(result_.camera_covariance,
+                             parameters_.exterior_column(static_cast<int>(s), 0), &station);
     }
     result_.stations.push_back(station);
   }
-  std::vector<double> square_sum(exterior_.size(), 0.0);
+  count_measurements();
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
+    if (result_.stations[s].rejected > 0) {
+      result_.messages.push_back("station " + quoted(result_.stations[s].name) + ": " +
+                                 std::to_string(result_.stations[s].rejected) +
+                                 " measurements removed");
+    }
+  }
+}
+
+// Each measurement's final status, and per station its accepted and removed measurements and
+// the rms of its accepted residuals.
+void Adjuster::count_measurements() {
+  std::vector<double> square_sum(parameters_.exterior.size(), 0.0);
   for (size_t m = 0; m < status_.size(); ++m) {
     auto& station = result_.stations[resolved_.measurement_station[m]];
     auto& out = result_.measurements[m];
@@ -970,42 +186,35 @@ void Adjuster::fill_result() {
       ++station.rejected;
     }
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
+  for (size_t s = 0; s < parameters_.exterior.size(); ++s) {
     auto& station = result_.stations[s];
     if (station.measurements > 0)
       station.rms_px = std::sqrt(square_sum[s] / (2.0 * station.measurements));
   }
-  for (size_t p = 0; p < point_.size(); ++p) {
+}
+
+void Adjuster::fill_points() {
+  for (size_t p = 0; p < parameters_.points.size(); ++p) {
     PointResult point;
     point.name = network_.points[p].name;
-    point.xyz = {point_[p].x(), point_[p].y(), point_[p].z()};
-    point.adjusted = slot_[p].group >= 0;
+    point.xyz = {parameters_.points[p].x(), parameters_.points[p].y(), parameters_.points[p].z()};
+    point.adjusted = parameters_.slot[p].group >= 0;
     if (point.adjusted && have_cofactors_) {
-      point.covariance = variance * cofactors_.group_group[slot_[p].group].block<3, 3>(
-                                        slot_[p].offset, slot_[p].offset);
-      for (int k = 0; k < 3; ++k) point.sigma[k] = std::sqrt(std::max(0.0, point.covariance(k, k)));
+      const PointSlot slot = parameters_.slot[p];
+      set_point_precision(cofactors_.group_group[slot.group], slot.offset, variance(), &point);
     }
     result_.points.push_back(point);
   }
-  for (size_t s = 0; s < exterior_.size(); ++s) {
-    if (result_.stations[s].rejected > 0) {
-      result_.messages.push_back("station " + quoted(result_.stations[s].name) + ": " +
-                                 std::to_string(result_.stations[s].rejected) +
-                                 " measurements removed");
-    }
-  }
 }
 
-BundleAdjustmentResult Adjuster::run() {
-  triangulate_approximations();
-  choose_datum();
+// Adjusts, computes the cofactors and rejects one blunder at a time until none is left.
+// Snooping rounds are relaxed; the last adjustment, after the last rejection, is strict.
+void Adjuster::adjust_and_snoop() {
   const auto& design = network_.design;
-  const auto& test = network_.residual_test;
-  result_.critical_w = test.critical_snooping;
-  const bool snoop =
-      design.statistical_tests && design.calculate_covariance && test.iterative_rejection;
-  // Snooping rounds are relaxed; the last adjustment, after the last rejection, is strict.
+  const bool snoop = design.statistical_tests && design.calculate_covariance &&
+                     network_.residual_test.iterative_rejection;
   bool strict = !snoop;
+  DataSnooping snooping(resolved_, parameters_, &status_, &result_.rejected);
   while (true) {
     const bool usable = solve(strict);
     evaluate_residuals();
@@ -1015,7 +224,8 @@ BundleAdjustmentResult Adjuster::run() {
       break;
     }
     if (!design.calculate_covariance || !compute_cofactors()) break;
-    if (snoop && (reject_worst_blunder() || reject_ambiguous_points())) {
+    if (snoop && (snooping.reject_worst_blunder(log_p_) ||
+                  snooping.reject_ambiguous_points(log_p_, snooping_sigma0()))) {
       strict = false;
     } else if (strict) {
       break;
@@ -1024,22 +234,27 @@ BundleAdjustmentResult Adjuster::run() {
     }
     have_cofactors_ = false;
   }
-  if (have_cofactors_ && design.statistical_tests) {
-    result_.tests_computed = true;
-    result_.variance_test = test_variance_factor(result_.sigma0 * result_.sigma0,
-                                                 result_.redundancy, test.alpha_variance);
-    // The shape of the distribution; its scale is the variance test's.
-    std::vector<double> w;
-    for (size_t m = 0; m < status_.size(); ++m) {
-      if (status_[m] != MeasurementStatus::kAccepted) continue;
-      const auto& out = result_.measurements[m];
-      const double scale =
-          test.snoop_with_a_posteriori_sigma0 || !(result_.sigma0 > 0.0) ? 1.0 : result_.sigma0;
-      if (out.redundancy_u > kMinRedundancyShare) w.push_back(out.w_u / scale);
-      if (out.redundancy_v > kMinRedundancyShare) w.push_back(out.w_v / scale);
-    }
-    result_.goodness_of_fit = test_goodness_of_fit(w, test.alpha_goodness);
-  }
+}
+
+// The tests of thesis section 4.1.4 on the last adjustment.
+void Adjuster::test_adjustment() {
+  const auto& test = network_.residual_test;
+  result_.tests_computed = true;
+  result_.variance_test = test_variance_factor(result_.sigma0 * result_.sigma0, result_.redundancy,
+                                               test.alpha_variance);
+  const std::vector<double> w =
+      goodness_of_fit_sample(result_, status_, test.snoop_with_a_posteriori_sigma0);
+  result_.goodness_of_fit = test_goodness_of_fit(w, test.alpha_goodness);
+}
+
+BundleAdjustmentResult Adjuster::run() {
+  parameters_.triangulate_approximations(resolved_, &status_, &result_.messages);
+  datum_ = choose_datum(resolved_, parameters_, &result_.messages);
+  result_.datum = datum_.datum;
+  const auto& test = network_.residual_test;
+  result_.critical_w = test.critical_snooping;
+  adjust_and_snoop();
+  if (have_cofactors_ && network_.design.statistical_tests) test_adjustment();
   if (!result_.rejected.empty()) {
     result_.messages.push_back("data snooping removed " + std::to_string(result_.rejected.size()) +
                                " measurements (|w| > " + std::to_string(test.critical_snooping) +
@@ -1049,57 +264,7 @@ BundleAdjustmentResult Adjuster::run() {
   return std::move(result_);
 }
 
-using util::printf_string;
-
 }  // namespace
-
-std::string format_summary(const BundleAdjustmentResult& r) {
-  std::string out;
-  out += printf_string("adjustments %d, last %d iterations, %s\n", r.adjustments, r.iterations,
-                       r.converged ? "converged" : "NOT converged");
-  out += printf_string("observations %ld, unknowns %ld, redundancy %ld, sigma0 %.4f\n",
-                       r.observations, r.unknowns, r.redundancy, r.sigma0);
-  if (r.tests_computed) {
-    const auto& v = r.variance_test;
-    out +=
-        printf_string("variance factor %.4f in [%.4f, %.4f] (chi-square, alpha %.3g): %s\n",
-                      v.variance_factor, v.lower, v.upper, v.alpha, v.passed ? "passed" : "FAILED");
-    const auto& g = r.goodness_of_fit;
-    out += printf_string(
-        "goodness of fit y %.2f <= %.2f (%d classes, %ld residuals): %s; KS D %.4f p %.3f\n",
-        g.statistic, g.critical, g.bins, g.samples, g.passed ? "passed" : "FAILED", g.ks_distance,
-        g.ks_p_value);
-    out += printf_string("data snooping |w| > %.2f: %zu removed%s\n", r.critical_w,
-                         r.rejected.size(), ambiguous_note(r.rejected).c_str());
-  }
-  for (const auto& m : r.models) {
-    out += "camera model " + m.name + ":";
-    const auto values = sensor::interior_block(m.interior);
-    for (int i = 0; i < kInteriorSize; ++i) {
-      out += printf_string(" %s %.6g +- %.2g", kInteriorNames[i], values[i], m.interior_sigma[i]);
-    }
-    out += "\n";
-  }
-  for (const auto& s : r.stations) {
-    out += printf_string("station %s: rms %.3f px, %ld measurements, %ld removed\n", s.name.c_str(),
-                         s.rms_px, s.measurements, s.rejected);
-  }
-  for (const auto& m : r.models) {
-    const int n = static_cast<int>(m.estimated_interior.size());
-    if (n == 0) continue;
-    out += "Camera " + m.name;
-    for (int i : m.estimated_interior) out += printf_string(" %6s", kInteriorNames[i]);
-    out += "\n";
-    for (int a = 0; a < n; ++a) {
-      out += printf_string("%-6s", kInteriorNames[m.estimated_interior[a]]);
-      for (int b = 0; b < n; ++b) {
-        out += b < a ? std::string(7, ' ') : printf_string(" %6.3f", m.interior_correlation(a, b));
-      }
-      out += "\n";
-    }
-  }
-  return out;
-}
 
 BundleAdjustmentResult adjust(const scene::Network& network, const BundleOptions& options) {
   Adjuster adjuster(network, options);

@@ -100,7 +100,7 @@ struct RejectedMeasurement {
   int64_t frame_number = -1;
   double w = 0.0;  // its test statistic (both coordinates) as the 1-D |w| of equal probability
   // Rejected with its point: one of the point's three rays was wrong, but which one the data
-  // could not tell (see Adjuster::reject_ambiguous_points); w is then below the critical value.
+  // could not tell (see data_snooping.hpp); w is then below the critical value.
   bool ambiguous = false;
 };
 
