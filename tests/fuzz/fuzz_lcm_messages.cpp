@@ -20,6 +20,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/marker_frame_t.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/subscriber.hpp"
 #include "syncap/silhouette_part_t.hpp"
@@ -54,6 +55,9 @@ bool within_documented_maximum(const syncap::camera_status_t& m) {
 }
 bool within_documented_maximum(const syncap::trigger_status_t& m) {
   return m.message.size() <= static_cast<std::size_t>(syncap::trigger_status_t::MAX_MESSAGE);
+}
+bool within_documented_maximum(const syncap::marker_frame_t& m) {
+  return m.num_markers <= syncap::marker_frame_t::MAX_MARKERS;
 }
 bool within_documented_maximum(const auto&) { return true; }  // fixed size
 
@@ -99,7 +103,7 @@ struct Harness {
     add<syncap::trigger_status_t>();
     add<syncap::trigger_t>();
     add<syncap::edge_command_t>();
-    add<syncap::blob_frame_t>();  // twice: eight types for three bits, the most complex one
+    add<syncap::marker_frame_t>();  // the eighth: three bits select the type
   }
 };
 
