@@ -1,11 +1,11 @@
 #include "calibration/network_start.hpp"
 
+#include "geometry/resection.hpp"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core.hpp>
 #include <sstream>
 
 #include "geometry/triangulation.hpp"
@@ -246,39 +246,26 @@ bool orient_by_relative_orientation(StartState& s, NetworkStartEdge& edge, int p
   return true;
 }
 
-// Spatial resection on the triangulated points the station sees (EPnP in RANSAC). OpenCV's
-// camera frame is the sensor frame turned by F = diag(1, -1, -1): R_cv = F R^T, t = -R_cv X0.
+// Spatial resection on the triangulated points the station sees (geometry::resect: EPnP in
+// RANSAC).
 bool orient_by_resection(StartState& s, int station, int* usable) {
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> image;
+  std::vector<Eigen::Vector3d> object;
+  std::vector<Eigen::Vector2d> directions;
   for (const Track& track : s.tracks) {
     const Observation* o = track.in(station);
     if (o == nullptr || !track.triangulated) continue;
-    object.emplace_back(track.xyz.x(), track.xyz.y(), track.xyz.z());
-    image.emplace_back(o->direction.x(), -o->direction.y());
+    object.push_back(track.xyz);
+    directions.emplace_back(o->direction.x(), o->direction.y());
   }
   *usable = static_cast<int>(object.size());
-  if (*usable < std::max(6, s.options.min_shared_observations)) return false;
-  cv::Mat rvec, tvec;
-  std::vector<int> inliers;
-  const double threshold = s.options.relative.ransac_threshold_px / s.pixels_per_unit[station];
-  if (!cv::solvePnPRansac(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvec, tvec, false,
-                          1000, static_cast<float>(threshold), 0.999, inliers, cv::SOLVEPNP_EPNP) ||
-      inliers.size() < 6) {
-    return false;
-  }
-  cv::Mat r_cv_mat;
-  cv::Rodrigues(rvec, r_cv_mat);
-  Eigen::Matrix3d r_cv;
-  Eigen::Vector3d t;
-  for (int i = 0; i < 3; ++i) {
-    t(i) = tvec.at<double>(i);
-    for (int j = 0; j < 3; ++j) r_cv(i, j) = r_cv_mat.at<double>(i, j);
-  }
-  const Eigen::Matrix3d f = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  geometry::ResectionOptions options;
+  options.min_points = std::max(6, s.options.min_shared_observations);
+  options.inlier_threshold = s.options.relative.ransac_threshold_px / s.pixels_per_unit[station];
+  const auto resection = geometry::resect(object, directions, options);
+  if (!resection) return false;
   Pose& pose = s.poses[station];
-  pose.rotation = r_cv.transpose() * f;
-  pose.centre = -r_cv.transpose() * t;
+  pose.rotation = resection->rotation;
+  pose.centre = resection->centre;
   pose.oriented = true;
   s.report.resected.push_back(s.network.stations[station].name);
   return true;
