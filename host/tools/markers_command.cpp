@@ -12,6 +12,7 @@
 #include "outputs/json_lines_stage.hpp"
 #include "pipeline/host_node.hpp"
 #include "reconstruction/marker_stage.hpp"
+#include "reconstruction/rigid_set_stage.hpp"
 #include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -33,7 +34,7 @@ struct MarkersArgs {
   std::vector<double> volume;
   int max_lag = 30;
   bool keep_not_round = false;
-  tracking::TrackerOptions tracking;
+  host_app::TrackingArgs tracking;
 };
 
 // Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
@@ -85,6 +86,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
     if (!a.volume.empty()) a.matching.volume = host_app::parse_volume(a.volume);
+    host_app::load_rigid_sets(a.tracking);
   } catch (const CLI::CallForHelp&) {
     out << app.help();
     return kExitOk;
@@ -149,11 +151,18 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
       std::make_unique<reconstruction::MarkerStage>(cameras, a.matching, a.keep_not_round);
   const reconstruction::MarkerStage* markers = marker_stage.get();
   tracking::TrackHistory history;
-  auto tracking_stage = std::make_unique<reconstruction::TrackingStage>(a.tracking, &history);
+  auto tracking_stage =
+      std::make_unique<reconstruction::TrackingStage>(a.tracking.tracker, &history);
   const reconstruction::TrackingStage* tracker = tracking_stage.get();
   std::vector<std::unique_ptr<pipeline::Stage>> stages;
   stages.push_back(std::move(marker_stage));
   stages.push_back(std::move(tracking_stage));
+  const reconstruction::RigidSetStage* rigid = nullptr;
+  if (!a.tracking.rigid_sets.empty()) {
+    auto stage = std::make_unique<reconstruction::RigidSetStage>(a.tracking.rigid_sets);
+    rigid = stage.get();
+    stages.push_back(std::move(stage));
+  }
   stages.push_back(std::make_unique<outputs::JsonLinesStage>(jsonl, true));
   pipeline::HostNode node({expected_cameras(a, cameras), a.max_lag, 1'000'000}, std::move(stages));
   LcmLogReader reader(log);
@@ -176,6 +185,7 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
       << tracker->tracker().counters().tracks_started << " tracks; "
       << (std::filesystem::path(a.out) / "markers.jsonl").string() << " (and markers.c3d, "
       << "markers.trc)\n";
+  if (rigid != nullptr) out << rigid->summary();
   return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;
 }
 

@@ -13,6 +13,7 @@
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
 #include "outputs/json_lines_stage.hpp"
+#include "reconstruction/rigid_set_stage.hpp"
 #include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "syncap/camera_status_t.hpp"
@@ -30,6 +31,7 @@ void on_signal(int) { g_stop = true; }
 struct Stages {
   std::vector<std::unique_ptr<pipeline::Stage>> chain;
   reconstruction::MarkerStage* markers = nullptr;
+  reconstruction::RigidSetStage* rigid_sets = nullptr;
   outputs::MarkerMessageStage* marker_message = nullptr;
 };
 
@@ -41,7 +43,12 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
                                                                o.matching, o.keep_not_round);
     s.markers = stage.get();
     s.chain.push_back(std::move(stage));
-    s.chain.push_back(std::make_unique<reconstruction::TrackingStage>(o.tracking));
+    s.chain.push_back(std::make_unique<reconstruction::TrackingStage>(o.tracking.tracker));
+    if (!o.tracking.rigid_sets.empty()) {
+      auto rigid = std::make_unique<reconstruction::RigidSetStage>(o.tracking.rigid_sets);
+      s.rigid_sets = rigid.get();
+      s.chain.push_back(std::move(rigid));
+    }
     if (o.marker_message) {
       auto message = std::make_unique<outputs::MarkerMessageStage>(
           [&lcm](const marker_frame_t& m) { lcm.publish(proto::kMarkersChannel, &m); });
@@ -153,7 +160,8 @@ int run(const host_app::HostOptions& o) {
   if (!o.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
   receive(lcm, node, o, last_pulse);
   node.finish();
-  host_app::print_summary({node, sub, arrivals, stages.markers, stages.marker_message}, std::cout);
+  host_app::print_summary(
+      {node, sub, arrivals, stages.markers, stages.marker_message, stages.rigid_sets}, std::cout);
   return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "app/host_options.hpp"
 
+#include "tracking/rigid_set_file.hpp"
+
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <ostream>
@@ -23,12 +25,26 @@ std::set<int> parse_camera_list(const std::string& text) {
   return ids;
 }
 
-void add_tracking_options(CLI::App& app, tracking::TrackerOptions& options) {
+void add_tracking_options(CLI::App& app, TrackingArgs& args) {
   app.add_option_function<double>(
-         "--acceleration", [&options](double m_s2) { options.acceleration_mm_s2 = m_s2 * 1000.0; },
+         "--acceleration",
+         [&args](double m_s2) { args.tracker.acceleration_mm_s2 = m_s2 * 1000.0; },
          "the markers' accelerations the tracker allows for, m/s^2 (default 10): larger "
          "widens every track's gate")
       ->check(CLI::Range(0.1, 1000.0));
+  app.add_option("--rigid-sets", args.rigid_sets_path,
+                 "rigid marker sets (YAML, docs/reconstruction.md): each set's 6-DoF pose in "
+                 "every frame, found among the tracked markers")
+      ->check(CLI::ExistingFile);
+}
+
+void load_rigid_sets(TrackingArgs& args) {
+  if (args.rigid_sets_path.empty()) return;
+  try {
+    args.rigid_sets = tracking::read_rigid_sets(args.rigid_sets_path);
+  } catch (const tracking::TrackingFileError& e) {
+    throw CLI::ValidationError("--rigid-sets", e.what());
+  }
 }
 
 Eigen::AlignedBox3d parse_volume(const std::vector<double>& v) {
@@ -95,6 +111,7 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
     app.parse(reversed);
     o.cameras = parse_camera_list(cameras);
     if (!volume.empty()) o.matching.volume = parse_volume(volume);
+    load_rigid_sets(o.tracking);
   } catch (const CLI::CallForHelp&) {
     out << app.help();
     return {std::nullopt, 0};

@@ -9,12 +9,20 @@
 
 #include "matching/marker_matcher.hpp"
 #include "tracking/marker_tracker.hpp"
+#include "tracking/rigid_set.hpp"
 
 namespace CLI {
 class App;
 }
 
 namespace syncap::host_app {
+
+// The tracking options syncap-host and syncap markers share.
+struct TrackingArgs {
+  tracking::TrackerOptions tracker;
+  std::string rigid_sets_path;                 // --rigid-sets FILE
+  std::vector<tracking::RigidSet> rigid_sets;  // read from it once parsed (load_rigid_sets)
+};
 
 struct HostOptions {
   std::set<int> cameras{0};
@@ -29,15 +37,18 @@ struct HostOptions {
   matching::MatchOptions matching;
   bool keep_not_round = false;  // also match blobs the edge flagged NOT_ROUND
   bool marker_message = true;   // publish marker_frame_t on SYNCAP_MARKERS
-  tracking::TrackerOptions tracking;
+  TrackingArgs tracking;
 };
 
 // "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and
 // syncap markers share it).
 std::set<int> parse_camera_list(const std::string& text);
-// --acceleration (m/s^2, the tracker's process noise) on `app`, into `options` (in mm/s^2);
-// syncap-host and syncap markers share it.
-void add_tracking_options(CLI::App& app, tracking::TrackerOptions& options);
+// --acceleration (m/s^2, the tracker's process noise, into mm/s^2) and --rigid-sets FILE on
+// `app`; syncap-host and syncap markers share them.
+void add_tracking_options(CLI::App& app, TrackingArgs& args);
+// Reads args.rigid_sets_path, if given, into args.rigid_sets; CLI::ValidationError naming
+// --rigid-sets with the file's "path:line: problem" when it cannot be used.
+void load_rigid_sets(TrackingArgs& args);
 // XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm] as a box, min < max; CLI::ValidationError naming --volume.
 Eigen::AlignedBox3d parse_volume(const std::vector<double>& values);
 

@@ -71,6 +71,7 @@ void FrameLineStage::process(pipeline::FrameWork& work) {
 void print_summary(const SummaryInputs& in, std::ostream& out) {
   print_grouping(in, out);
   if (in.markers != nullptr) print_reconstruction(in, out);
+  if (in.rigid_sets != nullptr) out << in.rigid_sets->summary();
   out.flush();
 }
 

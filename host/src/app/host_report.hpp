@@ -7,6 +7,7 @@
 #include "outputs/marker_message_stage.hpp"
 #include "pipeline/host_node.hpp"
 #include "reconstruction/marker_stage.hpp"
+#include "reconstruction/rigid_set_stage.hpp"
 #include "syncap/proto/subscriber.hpp"
 
 namespace syncap::host_app {
@@ -37,6 +38,7 @@ struct SummaryInputs {
   const Arrivals& arrivals;
   const reconstruction::MarkerStage* markers = nullptr;         // with --calibration
   const outputs::MarkerMessageStage* marker_message = nullptr;  // with --calibration
+  const reconstruction::RigidSetStage* rigid_sets = nullptr;    // with --rigid-sets
 };
 
 void print_summary(const SummaryInputs& in, std::ostream& out);

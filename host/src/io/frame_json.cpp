@@ -42,6 +42,21 @@ nlohmann::json marker_json(const pipeline::Marker3d& m) {
   return j;
 }
 
+nlohmann::json rigid_body_json(const pipeline::RigidBody& b) {
+  nlohmann::json j{{"name", b.name}, {"found", b.found}};
+  if (!b.found) return j;
+  nlohmann::json rotation = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) rotation.push_back(std::round(b.rotation(r, c) * 1e9) / 1e9);
+  j["translation"] = {micrometres(b.translation_mm.x()), micrometres(b.translation_mm.y()),
+                      micrometres(b.translation_mm.z())};
+  j["rotation"] = rotation;
+  j["rms_mm"] = micrometres(b.rms_mm);
+  j["marker_ids"] = b.marker_ids;
+  if (b.collinear) j["collinear"] = true;
+  return j;
+}
+
 nlohmann::json frame_json(const pipeline::FrameWork& work, bool with_markers) {
   const host::FrameGroup& g = work.group;
   nlohmann::json j{{"frame", g.frame_number},
@@ -63,6 +78,11 @@ nlohmann::json frame_json(const pipeline::FrameWork& work, bool with_markers) {
     nlohmann::json markers = nlohmann::json::array();
     for (const pipeline::Marker3d& m : work.markers) markers.push_back(marker_json(m));
     j["markers"] = markers;
+  }
+  if (!work.rigid_bodies.empty()) {
+    nlohmann::json bodies = nlohmann::json::array();
+    for (const pipeline::RigidBody& b : work.rigid_bodies) bodies.push_back(rigid_body_json(b));
+    j["rigid_sets"] = bodies;
   }
   return j;
 }

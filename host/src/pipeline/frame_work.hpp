@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "aggregator/frame_grouper.hpp"
@@ -22,11 +23,23 @@ struct Marker3d {
   bool two_cameras_only() const { return camera_ids.size() == 2; }
 };
 
+// The 6-DoF pose of a rigid marker set in one frame (tracking::RigidSetPose, named).
+struct RigidBody {
+  std::string name;
+  bool found = false;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // world = rotation * set + translation
+  Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
+  double rms_mm = 0;
+  bool collinear = false;       // a wand: the roll about its line is unknown
+  std::vector<int> marker_ids;  // the trajectory id of each of its markers (-1: not found)
+};
+
 struct FrameWork {
   host::FrameGroup group;
   // When the grouper handed the group out: the host's time for it starts here.
   std::chrono::steady_clock::time_point ready;
   std::vector<Marker3d> markers;
+  std::vector<RigidBody> rigid_bodies;  // one per set of the rigid set stage, found or not
 };
 
 // A step of the host's per-frame work. Stages run in order on the pipeline's worker thread, one

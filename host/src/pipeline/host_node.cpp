@@ -42,7 +42,7 @@ void HostNode::hand_out(std::vector<host::FrameGroup> groups) {
         queue_.pop_front();  // the oldest: live output wants the newest frames
         ++stats_.dropped;
       }
-      queue_.push_back(FrameWork{std::move(g), now, {}});
+      queue_.push_back(FrameWork{std::move(g), now, {}, {}});
     }
   }
   wake_.notify_one();

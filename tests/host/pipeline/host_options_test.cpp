@@ -28,7 +28,7 @@ TEST(HostOptions, MarkersOptionsAreParsed) {
   EXPECT_FALSE(p.options->marker_message);
   EXPECT_EQ(p.options->max_lag, 30);
   EXPECT_TRUE(p.options->keep_not_round);
-  EXPECT_DOUBLE_EQ(p.options->tracking.acceleration_mm_s2, 25000);
+  EXPECT_DOUBLE_EQ(p.options->tracking.tracker.acceleration_mm_s2, 25000);
 }
 
 TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
