@@ -1,5 +1,7 @@
 #include "sensor/camera_file.hpp"
 
+#include <cmath>
+
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -179,11 +181,18 @@ CalibrationQuality read_quality(const json& object, const std::string& where) {
     if (it == object.end() || it->is_null()) return std::nullopt;
     return number(name);
   };
+  // A count: a whole number a long holds (a double beyond 2^53 is no count anyone wrote; casting
+  // one beyond the long's range is undefined, found by fuzzing).
+  const auto count = [&](const char* name) -> long {
+    const double v = number(name);
+    if (v != std::floor(v) || v > 9.0e15) fail(name, "must be a whole number below 9e15");
+    return static_cast<long>(v);
+  };
   CalibrationQuality q;
   q.sigma0_px = number("sigma0_px");
   q.rms_px = number("rms_px");
-  q.observations = static_cast<long>(number("observations"));
-  q.outliers_removed = static_cast<long>(number("outliers_removed"));
+  q.observations = count("observations");
+  q.outliers_removed = count("outliers_removed");
   q.wand_length_mean_mm = optional_number("wand_length_mean_mm");
   q.wand_length_sd_mm = optional_number("wand_length_sd_mm");
   if (const auto verdict = object.find("verdict"); verdict != object.end()) {

@@ -202,6 +202,18 @@ TEST(CameraFile, QualityBlockRoundTripsAndIsChecked) {
   j = nlohmann::json::parse(format_camera_set(set));
   j["quality"].erase("rms_px");
   EXPECT_THROW(parse_camera_set(j.dump(), "q.json"), CameraFileError);
+  // Found by fuzzing: a count beyond a long's range was cast (undefined behaviour).
+  for (const double bad : {3.2e26, 12.5}) {
+    j = nlohmann::json::parse(format_camera_set(set));
+    j["quality"]["outliers_removed"] = bad;
+    try {
+      parse_camera_set(j.dump(), "q.json");
+      FAIL() << bad << " was accepted as a count";
+    } catch (const CameraFileError& e) {
+      EXPECT_STREQ(e.what(),
+                   "q.json: field \"quality.outliers_removed\" must be a whole number below 9e15");
+    }
+  }
 }
 
 }  // namespace
