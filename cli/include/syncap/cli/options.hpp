@@ -1,0 +1,138 @@
+// What every program's CLI11 option parsing shares (issue 16): one way to parse and to map
+// CLI11's outcomes to the exit rule, and the number checks CLI11's own conversions lack.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <ostream>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace syncap::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitUsage = 2;  // a usage error or bad input
+
+// Parses `args` (without the program's name) into `app`, then runs `checks` (which throw
+// CLI::ValidationError naming the option and the value). The exit status when the run is over
+// already: --help (0, the help on `out`) or a usage error (2: "NAME: what" and the help on
+// `err`); nullopt to go on.
+inline std::optional<int> parse(CLI::App& app, std::span<const std::string> args, std::ostream& out,
+                                std::ostream& err, const std::function<void()>& checks = {}) {
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
+  try {
+    app.parse(reversed);
+    if (checks) checks();
+  } catch (const CLI::CallForHelp&) {
+    out << app.help();
+    return kExitOk;
+  } catch (const CLI::ExtrasError&) {
+    // CLI11 2.1's own message names them back to front ("nan --k" for "--k nan").
+    err << app.get_name() << ": not expected:";
+    for (const std::string& arg : app.remaining()) err << ' ' << arg;
+    err << '\n' << app.help();
+    return kExitUsage;
+  } catch (const CLI::Error& e) {
+    err << app.get_name() << ": " << e.what() << '\n' << app.help();
+    return kExitUsage;
+  }
+  return std::nullopt;
+}
+
+// The whole text as a finite number (strtod's forms). CLI11's own conversion takes "nan" and
+// "inf", and its Range lets NaN through.
+inline std::optional<double> finite_number(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+// The whole text as a decimal whole number in [low, high]. CLI11's own conversion reads "010"
+// as octal and "0x10" as hex.
+inline std::optional<long long> whole_number(const std::string& text, long long low,
+                                             long long high) {
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v < low || v > high)
+    return std::nullopt;
+  return v;
+}
+
+inline std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// A finite number for which `ok` holds; `what` says which ("a number > 0"), in the help and
+// in the error: "--opt: 'x' is not a number > 0".
+inline CLI::Validator number(
+    const std::string& what, const std::function<bool(double)>& ok = [](double) { return true; }) {
+  return CLI::Validator(
+      [what, ok](std::string& text) -> std::string {
+        const std::optional<double> v = finite_number(text);
+        return v && ok(*v) ? std::string() : "'" + text + "' is not " + what;
+      },
+      what);
+}
+
+inline CLI::Validator finite() { return number("a finite number"); }
+inline CLI::Validator positive() {
+  return number("a number > 0", [](double v) { return v > 0; });
+}
+inline CLI::Validator non_negative() {
+  return number("a number >= 0", [](double v) { return v >= 0; });
+}
+inline CLI::Validator number_in(double low, double high) {
+  return number("a number in [" + number_text(low) + ", " + number_text(high) + "]",
+                [low, high](double v) { return v >= low && v <= high; });
+}
+
+// A decimal whole number in [low, high]; the text is rewritten without leading zeros, so that
+// CLI11 does not read it as octal.
+inline CLI::Validator whole_in(long long low, long long high) {
+  const std::string what =
+      "a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "]";
+  return CLI::Validator(
+      [what, low, high](std::string& text) -> std::string {
+        const std::optional<long long> v = whole_number(text, low, high);
+        if (!v) return "'" + text + "' is not " + what;
+        text = std::to_string(*v);
+        return {};
+      },
+      what);
+}
+
+// One of the given words: "--opt: 'x' is not one of a, b".
+inline CLI::Validator one_of(std::initializer_list<std::string> words) {
+  std::string list;
+  for (const std::string& w : words) list += (list.empty() ? "" : ", ") + w;
+  const std::vector<std::string> allowed(words);
+  return CLI::Validator(
+      [list, allowed](std::string& text) -> std::string {
+        for (const std::string& w : allowed)
+          if (text == w) return {};
+        return "'" + text + "' is not one of " + list;
+      },
+      "one of " + list);
+}
+
+// An option shown as "NAME METAVAR" in --help, whose text `check` accepts before CLI11 converts
+// it into `value`.
+template <class T>
+CLI::Option* add_checked(CLI::App& app, const std::string& name, T& value,
+                         const std::string& metavar, const CLI::Validator& check,
+                         const std::string& meaning) {
+  return app.add_option(name, value, meaning)->option_text(metavar)->check(check);
+}
+
+}  // namespace syncap::cli
