@@ -286,11 +286,8 @@ void check_args(CalibrateArgs& a) {
 // Parses into `a`; an exit status when the run is over already (help, usage error).
 std::optional<int> parse_args(std::span<const std::string> args, CalibrateArgs& a,
                               std::ostream& out, std::ostream& err) {
-  CLI::App app(kDescription, "syncap calibrate");
-  app.footer(kFooter);
+  cli::App app("syncap calibrate", kDescription, kFooter);
   app.get_formatter()->column_width(34);
-  // As before CLI11: an option given twice takes the last value.
-  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   add_source_options(app, a);
   add_wand_options(app, a);
   add_camera_options(app, a);

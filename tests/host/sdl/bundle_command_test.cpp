@@ -273,10 +273,23 @@ TEST(BundleCommand, ErrorsNameTheFileAndThePlace) {
 
   run = run_bundle({});
   EXPECT_EQ(run.status, kExitUsage);
-  EXPECT_EQ(run.err.rfind("syncap bundle: no FILE given\nusage: syncap bundle", 0), 0u);
+  EXPECT_EQ(run.err.rfind("syncap bundle: FILE is required\n", 0), 0u) << run.err;
+  EXPECT_NE(run.err.find("Usage: syncap bundle [OPTIONS] FILE"), std::string::npos) << run.err;
+  run = run_bundle({"a.sdl", "b.sdl"});
+  EXPECT_EQ(run.status, kExitUsage);
+  EXPECT_EQ(run.err.rfind("syncap bundle: not expected: b.sdl\n", 0), 0u) << run.err;
+  run = run_bundle({"a.sdl", "--output", "d"});
+  EXPECT_EQ(run.status, kExitUsage);
+  EXPECT_EQ(run.err.rfind("syncap bundle: not expected: --output d\n", 0), 0u) << run.err;
   run = run_bundle({"--help"});
   EXPECT_EQ(run.status, kExitOk);
-  EXPECT_EQ(run.out, kBundleUsage);
+  // Complete: the design tags, every option with its meaning, the exit statuses.
+  for (const char* text :
+       {"Usage: syncap bundle [OPTIONS] FILE", "SIMULATE", "SORT", "OUTPUT MESSAGES",
+        "OUTPUT MISCLOSURES", "OUTPUT CORRECTIONS", "OUTPUT COEFFICIENT MATRIX", "RESIDUALS",
+        "DEBUG", "--out DIR", "writes DIR/adjusted.sdl", "Exit status: 0 adjusted"}) {
+    EXPECT_NE(run.out.find(text), std::string::npos) << text << '\n' << run.out;
+  }
   std::filesystem::remove_all(dir);
 }
 

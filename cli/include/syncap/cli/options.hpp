@@ -20,6 +20,17 @@ namespace syncap::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 2;  // a usage error or bad input
 
+// A program's parser: `about` above the options in --help, `footer` (the exit statuses) below.
+// As the hand-written argv loops did, an option given twice takes the last value.
+class App : public CLI::App {
+ public:
+  App(const std::string& name, const std::string& about, const std::string& footer)
+      : CLI::App(about, name) {
+    this->footer(footer);
+    option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+};
+
 // Parses `args` (without the program's name) into `app`, then runs `checks` (which throw
 // CLI::ValidationError naming the option and the value). The exit status when the run is over
 // already: --help (0, the help on `out`) or a usage error (2: "NAME: what" and the help on
