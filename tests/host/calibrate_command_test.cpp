@@ -139,9 +139,9 @@ TEST(CalibrateCommand, UsageErrorsNameTheOption) {
       kExitUsage);
   EXPECT_NE(err.find("lcm: needs --cameras"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--bogus"}, out, err), kExitUsage);
-  EXPECT_NE(err.find("not expected: --bogus"), std::string::npos) << err;
+  EXPECT_NE(err.find("unknown option '--bogus'"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--k", "nan"}, out, err), kExitUsage);
-  EXPECT_NE(err.find("not expected: --k nan"), std::string::npos) << err;
+  EXPECT_NE(err.find("unknown option '--k'"), std::string::npos) << err;
   EXPECT_EQ(run({"--led", "--out", "d"}, out, err), kExitUsage);
   EXPECT_NE(err.find("--input is required"), std::string::npos) << err;
 }

@@ -277,10 +277,10 @@ TEST(BundleCommand, ErrorsNameTheFileAndThePlace) {
   EXPECT_NE(run.err.find("Usage: syncap bundle [OPTIONS] FILE"), std::string::npos) << run.err;
   run = run_bundle({"a.sdl", "b.sdl"});
   EXPECT_EQ(run.status, kExitUsage);
-  EXPECT_EQ(run.err.rfind("syncap bundle: not expected: b.sdl\n", 0), 0u) << run.err;
+  EXPECT_EQ(run.err.rfind("syncap bundle: unexpected argument 'b.sdl'\n", 0), 0u) << run.err;
   run = run_bundle({"a.sdl", "--output", "d"});
   EXPECT_EQ(run.status, kExitUsage);
-  EXPECT_EQ(run.err.rfind("syncap bundle: not expected: --output d\n", 0), 0u) << run.err;
+  EXPECT_EQ(run.err.rfind("syncap bundle: unknown option '--output'\n", 0), 0u) << run.err;
   run = run_bundle({"--help"});
   EXPECT_EQ(run.status, kExitOk);
   // Complete: the design tags, every option with its meaning, the exit statuses.

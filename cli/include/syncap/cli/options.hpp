@@ -3,11 +3,13 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <initializer_list>
+#include <iostream>
 #include <optional>
 #include <ostream>
 #include <span>
@@ -45,16 +47,24 @@ inline std::optional<int> parse(CLI::App& app, std::span<const std::string> args
     out << app.help();
     return kExitOk;
   } catch (const CLI::ExtrasError&) {
-    // CLI11 2.1's own message names them back to front ("nan --k" for "--k nan").
-    err << app.get_name() << ": not expected:";
-    for (const std::string& arg : app.remaining()) err << ' ' << arg;
-    err << '\n' << app.help();
+    // Named as the argv loops did (CLI11 2.1 lists all that is left, back to front).
+    const std::string first = app.remaining().front();
+    err << app.get_name() << ": "
+        << (first.starts_with("-") ? "unknown option '" : "unexpected argument '") << first << "'\n"
+        << app.help();
     return kExitUsage;
   } catch (const CLI::Error& e) {
     err << app.get_name() << ": " << e.what() << '\n' << app.help();
     return kExitUsage;
   }
   return std::nullopt;
+}
+
+// The same for a program's main: its arguments after the name, help on stdout, errors on stderr.
+inline std::optional<int> parse_main(CLI::App& app, int argc, char** argv,
+                                     const std::function<void()>& checks = {}) {
+  const std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
+  return parse(app, args, std::cout, std::cerr, checks);
 }
 
 // The whole text as a finite number (strtod's forms). CLI11's own conversion takes "nan" and
