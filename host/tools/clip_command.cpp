@@ -70,8 +70,8 @@ void add_clip_options(CLI::App& app, ClipArgs& a) {
                    "grow each outline by PX pixels (default 8)");
   app.add_option("--camera", a.only, "only this camera (repeatable)")
       ->option_text("ID")
-      ->allow_extra_args(false)  // one id per --camera, as before
-      ->check(cli::whole_in(0, proto::kMaxCameraId));
+      ->allow_extra_args(false)                            // one id per --camera, as before
+      ->transform(cli::whole_in(0, proto::kMaxCameraId));  // "010" is camera 10
   app.add_flag("--remove", a.remove, "clip nothing: polygons of no points");
   app.add_flag("--publish", a.publish,
                "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key");

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "help_check.hpp"
 #include "sensor/camera_file.hpp"
 #include "sensor/test_cameras.hpp"
 #include "subcommand.hpp"
@@ -165,13 +166,11 @@ TEST_F(ClipCommandTest, UnknownOptionIsNamedAsUnknownWherever) {
 TEST_F(ClipCommandTest, HelpIsComplete) {
   const ClipRun r = run({"--help"});
   EXPECT_EQ(r.status, kExitOk);
-  for (const char* text :
-       {"usage: syncap clip --cameras FILE --volume", "syncap clip --cameras FILE --remove",
-        "--cameras FILE", "--volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", "--margin PX", "(default 8)",
-        "--camera ID", "(repeatable)", "--remove", "--publish", "--key FILE", "--lcm-url URL",
-        "(default udpm://", "Exit status: 0 done"}) {
-    EXPECT_NE(r.out.find(text), std::string::npos) << text << '\n' << r.out;
-  }
+  syncap::test::expect_help_mentions(
+      r.out, {"usage: syncap clip --cameras FILE --volume", "syncap clip --cameras FILE --remove",
+              "--cameras FILE", "--volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", "--margin PX",
+              "(default 8)", "--camera ID", "(repeatable)", "--remove", "--publish", "--key FILE",
+              "--lcm-url URL", "(default udpm://", "Exit status: 0 done"});
 }
 
 }  // namespace

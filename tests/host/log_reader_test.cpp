@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "help_check.hpp"
 #include "lcm_log_reader.hpp"
 #include "log_command.hpp"
 #include "malformed_messages.hpp"
@@ -533,11 +534,10 @@ TEST(LogCommand, HelpIsComplete) {
   std::ostringstream out, err;
   const std::vector<std::string> help{"--help"};
   EXPECT_EQ(log_command(help, out, err), kExitOk);
-  for (const char* text :
-       {"usage: syncap log FILE [--channel REGEX]", "syncap log --stats FILE", "-c,--channel REGEX",
-        "(ECMAScript)", "--stats", "per camera the bytes per", "Exit status: 0 all decoded"}) {
-    EXPECT_NE(out.str().find(text), std::string::npos) << text << '\n' << out.str();
-  }
+  syncap::test::expect_help_mentions(
+      out.str(),
+      {"usage: syncap log FILE [--channel REGEX]", "syncap log --stats FILE", "-c,--channel REGEX",
+       "(ECMAScript)", "--stats", "per camera the bytes per", "Exit status: 0 all decoded"});
 }
 
 TEST(Base64, EncodesWithPadding) {

@@ -16,6 +16,7 @@
 
 #include "bundle_command.hpp"
 #include "estimators/bundle_adjustment_simulation.hpp"
+#include "help_check.hpp"
 #include "sdl/sdl.hpp"
 #include "sensor/camera_model.hpp"
 #include "subcommand.hpp"
@@ -284,12 +285,11 @@ TEST(BundleCommand, ErrorsNameTheFileAndThePlace) {
   run = run_bundle({"--help"});
   EXPECT_EQ(run.status, kExitOk);
   // Complete: the design tags, every option with its meaning, the exit statuses.
-  for (const char* text :
-       {"Usage: syncap bundle [OPTIONS] FILE", "SIMULATE", "SORT", "OUTPUT MESSAGES",
-        "OUTPUT MISCLOSURES", "OUTPUT CORRECTIONS", "OUTPUT COEFFICIENT MATRIX", "RESIDUALS",
-        "DEBUG", "--out DIR", "writes DIR/adjusted.sdl", "Exit status: 0 adjusted"}) {
-    EXPECT_NE(run.out.find(text), std::string::npos) << text << '\n' << run.out;
-  }
+  syncap::test::expect_help_mentions(
+      run.out,
+      {"Usage: syncap bundle [OPTIONS] FILE", "SIMULATE", "SORT", "OUTPUT MESSAGES",
+       "OUTPUT MISCLOSURES", "OUTPUT CORRECTIONS", "OUTPUT COEFFICIENT MATRIX", "RESIDUALS",
+       "DEBUG", "--out DIR", "writes DIR/adjusted.sdl", "Exit status: 0 adjusted"});
   std::filesystem::remove_all(dir);
 }
 

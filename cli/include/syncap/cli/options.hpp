@@ -13,8 +13,8 @@
 #include <optional>
 #include <ostream>
 #include <span>
-#include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace syncap::cli {
@@ -78,20 +78,22 @@ inline std::optional<double> finite_number(const std::string& text) {
 }
 
 // The whole text as a decimal whole number in [low, high]. CLI11's own conversion reads "010"
-// as octal and "0x10" as hex.
-inline std::optional<long long> whole_number(const std::string& text, long long low,
-                                             long long high) {
-  long long v = 0;
+// as octal and "0x10" as hex, and "-1" as the largest unsigned number.
+template <class Int = long long>
+std::optional<Int> whole_number(const std::string& text, std::type_identity_t<Int> low,
+                                std::type_identity_t<Int> high) {
+  Int v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc() || end != text.data() + text.size() || v < low || v > high)
     return std::nullopt;
   return v;
 }
 
+// The shortest text that reads back as `v`.
 inline std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+  char text[32];
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, v);
+  return std::string(text, ec == std::errc() ? end : text);
 }
 
 // A finite number for which `ok` holds; `what` says which ("a number > 0"), in the help and
@@ -119,13 +121,14 @@ inline CLI::Validator number_in(double low, double high) {
 }
 
 // A decimal whole number in [low, high]; the text is rewritten without leading zeros, so that
-// CLI11 does not read it as octal.
-inline CLI::Validator whole_in(long long low, long long high) {
+// CLI11 does not read it as octal (give it to Option::transform or add_checked, not ::check).
+template <class Int = long long>
+CLI::Validator whole_in(std::type_identity_t<Int> low, std::type_identity_t<Int> high) {
   const std::string what =
       "a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "]";
   return CLI::Validator(
       [what, low, high](std::string& text) -> std::string {
-        const std::optional<long long> v = whole_number(text, low, high);
+        const std::optional<Int> v = whole_number<Int>(text, low, high);
         if (!v) return "'" + text + "' is not " + what;
         text = std::to_string(*v);
         return {};
@@ -147,13 +150,14 @@ inline CLI::Validator one_of(std::initializer_list<std::string> words) {
       "one of " + list);
 }
 
-// An option shown as "NAME METAVAR" in --help, whose text `check` accepts before CLI11 converts
-// it into `value`.
+// An option shown as "NAME METAVAR" in --help, whose text `check` accepts (and may rewrite, as
+// whole_in does) before CLI11 converts it into `value`. Option::check would hand the validator a
+// copy of the text: a rewrite would be lost.
 template <class T>
 CLI::Option* add_checked(CLI::App& app, const std::string& name, T& value,
                          const std::string& metavar, const CLI::Validator& check,
                          const std::string& meaning) {
-  return app.add_option(name, value, meaning)->option_text(metavar)->check(check);
+  return app.add_option(name, value, meaning)->option_text(metavar)->transform(check);
 }
 
 }  // namespace syncap::cli
