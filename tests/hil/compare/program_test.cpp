@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "help_check.hpp"
 #include "program_run.hpp"
 #include "scratch_files.hpp"
 
@@ -131,36 +132,34 @@ TEST(Program, RejectsBadOptions) {
 TEST(Program, HelpIsComplete) {
   const ProgramRun run = run_compare("--help");
   EXPECT_EQ(run.exit_code, 0);
-  for (const char* text : {"syncap-hil-compare --truth DIR --groups FILE",
-                           "syncap-hil-compare --truth DIR --cameras",
-                           "--truth DIR",
-                           "--groups FILE",
-                           "--json FILE",
-                           "--max-rms-px PX",
-                           "(0.1)",
-                           "--min-detection SHARE",
-                           "(0.98)",
-                           "--match-radius-px PX",
-                           "(3)",
-                           "--min-frames SHARE",
-                           "(0.99)",
-                           "--min-iou SHARE",
-                           "(0.95)",
-                           "--require-silhouettes",
-                           "--marker-radius-mm MM",
-                           "(5)",
-                           "--min-markers-found SHARE",
-                           "(0.995)",
-                           "--max-ghosts SHARE",
-                           "(0.005)",
-                           "--max-marker-rms-mm MM",
-                           "(0.5)",
-                           "--cameras FILE",
-                           "--max-reprojection-px PX",
-                           "Both --groups and --cameras",
-                           "exit 0 PASS, 1 FAIL, 2 unusable inputs"}) {
-    EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
-  }
+  syncap::test::expect_help_mentions(run.output, {"syncap-hil-compare --truth DIR --groups FILE",
+                                                  "syncap-hil-compare --truth DIR --cameras",
+                                                  "--truth DIR",
+                                                  "--groups FILE",
+                                                  "--json FILE",
+                                                  "--max-rms-px PX",
+                                                  "(0.1)",
+                                                  "--min-detection SHARE",
+                                                  "(0.98)",
+                                                  "--match-radius-px PX",
+                                                  "(3)",
+                                                  "--min-frames SHARE",
+                                                  "(0.99)",
+                                                  "--min-iou SHARE",
+                                                  "(0.95)",
+                                                  "--require-silhouettes",
+                                                  "--marker-radius-mm MM",
+                                                  "(5)",
+                                                  "--min-markers-found SHARE",
+                                                  "(0.995)",
+                                                  "--max-ghosts SHARE",
+                                                  "(0.005)",
+                                                  "--max-marker-rms-mm MM",
+                                                  "(0.5)",
+                                                  "--cameras FILE",
+                                                  "--max-reprojection-px PX",
+                                                  "Both --groups and --cameras",
+                                                  "exit 0 PASS, 1 FAIL, 2 unusable inputs"});
 }
 
 // Issue 15: an unknown last option said "needs a value".
