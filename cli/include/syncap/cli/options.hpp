@@ -33,31 +33,46 @@ class App : public CLI::App {
   }
 };
 
+// Why a parse ends the run: --help, or a usage error and its message (naming the option and
+// the value).
+struct Stop {
+  bool help = false;
+  std::string error;
+};
+
 // Parses `args` (without the program's name) into `app`, then runs `checks` (which throw
-// CLI::ValidationError naming the option and the value). The exit status when the run is over
-// already: --help (0, the help on `out`) or a usage error (2: "NAME: what" and the help on
-// `err`); nullopt to go on.
-inline std::optional<int> parse(CLI::App& app, std::span<const std::string> args, std::ostream& out,
-                                std::ostream& err, const std::function<void()>& checks = {}) {
+// CLI::ValidationError naming the option and the value); nullopt to go on.
+inline std::optional<Stop> try_parse(CLI::App& app, std::span<const std::string> args,
+                                     const std::function<void()>& checks = {}) {
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
   try {
     app.parse(reversed);
     if (checks) checks();
   } catch (const CLI::CallForHelp&) {
-    out << app.help();
-    return kExitOk;
+    return Stop{true, {}};
   } catch (const CLI::ExtrasError&) {
     // Named as the argv loops did (CLI11 2.1 lists all that is left, back to front).
     const std::string first = app.remaining().front();
-    err << app.get_name() << ": "
-        << (first.starts_with("-") ? "unknown option '" : "unexpected argument '") << first << "'\n"
-        << app.help();
-    return kExitUsage;
+    return Stop{false, (first.starts_with("-") ? "unknown option '" : "unexpected argument '") +
+                           first + "'"};
   } catch (const CLI::Error& e) {
-    err << app.get_name() << ": " << e.what() << '\n' << app.help();
-    return kExitUsage;
+    return Stop{false, e.what()};
   }
   return std::nullopt;
+}
+
+// try_parse, and the exit status when the run is over already: --help (0, the help on `out`)
+// or a usage error (2: "NAME: what" and the help on `err`).
+inline std::optional<int> parse(CLI::App& app, std::span<const std::string> args, std::ostream& out,
+                                std::ostream& err, const std::function<void()>& checks = {}) {
+  const std::optional<Stop> stop = try_parse(app, args, checks);
+  if (!stop) return std::nullopt;
+  if (stop->help) {
+    out << app.help();
+    return kExitOk;
+  }
+  err << app.get_name() << ": " << stop->error << '\n' << app.help();
+  return kExitUsage;
 }
 
 // The same for a program's main: its arguments after the name, help on stdout, errors on stderr.
