@@ -2,111 +2,111 @@
 // scene rendered by syncap-sim.
 //   syncap-segment-eval --cdnet DIR --method medipicture|mog2|knn [--train-frames N] ...
 //   syncap-segment-eval --scene DIR [--person] [medi-picture options]
+#include <array>
 #include <cstdio>
 #include <exception>
 #include <iostream>
-#include <set>
+#include <map>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "segmentation/cdnet_eval.hpp"
 #include "segmentation/masking_options.hpp"
 #include "segmentation/scene_eval.hpp"
+#include "syncap/cli/options.hpp"
 
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitUsage =
-    2;  // bad arguments or bad input (a folder, an image), as in every program
+namespace cli = syncap::cli;
 
-void print_usage(std::ostream& out) {
-  out << "usage: syncap segment-eval --cdnet DIR --method medipicture|mog2|knn [options]\n"
-         "       syncap segment-eval --scene DIR [--person] [medi-picture options]\n"
-         "Scores the method on a CDnet 2014 folder (frames of temporalROI.txt, pixels of\n"
-         "ROI.bmp; ground truth 255 foreground, 0 and 50 background, 85 and 170 not scored),\n"
-         "or medi-picture on a syncap-sim scene: per camera, trained on the room phase, IoU\n"
-         "against the true masks of the person frames.\n"
-         "  --person            start from the options syncap-edge masks with (k 1, common-\n"
-         "                      ratio shadow test at 3 sigmas, closing 5, holes up to 100 px)\n"
-         "  --train-frames N    medi-picture: train on the last N frames before the scored\n"
-         "                      range (default: all of them)\n"
-         "  --frame-step N      score every N-th frame (default 1)\n"
-         "  --k K               interval width in units of d (default 3)\n"
-         "  --min-difference D  floor of d, DN (default 6)\n"
-         "  --ncc L             shadow threshold L_NCC (default 0.98)\n"
-         "  --no-shadows        skip the shadow test\n"
-         "  --shadow-test T     correlation (eqs 5.6-5.11, default) or common-ratio\n"
-         "  --shadow-sigmas S   common-ratio tolerance in training sigmas (default 4)\n"
-         "  --fill-holes A      fill holes of the mask up to A pixels (default 0)\n"
-         "  --closing D         elliptical closing diameter, pixels, 0 = none (default 9)\n"
-         "  --min-area A        smallest component kept, pixels (default 40)\n"
-         "  --update-rate R     slow model update where background (default 0)\n"
-         "Values out of range are refused (as syncap-edge's --mask-* options). Exit status: 0\n"
-         "scored, 2 bad arguments or bad input (a missing, undecodable or truncated image).\n";
-}
+constexpr int kExitUsage = cli::kExitUsage;  // bad arguments or bad input, as in every program
+
+constexpr const char* kDescription =
+    "usage: syncap segment-eval --cdnet DIR --method medipicture|mog2|knn [options]\n"
+    "       syncap segment-eval --scene DIR [--person] [medi-picture options]\n"
+    "Scores the method on a CDnet 2014 folder (frames of temporalROI.txt, pixels of\n"
+    "ROI.bmp; ground truth 255 foreground, 0 and 50 background, 85 and 170 not scored),\n"
+    "or medi-picture on a syncap-sim scene: per camera, trained on the room phase, IoU\n"
+    "against the true masks of the person frames.\n";
+
+constexpr const char* kFooter =
+    "Values out of range are refused (as syncap-edge's --mask-* options). Exit status: 0\n"
+    "scored, 2 bad arguments or bad input (a missing, undecodable or truncated image).";
+
+// The medi-picture options: name (without dashes), value, meaning; checked by
+// apply_masking_option as syncap-edge's --mask-* are.
+constexpr std::array<std::array<const char*, 3>, 9> kMaskingOptions{{
+    {"k", "K", "interval width in units of d (default 3)"},
+    {"min-difference", "D", "floor of d, DN (default 6)"},
+    {"ncc", "L", "shadow threshold L_NCC (default 0.98)"},
+    {"shadow-test", "T", "correlation (eqs 5.6-5.11, default) or common-ratio"},
+    {"shadow-sigmas", "S", "common-ratio tolerance in training sigmas (default 4)"},
+    {"fill-holes", "A", "fill holes of the mask up to A pixels (default 0)"},
+    {"closing", "D", "elliptical closing diameter, pixels, 0 = none (default 9)"},
+    {"min-area", "A", "smallest component kept, pixels (default 40)"},
+    {"update-rate", "R", "slow model update where background (default 0)"},
+}};
 
 struct Arguments {
+  std::string cdnet, scene_dir, method;
   std::string folder;
   bool scene = false;  // --scene DIR rather than --cdnet DIR
+  bool person = false, no_shadows = false;
+  std::map<std::string, std::string> masking;  // by name: applied after --person's base
   syncap::edge::CdnetEvalOptions options;
 };
 
-// Parses argv into `arguments`; throws std::invalid_argument naming the bad argument.
-Arguments parse_arguments(int argc, char** argv) {
-  using syncap::edge::parse_number;
-  Arguments arguments;
-  bool have_method = false;
-  // --person is the base the other options change, wherever it stands.
-  for (int i = 1; i < argc; ++i) {
-    if (std::string_view(argv[i]) == "--person") {
-      arguments.options.medi_picture = syncap::edge::person_masking_options();
-    }
+void add_options(CLI::App& app, Arguments& a) {
+  auto* cdnet = app.add_option("--cdnet", a.cdnet, "a CDnet 2014 folder")->option_text("DIR");
+  app.add_option("--scene", a.scene_dir, "a syncap-sim scene (medi-picture only)")
+      ->option_text("DIR")
+      ->excludes(cdnet);
+  app.add_option("--method", a.method, "the foreground method (--cdnet)")
+      ->option_text("medipicture|mog2|knn");
+  app.add_flag("--person", a.person,
+               "start from the options syncap-edge masks with (k 1, common-\n"
+               "ratio shadow test at 3 sigmas, closing 5, holes up to 100 px)");
+  cli::add_checked(app, "--train-frames", a.options.train_frames, "N", cli::whole_in(1, 1 << 24),
+                   "medi-picture: train on the last N frames before the scored\n"
+                   "range (default: all of them)");
+  cli::add_checked(app, "--frame-step", a.options.frame_step, "N", cli::whole_in(1, 1 << 24),
+                   "score every N-th frame (default 1)");
+  for (const auto& [name, metavar, meaning] : kMaskingOptions) {
+    app.add_option_function<std::string>(
+           std::string("--") + name, [&a, name](const std::string& v) { a.masking[name] = v; },
+           meaning)
+        ->option_text(metavar);
   }
-  static const std::set<std::string_view> kMediPictureOptions{
-      "--k",          "--min-difference", "--ncc",      "--shadow-test", "--shadow-sigmas",
-      "--fill-holes", "--closing",        "--min-area", "--update-rate"};
-  static const std::set<std::string_view> kOtherOptions{"--cdnet", "--scene", "--method",
-                                                        "--train-frames", "--frame-step"};
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--no-shadows") {
-      arguments.options.medi_picture.remove_shadows = false;
-      continue;
-    }
-    if (flag == "--person") continue;
-    if (!kMediPictureOptions.contains(flag) && !kOtherOptions.contains(flag)) {
-      throw std::invalid_argument("unknown option '" + flag + "'");
-    }
-    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
-    const std::string value = argv[++i];
+  app.add_flag("--no-shadows", a.no_shadows, "skip the shadow test");
+}
+
+// After parsing: --person is the base the medi-picture options change, wherever it stands.
+void apply_options(Arguments& a) {
+  auto& m = a.options.medi_picture;
+  if (a.person) m = syncap::edge::person_masking_options();
+  for (const auto& [name, value] : a.masking) {
     try {
-      if (kMediPictureOptions.contains(flag)) {
-        syncap::edge::apply_masking_option(arguments.options.medi_picture, flag.substr(2), value);
-      } else if (flag == "--cdnet" || flag == "--scene") {
-        arguments.folder = value;
-        arguments.scene = flag == "--scene";
-      } else if (flag == "--method") {
-        arguments.options.method = syncap::edge::parse_segmentation_method(value);
-        have_method = true;
-      } else if (flag == "--train-frames") {
-        arguments.options.train_frames = parse_number<int>(value, 1, 1 << 24);
-      } else if (flag == "--frame-step") {
-        arguments.options.frame_step = parse_number<int>(value, 1, 1 << 24);
-      }
+      syncap::edge::apply_masking_option(m, name, value);
     } catch (const syncap::edge::BadValue& e) {
-      throw std::invalid_argument(flag + " " + e.what());
+      throw CLI::ValidationError("--" + name, e.what());
     }
   }
-  if (arguments.folder.empty())
-    throw std::invalid_argument("--cdnet DIR or --scene DIR is required");
-  if (arguments.scene && have_method &&
-      arguments.options.method != syncap::edge::SegmentationMethod::kMediPicture) {
-    throw std::invalid_argument("--scene scores medi-picture only");
+  if (a.no_shadows) m.remove_shadows = false;
+  a.scene = !a.scene_dir.empty();
+  a.folder = a.scene ? a.scene_dir : a.cdnet;
+  if (a.folder.empty()) throw CLI::ValidationError("--cdnet DIR or --scene DIR is required");
+  if (a.method.empty()) {
+    if (!a.scene) throw CLI::ValidationError("--method is required");
+    return;
   }
-  if (!arguments.scene && !have_method) throw std::invalid_argument("--method is required");
-  return arguments;
+  try {
+    a.options.method = syncap::edge::parse_segmentation_method(a.method);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--method", e.what());
+  }
+  if (a.scene && a.options.method != syncap::edge::SegmentationMethod::kMediPicture)
+    throw CLI::ValidationError("--scene scores medi-picture only");
 }
 
 void print_scores(const std::string& method, const syncap::edge::CdnetScores& scores) {
@@ -133,35 +133,22 @@ void print_scene_scores(const std::vector<syncap::edge::SceneCameraScore>& score
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
-      print_usage(std::cout);
-      return kExitOk;
-    }
-  }
   Arguments arguments;
-  try {
-    arguments = parse_arguments(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "syncap-segment-eval: " << e.what() << "\n";
-    print_usage(std::cerr);
-    return kExitUsage;
-  }
+  cli::App app("syncap-segment-eval", kDescription, kFooter);
+  add_options(app, arguments);
+  if (const auto status = cli::parse_main(app, argc, argv, [&] { apply_options(arguments); }))
+    return *status;
   try {
     if (arguments.scene) {
       print_scene_scores(
           syncap::edge::evaluate_scene(arguments.folder, arguments.options.medi_picture));
-      return kExitOk;
+      return cli::kExitOk;
     }
     const auto scores = syncap::edge::evaluate_cdnet(arguments.folder, arguments.options);
-    std::string method;
-    for (int i = 1; i + 1 < argc; ++i) {
-      if (std::string_view(argv[i]) == "--method") method = argv[i + 1];
-    }
-    print_scores(method, scores);
+    print_scores(arguments.method, scores);
   } catch (const std::exception& e) {  // a missing or undecodable input file
     std::cerr << "syncap-segment-eval: " << e.what() << "\n";
     return kExitUsage;
   }
-  return kExitOk;
+  return cli::kExitOk;
 }

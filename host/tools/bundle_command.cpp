@@ -15,6 +15,7 @@
 #include "sdl/sdl.hpp"
 #include "sensor/camera_model.hpp"
 #include "subcommand.hpp"
+#include "syncap/cli/options.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::tools {
@@ -31,22 +32,36 @@ struct BundleArgs {
   std::optional<std::filesystem::path> out_dir;
 };
 
-std::optional<std::string> parse_bundle_args(std::span<const std::string> args,
-                                             BundleArgs& parsed) {
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--out") {
-      if (i + 1 == args.size()) return std::string("--out needs a DIR");
-      parsed.out_dir = args[++i];
-    } else if (args[i].starts_with("-")) {
-      return "unknown option " + args[i];
-    } else if (parsed.file.empty()) {
-      parsed.file = args[i];
-    } else {
-      return std::string("more than one FILE given");
-    }
-  }
-  if (parsed.file.empty()) return std::string("no FILE given");
-  return std::nullopt;
+// What the scene's design block asks for, above the options in --help.
+constexpr const char* kDescription =
+    "Reads the scene FILE.sdl (docs/sdl.md), adjusts it (self-calibrating bundle adjustment,\n"
+    "docs/calibration.md) as its design block says and prints the summary. Design tags:\n"
+    "  SIMULATE            measurements and distances generated from the approximate values\n"
+    "                      with noise of their sigmas (seed: SEED n) before adjusting\n"
+    "  SORT                models, stations and points sorted by name\n"
+    "  OUTPUT MESSAGES     the adjustment's messages before the summary\n"
+    "  OUTPUT MISCLOSURES  per measurement: approximate projection - measured [px]\n"
+    "  OUTPUT CORRECTIONS  per parameter: adjusted - approximate value\n"
+    "  OUTPUT COEFFICIENT MATRIX  d(u, v)/d(parameters) at the adjusted values, as triplets\n"
+    "  RESIDUALS           per measurement residuals and w (DIR/residuals.tsv, with --out)\n"
+    "  DEBUG               the network's size and the design as read\n"
+    "The OUTPUT tables go to DIR/NAME.tsv with --out, else to stdout after the summary.\n";
+
+// The exit statuses, below the options in --help.
+constexpr const char* kFooter =
+    "Exit status: 0 adjusted and converged, 1 not converged, 2 usage error or a scene that does\n"
+    "not parse or cannot be adjusted (the message names file, line and column or the element).";
+
+// Parses into `parsed`; an exit status when the run is over already (help, usage error).
+std::optional<int> parse_bundle_args(std::span<const std::string> args, BundleArgs& parsed,
+                                     std::ostream& out, std::ostream& err) {
+  cli::App app("syncap bundle", kDescription, kFooter);
+  app.add_option("FILE", parsed.file, "the scene, FILE.sdl")->required();
+  app.add_option_function<std::string>(
+         "--out", [&parsed](const std::string& dir) { parsed.out_dir = dir; },
+         "writes DIR/adjusted.sdl (the adjusted network), DIR/summary.txt and the tables")
+      ->option_text("DIR");
+  return cli::parse(app, args, out, err);
 }
 
 using util::printf_string;
@@ -338,17 +353,8 @@ void simulate_observations(scene::Network& network) {
 }
 
 int bundle_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
-  for (const std::string& arg : args) {
-    if (arg == "--help" || arg == "-h") {
-      out << kBundleUsage;
-      return kExitOk;
-    }
-  }
   BundleArgs parsed;
-  if (const auto problem = parse_bundle_args(args, parsed)) {
-    err << kErrorPrefix << *problem << '\n' << kBundleUsage;
-    return kExitUsage;
-  }
+  if (const auto status = parse_bundle_args(args, parsed, out, err)) return *status;
   try {
     return run_bundle(parsed, out, err);
   } catch (const sdl::ParseError& error) {

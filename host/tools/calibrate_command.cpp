@@ -19,12 +19,14 @@
 #include <sstream>
 #include <vector>
 
+#include "app/host_options.hpp"
 #include "calibration/calibrate.hpp"
 #include "calibration/observations.hpp"
 #include "calibration/outputs.hpp"
 #include "lcm_log_reader.hpp"
 #include "subcommand.hpp"
 #include "syncap/blob_frame_t.hpp"
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/decode.hpp"
 #include "syncap/proto/subscriber.hpp"
@@ -57,37 +59,18 @@ struct UsageError {
   std::string message;
 };
 
-double number_arg(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
-    throw UsageError{option + " needs a number, got '" + text + "'"};
-  }
-  return v;
-}
-
-// "40,50,60" -> {40, 50, 60}; "none" -> {}.
-std::vector<double> number_list(const std::string& option, const std::string& text) {
+// --start-fovs: "40,50,60" -> {40, 50, 60}; "none" -> {}.
+std::vector<double> number_list(const std::string& text) {
   std::vector<double> out;
   if (text == "none") return out;
   std::istringstream items(text);
-  for (std::string item; std::getline(items, item, ',');) out.push_back(number_arg(option, item));
-  if (out.empty()) throw UsageError{option + " needs a comma-separated list or 'none'"};
-  return out;
-}
-
-std::set<int> camera_list(const std::string& text) {
-  std::set<int> ids;
-  std::istringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    const double v = number_arg("--cameras", item);
-    if (v < 0 || v > proto::kMaxCameraId || v != static_cast<int>(v)) {
-      throw UsageError{"--cameras: '" + item + "' is not a camera id (0-99)"};
-    }
-    ids.insert(static_cast<int>(v));
+  for (std::string item; std::getline(items, item, ',');) {
+    const std::optional<double> v = cli::finite_number(item);
+    if (!v) throw CLI::ValidationError("--start-fovs", "'" + item + "' is not a number");
+    out.push_back(*v);
   }
-  if (ids.empty()) throw UsageError{"--cameras needs a list like 0,1,2"};
-  return ids;
+  if (out.empty()) throw CLI::ValidationError("--start-fovs", "needs a list like 40,50 or none");
+  return out;
 }
 
 std::vector<int> interior_list(const std::string& text) {
@@ -100,11 +83,41 @@ std::vector<int> interior_list(const std::string& text) {
       if (item == names[i]) index = i;
     }
     if (index < 0) {
-      throw UsageError{"--interior: '" + item + "' is not one of c,xp,yp,k1,k2,k3,p1,p2,sc,sh"};
+      throw CLI::ValidationError("--interior",
+                                 "'" + item + "' is not one of c,xp,yp,k1,k2,k3,p1,p2,sc,sh");
     }
     free.push_back(index);
   }
   return free;
+}
+
+// --scale-from A,B,MM: two camera ids and their centres' distance.
+calibration::KnownCameraDistance scale_from(const std::string& text) {
+  std::vector<std::string> parts;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) parts.push_back(item);
+  const auto id = [&](std::size_t i) {
+    return parts.size() == 3 ? cli::whole_number(parts[i], 0, proto::kMaxCameraId) : std::nullopt;
+  };
+  const std::optional<double> mm = parts.size() == 3 ? cli::finite_number(parts[2]) : std::nullopt;
+  if (!id(0) || !id(1) || *id(0) == *id(1) || !mm || !(*mm > 0)) {
+    throw CLI::ValidationError("--scale-from", "'" + text +
+                                                   "': needs A,B,MM: two camera ids and their "
+                                                   "centres' distance");
+  }
+  return {static_cast<int>(*id(0)), static_cast<int>(*id(1)), *mm};
+}
+
+calibration::ImageSize image_size(const std::string& text) {
+  const auto x = text.find('x');
+  const auto side = [&](std::string part) { return cli::whole_number(part, 1, 1 << 20); };
+  const auto w = x == std::string::npos ? std::nullopt : side(text.substr(0, x));
+  const auto h = x == std::string::npos ? std::nullopt : side(text.substr(x + 1));
+  if (!w || !h) {
+    throw CLI::ValidationError("--image-size",
+                               "'" + text + "' is not WIDTHxHEIGHT in pixels (e.g. 1280x1024)");
+  }
+  return calibration::ImageSize{static_cast<int>(*w), static_cast<int>(*h)};
 }
 
 // "FIRST-LAST" (either may be left out: "300-", "-299") into a.first_frame, a.last_frame.
@@ -112,137 +125,174 @@ void parse_frame_range(const std::string& text, CalibrateArgs& a) {
   const auto dash = text.find('-');
   const auto bound = [&](const std::string& part, int64_t fallback) {
     if (part.empty()) return fallback;
-    const double v = number_arg("--frame-range", part);
-    if (v < 0 || v != std::floor(v) || v > 9e15) {
-      throw UsageError{"--frame-range: '" + part + "' is not a frame number"};
-    }
-    return static_cast<int64_t>(v);
+    const std::optional<long long> v = cli::whole_number(part, 0, 9'000'000'000'000'000);
+    if (!v) throw CLI::ValidationError("--frame-range", "'" + part + "' is not a frame number");
+    return static_cast<int64_t>(*v);
   };
   if (dash == std::string::npos || text == "-") {
-    throw UsageError{"--frame-range needs FIRST-LAST (e.g. 0-299, or 300-), got '" + text + "'"};
+    throw CLI::ValidationError("--frame-range",
+                               "needs FIRST-LAST (e.g. 0-299, or 300-), got '" + text + "'");
   }
   a.first_frame = bound(text.substr(0, dash), 0);
   a.last_frame = bound(text.substr(dash + 1), std::numeric_limits<int64_t>::max());
-  if (a.first_frame > a.last_frame) {
-    throw UsageError{"--frame-range: " + text + " ends before it starts"};
-  }
+  if (a.first_frame > a.last_frame)
+    throw CLI::ValidationError("--frame-range", "'" + text + "' ends before it starts");
 }
 
-CalibrateArgs parse_args(std::span<const std::string> args) {
-  CalibrateArgs a;
+// SOURCE and what is written, above the options in --help.
+constexpr const char* kDescription =
+    "Calibrates the cameras from wand (or LED) observations and writes the calibration folder "
+    "(docs/calibration.md).\n"
+    "usage: syncap calibrate --input SOURCE (--wand-length MM | --led) --out DIR [options]\n"
+    "SOURCE:\n"
+    "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --cameras; stops\n"
+    "                 at Ctrl-C, after --frames groups, or --idle-timeout s without blob frames\n"
+    "  lcmlog:FILE    blob frames recorded by lcm-logger (hil/run: OUT/traffic.lcmlog)\n"
+    "  csv:FILE       frame,camera,x,y[,point] in pixels (point: target index from end A)\n"
+    "  mcsc:DIR       a MultiCamSelfCal folder (points.dat, Res.dat, camera_order.txt)\n"
+    "Writes DIR/cameras.json (with a \"quality\" block), report.txt, report.html,\n"
+    "cameras.opencv.yaml, calibration.toml and, when built with the SDL writer, scene.sdl.\n"
+    "DIR is created and checked writable before SOURCE is read.\n";
+
+// What the run prints and its exit status, below the options in --help.
+constexpr const char* kFooter =
+    "A malformed record in lcmlog:FILE is named (event, offset, channel), counted and skipped.\n"
+    "The summary and report.txt start with the verdict: good, weak (usable; the reasons say\n"
+    "what the data could not determine) or failed (the geometry is wrong).\n"
+    "Exit status: 0 calibrated (good or weak), 1 the calibration failed (did not converge, or its\n"
+    "verdict is failed; the outputs are written for inspection), 2 usage error or unusable "
+    "input.";
+
+void add_source_options(CLI::App& app, CalibrateArgs& a) {
+  app.add_option("--input", a.input, "lcm:URL, lcmlog:FILE, csv:FILE or mcsc:DIR (above)")
+      ->option_text("SOURCE")
+      ->required();
+  app.add_option("--out", a.out, "the calibration folder")->option_text("DIR")->required();
+  app.add_option_function<std::string>(
+         "--cameras", [&a](const std::string& t) { a.cameras = host_app::parse_camera_list(t); },
+         "camera ids to wait for in each frame group (lcm:, lcmlog:; for a\n"
+         "log default: every camera in it)")
+      ->option_text("LIST");
+  app.add_option_function<std::string>(
+         "--frame-range", [&a](const std::string& t) { parse_frame_range(t, a); },
+         "lcm:, lcmlog: only frames A to B (\"300-\", \"-299\": open ends);\n"
+         "lcm: stops after frame B")
+      ->option_text("A-B");
+  cli::add_checked(app, "--frames", a.frames, "N", cli::whole_in(0, 1'000'000'000'000),
+                   "lcm: stop after N frame groups (default 0: no limit)");
+  cli::add_checked(app, "--idle-timeout", a.idle_timeout_s, "S", cli::finite(),
+                   "lcm: stop S seconds after the last blob frame (default 5)");
+  app.add_flag("--progress", a.progress,
+               "print progress on stderr (default: only when stderr is a terminal)");
+}
+
+void add_wand_options(CLI::App& app, CalibrateArgs& a) {
+  auto& w = a.options.wand;
+  app.add_option_function<double>(
+         "--wand-length", [&a](double mm) { a.wand_length = mm; },
+         "distance between the wand's end targets")
+      ->option_text("MM")
+      ->check(cli::positive());
+  app.add_flag("--led", a.led, "one point per frame (no scale: the result is in arbitrary units)");
+  app.add_option_function<std::string>(
+         "--scale-from", [&a](const std::string& t) { a.options.scale_from = scale_from(t); },
+         "--led: the scale from the distance of cameras A and B's centres")
+      ->option_text("A,B,MM");
+  cli::add_checked(app, "--wand-targets", w.targets, "N", cli::whole_in(2, 3),
+                   "2 or 3 (default 3)");
+  cli::add_checked(app, "--wand-ratio", w.middle_ratio, "R", cli::finite(),
+                   "middle target's distance from end A / length (default 0.4)");
+  app.add_option_function<std::string>(
+         "--wand-ends",
+         [&w](const std::string& t) {
+           w.ends = t == "size" ? calibration::EndIdentity::kSize
+                                : calibration::EndIdentity::kContinuity;
+         },
+         "how a 2-target (or symmetric) wand's ends are told apart\n"
+         "(default continuity: the upper spot starts as end A)")
+      ->option_text("size|continuity")
+      ->check(cli::one_of({"size", "continuity"}));
+  cli::add_checked(app, "--wand-sigma", a.options.wand_sigma_mm, "MM", cli::finite(),
+                   "standard deviation of a wand distance (0.2)");
+}
+
+void add_camera_options(CLI::App& app, CalibrateArgs& a) {
   auto& o = a.options;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    const auto value = [&]() -> const std::string& {
-      if (i + 1 == args.size()) throw UsageError{arg + " needs a value"};
-      return args[++i];
-    };
-    if (arg == "--input") {
-      a.input = value();
-    } else if (arg == "--out") {
-      a.out = value();
-    } else if (arg == "--wand-length") {
-      a.wand_length = number_arg(arg, value());
-    } else if (arg == "--led") {
-      a.led = true;
-    } else if (arg == "--wand-targets") {
-      const double n = number_arg(arg, value());
-      if (n != 2 && n != 3) throw UsageError{"--wand-targets must be 2 or 3"};
-      o.wand.targets = static_cast<int>(n);
-    } else if (arg == "--wand-ratio") {
-      o.wand.middle_ratio = number_arg(arg, value());
-    } else if (arg == "--wand-ends") {
-      const std::string& v = value();
-      if (v == "size") {
-        o.wand.ends = calibration::EndIdentity::kSize;
-      } else if (v == "continuity") {
-        o.wand.ends = calibration::EndIdentity::kContinuity;
-      } else {
-        throw UsageError{"--wand-ends must be size or continuity, got '" + v + "'"};
-      }
-    } else if (arg == "--pixel-size") {
-      o.pixel_size_mm = number_arg(arg, value());
-      if (!(o.pixel_size_mm > 0)) throw UsageError{"--pixel-size must be > 0"};
-    } else if (arg == "--fov") {
-      o.field_of_view_deg = number_arg(arg, value());
-    } else if (arg == "--start-fovs") {
-      o.start_fields_of_view_deg = number_list(arg, value());
-    } else if (arg == "--scale-from") {
-      const std::vector<double> v = number_list(arg, value());
-      if (v.size() != 3 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] == v[1] ||
-          !(v[2] > 0)) {
-        throw UsageError{"--scale-from needs A,B,MM: two camera ids and their centres' distance"};
-      }
-      o.scale_from =
-          calibration::KnownCameraDistance{static_cast<int>(v[0]), static_cast<int>(v[1]), v[2]};
-    } else if (arg == "--principal-point-sigma") {
-      o.principal_point_sigma_share = number_arg(arg, value());
-      if (!(*o.principal_point_sigma_share >= 0)) {
-        throw UsageError{"--principal-point-sigma must be >= 0"};
-      }
-    } else if (arg == "--check-share") {
-      o.check_point_share = number_arg(arg, value());
-      if (!(o.check_point_share >= 0 && o.check_point_share <= 0.5)) {
-        throw UsageError{"--check-share must lie in [0, 0.5]"};
-      }
-    } else if (arg == "--sigma-px") {
-      o.sigma_px = number_arg(arg, value());
-    } else if (arg == "--wand-sigma") {
-      o.wand_sigma_mm = number_arg(arg, value());
-    } else if (arg == "--critical-w") {
-      o.critical_snooping = number_arg(arg, value());
-    } else if (arg == "--max-frames") {
-      const std::string& v = value();
-      const double n = number_arg(arg, v);
-      if (!(n >= 1 && n <= 1e9 && n == std::floor(n))) {
-        throw UsageError{"--max-frames must be a whole number >= 1, got '" + v + "'"};
-      }
-      o.max_frames = static_cast<int>(n);
-    } else if (arg == "--bootstrap") {
-      o.bootstrap_samples = static_cast<int>(number_arg(arg, value()));
-    } else if (arg == "--image-size") {
-      const std::string& v = value();
-      const auto x = v.find('x');
-      const double w = x == std::string::npos ? 0 : number_arg(arg, v.substr(0, x));
-      const double h = x == std::string::npos ? 0 : number_arg(arg, v.substr(x + 1));
-      if (!(w >= 1 && h >= 1 && w == static_cast<int>(w) && h == static_cast<int>(h))) {
-        throw UsageError{"--image-size must be WIDTHxHEIGHT in pixels, got '" + v + "'"};
-      }
-      a.image_size = calibration::ImageSize{static_cast<int>(w), static_cast<int>(h)};
-    } else if (arg == "--shared-interior") {
-      o.shared_interior = true;
-    } else if (arg == "--model") {
-      const std::string& v = value();
-      if (v != "auto" && v != "all")
-        throw UsageError{"--model must be auto or all, got '" + v + "'"};
-      o.select_model = v == "auto";
-    } else if (arg == "--interior") {
-      o.free_interior = interior_list(value());
-    } else if (arg == "--cameras") {
-      a.cameras = camera_list(value());
-    } else if (arg == "--frame-range") {
-      parse_frame_range(value(), a);
-    } else if (arg == "--frames") {
-      a.frames = static_cast<long>(number_arg(arg, value()));
-    } else if (arg == "--idle-timeout") {
-      a.idle_timeout_s = number_arg(arg, value());
-    } else if (arg == "--progress") {
-      a.progress = true;
-    } else {
-      throw UsageError{"unknown option '" + arg + "'"};
-    }
-  }
-  if (a.input.empty()) throw UsageError{"--input SOURCE is required"};
-  if (a.out.empty()) throw UsageError{"--out DIR is required"};
-  if (a.led == a.wand_length.has_value()) {
-    throw UsageError{"give exactly one of --wand-length MM and --led"};
-  }
-  o.wand.led = a.led;
-  if (a.wand_length) {
-    if (!(*a.wand_length > 0)) throw UsageError{"--wand-length must be > 0 mm"};
-    o.wand.length_mm = *a.wand_length;
-  }
-  return a;
+  cli::add_checked(app, "--pixel-size", o.pixel_size_mm, "MM", cli::positive(),
+                   "the sensors' pixel pitch (default 0.005, nominal)");
+  app.add_option_function<std::string>(
+         "--image-size", [&a](const std::string& t) { a.image_size = image_size(t); },
+         "the image size of cameras the source gives none for (csv:)")
+      ->option_text("WxH");
+  cli::add_checked(app, "--fov", o.field_of_view_deg, "DEG", cli::finite(),
+                   "horizontal field of view for the start value of c, tried first\n(default 60)");
+  app.add_option_function<std::string>(
+         "--start-fovs",
+         [&o](const std::string& t) { o.start_fields_of_view_deg = number_list(t); },
+         "the fields of view the start is also searched from, each run on\n"
+         "200 frames, the best (plausible, lowest median residual) kept\n"
+         "(default 40,50,60,70,80,90,100; none: --fov alone)")
+      ->option_text("LIST");
+  app.add_option_function<double>(
+         "--principal-point-sigma", [&o](double s) { o.principal_point_sigma_share = s; },
+         "the principal point is observed at the image centre with\n"
+         "S x the sensor width as its sigma (default 0.03 with --led, none\n"
+         "with a wand; 0: no prior, e.g. for images cropped off-centre)")
+      ->option_text("S")
+      ->check(cli::non_negative());
+  app.add_option_function<std::string>(
+         "--interior", [&o](const std::string& t) { o.free_interior = interior_list(t); },
+         "interior values that may be estimated, of c,xp,yp,k1,k2,k3,p1,p2,\n"
+         "sc,sh (default c,xp,yp,k1,k2,k3,p1,p2; --led without k3)")
+      ->option_text("LIST");
+  app.add_flag("--shared-interior", o.shared_interior,
+               "one interior orientation for all cameras (identical cameras and\n"
+               "lenses; their image and pixel sizes must agree)");
+}
+
+void add_adjustment_options(CLI::App& app, CalibrateArgs& a) {
+  auto& o = a.options;
+  app.add_option_function<std::string>(
+         "--model", [&o](const std::string& t) { o.select_model = t == "auto"; },
+         "auto (default with --led): the base model (c, xp, yp, k1, k2 of\n"
+         "--interior) first, then each further group (p1+p2, k3, sc, sh) only\n"
+         "where it improves the fit significantly, is significant and not too\n"
+         "correlated; all (default with a wand): every --interior value")
+      ->option_text("auto|all")
+      ->check(cli::one_of({"auto", "all"}));
+  cli::add_checked(app, "--sigma-px", o.sigma_px, "PX", cli::finite(),
+                   "a priori standard deviation of a measured coordinate (0.1)");
+  cli::add_checked(app, "--critical-w", o.critical_snooping, "W", cli::finite(),
+                   "data snooping's critical value (3.29)");
+  cli::add_checked(app, "--check-share", o.check_point_share, "S", cli::number_in(0, 0.5),
+                   "share of the frames held out and predicted as check points\n"
+                   "(default 0.1; 0: none)");
+  cli::add_checked(app, "--max-frames", o.max_frames, "N", cli::whole_in(1, 1'000'000'000),
+                   "use at most N frames (N >= 1), evenly spread (default all)");
+  cli::add_checked(app, "--bootstrap", o.bootstrap_samples, "N", cli::whole_in(0, 1'000'000),
+                   "also the interior sigmas of N re-adjustments of simulated\n"
+                   "measurements (a parametric bootstrap: honest in weak networks;\n"
+                   "default 0)");
+}
+
+// The checks that span options, after parsing.
+void check_args(CalibrateArgs& a) {
+  if (a.led == a.wand_length.has_value())
+    throw CLI::ValidationError("give exactly one of --wand-length MM and --led");
+  a.options.wand.led = a.led;
+  if (a.wand_length) a.options.wand.length_mm = *a.wand_length;
+}
+
+// Parses into `a`; an exit status when the run is over already (help, usage error).
+std::optional<int> parse_args(std::span<const std::string> args, CalibrateArgs& a,
+                              std::ostream& out, std::ostream& err) {
+  cli::App app("syncap calibrate", kDescription, kFooter);
+  app.get_formatter()->column_width(34);
+  add_source_options(app, a);
+  add_wand_options(app, a);
+  add_camera_options(app, a);
+  add_adjustment_options(app, a);
+  return cli::parse(app, args, out, err, [&a] { check_args(a); });
 }
 
 // The cameras' blob channels and the trigger go to the collector; everything else is ignored.
@@ -398,19 +448,8 @@ void print_summary(const calibration::CalibrationResult& r, std::ostream& out) {
 }  // namespace
 
 int calibrate_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
-  for (const std::string& arg : args) {
-    if (arg == "--help" || arg == "-h") {
-      out << kCalibrateUsage;
-      return kExitOk;
-    }
-  }
   CalibrateArgs a;
-  try {
-    a = parse_args(args);
-  } catch (const UsageError& e) {
-    err << kPrefix << e.message << '\n' << kCalibrateUsage;
-    return kExitUsage;
-  }
+  if (const auto status = parse_args(args, a, out, err)) return *status;
   // Checked before the input is read: a calibration can take minutes.
   if (const std::string problem = unwritable_folder(a.out); !problem.empty()) {
     err << kPrefix << "--out " << a.out << ": " << problem << '\n';

@@ -2,7 +2,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include <charconv>
+#include <algorithm>
 #include <optional>
 #include <set>
 
@@ -12,6 +12,7 @@
 #include "sensor/camera_file.hpp"
 #include "sensor/volume_outline.hpp"
 #include "subcommand.hpp"
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/command_auth.hpp"
 
@@ -24,78 +25,83 @@ struct ClipArgs {
   std::string cameras;
   std::optional<std::array<double, 6>> volume;
   double margin_px = 8.0;
-  std::set<int> only;
+  std::vector<int> only;
   bool remove = false;
   bool publish = false;
   std::string key_path;
   std::string lcm_url = proto::kDefaultLcmUrl;
 };
 
-std::optional<double> parse_double(const std::string& text) {
-  double value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  return value;
-}
-
-std::optional<std::array<double, 6>> parse_volume(const std::string& text) {
+std::array<double, 6> parse_volume(const std::string& text) {
   std::array<double, 6> v{};
   std::size_t at = 0;
-  for (std::size_t i = 0; i < 6; ++i) {
+  bool ok = true;
+  for (std::size_t i = 0; i < 6 && ok; ++i) {
     const std::size_t comma = i < 5 ? text.find(',', at) : text.size();
-    if (comma == std::string::npos) return std::nullopt;
-    const auto value = parse_double(text.substr(at, comma - at));
-    if (!value) return std::nullopt;
-    v[i] = *value;
+    const auto value =
+        comma == std::string::npos ? std::nullopt : cli::finite_number(text.substr(at, comma - at));
+    ok = value.has_value();
+    v[i] = value.value_or(0);
     at = comma + 1;
   }
-  if (v[0] >= v[3] || v[1] >= v[4] || v[2] >= v[5]) return std::nullopt;
+  if (!ok || !(v[0] < v[3] && v[1] < v[4] && v[2] < v[5])) {
+    throw CLI::ValidationError(
+        "--volume", "'" + text + "': expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX in mm, min < max");
+  }
   return v;
 }
 
-// Fills `parsed`; returns an error message for bad arguments.
-std::optional<std::string> parse_clip_args(std::span<const std::string> args, ClipArgs& parsed) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    const bool has_value = i + 1 < args.size();
-    static const std::set<std::string> kWithValue{"--cameras", "--volume",  "--margin",
-                                                  "--camera",  "--lcm-url", "--key"};
-    if (arg == "--remove") {
-      parsed.remove = true;
-    } else if (arg == "--publish") {
-      parsed.publish = true;
-    } else if (!kWithValue.contains(arg)) {
-      return arg.starts_with("-") ? "unknown option '" + arg + "'"
-                                  : "unexpected argument '" + arg + "'";
-    } else if (!has_value) {
-      return arg + " needs a value";
-    } else if (arg == "--cameras") {
-      parsed.cameras = args[++i];
-    } else if (arg == "--volume") {
-      parsed.volume = parse_volume(args[++i]);
-      if (!parsed.volume)
-        return "--volume '" + args[i] +
-               "': expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX in mm, min < max";
-    } else if (arg == "--margin") {
-      const auto margin = parse_double(args[++i]);
-      if (!margin || *margin < 0 || *margin > 1000) return "--margin '" + args[i] + "': 0..1000 px";
-      parsed.margin_px = *margin;
-    } else if (arg == "--camera") {
-      const auto id = parse_double(args[++i]);
-      if (!id || *id < 0 || *id > proto::kMaxCameraId || *id != static_cast<int>(*id))
-        return "--camera '" + args[i] + "': a camera id 0..99";
-      parsed.only.insert(static_cast<int>(*id));
-    } else if (arg == "--key") {
-      parsed.key_path = args[++i];
-    } else {
-      parsed.lcm_url = args[++i];
-    }
-  }
-  if (parsed.cameras.empty()) return "--cameras FILE is required";
-  if (parsed.volume.has_value() == parsed.remove) return "give either --volume or --remove";
-  if (parsed.publish && parsed.key_path.empty())
-    return "--publish needs --key FILE: an edge applies only signed polygons";
-  return std::nullopt;
+constexpr const char* kDescription =
+    "usage: syncap clip --cameras FILE --volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [options]\n"
+    "       syncap clip --cameras FILE --remove [options]\n"
+    "Projects the capture volume (mm, the cameras' object frame) into every camera of FILE\n"
+    "(cameras.json) and prints each camera's clip polygon as a JSON line; with --publish sends\n"
+    "it to the camera's edge process, whose masking then treats pixels outside it as background.\n";
+
+void add_clip_options(CLI::App& app, ClipArgs& a) {
+  app.add_option("--cameras", a.cameras, "the calibration, cameras.json")
+      ->option_text("FILE")
+      ->required();
+  app.add_option_function<std::string>(
+         "--volume", [&a](const std::string& t) { a.volume = parse_volume(t); },
+         "the capture volume in mm, the cameras' object frame")
+      ->option_text("XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX");
+  cli::add_checked(app, "--margin", a.margin_px, "PX", cli::number_in(0, 1000),
+                   "grow each outline by PX pixels (default 8)");
+  app.add_option("--camera", a.only, "only this camera (repeatable)")
+      ->option_text("ID")
+      ->allow_extra_args(false)                            // one id per --camera, as before
+      ->transform(cli::whole_in(0, proto::kMaxCameraId));  // "010" is camera 10
+  app.add_flag("--remove", a.remove, "clip nothing: polygons of no points");
+  app.add_flag("--publish", a.publish,
+               "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key");
+  app.add_option("--key", a.key_path,
+                 "the installation's command key (syncap keygen; needed by --publish:\n"
+                 "an edge applies only signed polygons, docs/security.md)")
+      ->option_text("FILE");
+  app.add_option("--lcm-url", a.lcm_url, "LCM provider for --publish (default " + a.lcm_url + ")")
+      ->option_text("URL");
+}
+
+// The checks that span options, after parsing.
+void check_clip_args(const ClipArgs& a) {
+  if (a.volume.has_value() == a.remove)
+    throw CLI::ValidationError("give either --volume or --remove");
+  if (a.publish && a.key_path.empty())
+    throw CLI::ValidationError("--publish needs --key FILE: an edge applies only signed polygons");
+}
+
+// The exit statuses, below the options in --help.
+constexpr const char* kFooter =
+    "Exit status: 0 done, 1 a camera could not be clipped (named; the others are sent),\n"
+    "2 usage error or unreadable FILE.";
+
+// Parses into `a`; an exit status when the run is over already (help, usage error).
+std::optional<int> parse_clip_args(std::span<const std::string> args, ClipArgs& a,
+                                   std::ostream& out, std::ostream& err) {
+  cli::App app("syncap clip", kDescription, kFooter);
+  add_clip_options(app, a);
+  return cli::parse(app, args, out, err, [&a] { check_clip_args(a); });
 }
 
 clip_polygon_t message_of(const sensor::CameraModel& camera, int64_t sequence) {
@@ -137,21 +143,13 @@ ClipPolygons clip_polygons(const std::vector<sensor::CameraModel>& cameras,
 }
 
 int clip_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
-  for (const std::string& arg : args) {
-    if (arg == "--help" || arg == "-h") {
-      out << kClipUsage;
-      return kExitOk;
-    }
-  }
   ClipArgs parsed;
-  if (const auto problem = parse_clip_args(args, parsed)) {
-    err << kErrorPrefix << *problem << '\n' << kClipUsage;
-    return kExitUsage;
-  }
+  if (const auto status = parse_clip_args(args, parsed, out, err)) return *status;
   std::vector<sensor::CameraModel> cameras;
   try {
     for (sensor::CameraModel& c : sensor::read_cameras(parsed.cameras)) {
-      if (parsed.only.empty() || parsed.only.contains(c.id)) cameras.push_back(std::move(c));
+      if (parsed.only.empty() || std::ranges::find(parsed.only, c.id) != parsed.only.end())
+        cameras.push_back(std::move(c));
     }
   } catch (const sensor::CameraFileError& e) {
     err << kErrorPrefix << e.what() << '\n';

@@ -11,6 +11,7 @@
 #include "log_stats.hpp"
 #include "message_json.hpp"
 #include "subcommand.hpp"
+#include "syncap/cli/options.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -65,36 +66,41 @@ bool print_event(const LogEvent& event, std::ostream& out, std::ostream& err) {
   return true;
 }
 
-// Fills `parsed` from the arguments; returns an error message for bad ones.
-std::optional<std::string> parse_log_args(std::span<const std::string> args, LogArgs& parsed) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg == "--channel" || arg == "-c") {
-      if (i + 1 == args.size()) return arg + " needs a REGEX";
-      try {
-        parsed.channel_filter.emplace(args[++i]);
-      } catch (const std::regex_error& error) {
-        return "bad channel REGEX '" + args[i] + "': " + error.what();
-      }
-    } else if (arg == "--stats") {
-      parsed.stats = true;
-    } else if (arg.starts_with("-")) {
-      return "unknown option " + arg;
-    } else if (parsed.file.empty()) {
-      parsed.file = arg;
-    } else {
-      return "more than one FILE given";
-    }
-  }
-  if (parsed.file.empty()) return std::string("no FILE given");
-  return std::nullopt;
-}
+constexpr const char* kDescription =
+    "usage: syncap log FILE [--channel REGEX]\n"
+    "       syncap log --stats FILE\n"
+    "Prints every event of the LCM log FILE as one JSON object per line:\n"
+    "  {\"event\":N,\"timestamp_us\":T,\"channel\":\"...\",\"type\":\"syncap.trigger_t\","
+    "\"fields\":{...}}\n"
+    "The type comes from the payload's fingerprint. An event of unknown type is printed with\n"
+    "\"type\":null and no fields; one that does not decode without fields. Damage is reported on\n"
+    "stderr with its byte offset and skipped where possible.\n";
 
-bool wants_help(std::span<const std::string> args) {
-  for (const std::string& arg : args) {
-    if (arg == "--help" || arg == "-h") return true;
-  }
-  return false;
+// The exit statuses, below the options in --help.
+constexpr const char* kFooter =
+    "Exit status: 0 all decoded, 1 damage reported, 2 usage error, unreadable FILE, or (--stats)\n"
+    "no valid LCM log event in FILE.";
+
+// Parses into `parsed`; an exit status when the run is over already (help, usage error).
+std::optional<int> parse_log_args(std::span<const std::string> args, LogArgs& parsed,
+                                  std::ostream& out, std::ostream& err) {
+  cli::App app("syncap log", kDescription, kFooter);
+  app.add_option("FILE", parsed.file, "an LCM log (lcm-logger)")->required();
+  app.add_option_function<std::string>(
+         "-c,--channel",
+         [&parsed](const std::string& regex) {
+           try {
+             parsed.channel_filter.emplace(regex);
+           } catch (const std::regex_error& error) {
+             throw CLI::ValidationError("--channel", "bad REGEX '" + regex + "': " + error.what());
+           }
+         },
+         "only events whose whole channel name matches REGEX (ECMAScript)")
+      ->option_text("REGEX");
+  app.add_flag("--stats", parsed.stats,
+               "instead: messages and bytes per channel, and per camera the bytes per\n"
+               "frame of blobs and silhouettes against the raw frame");
+  return cli::parse(app, args, out, err);
 }
 
 }  // namespace
@@ -113,15 +119,8 @@ int print_log(std::istream& log, const std::optional<std::regex>& channel_filter
 }
 
 int log_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
-  if (wants_help(args)) {
-    out << kLogUsage;
-    return kExitOk;
-  }
   LogArgs parsed;
-  if (const auto problem = parse_log_args(args, parsed)) {
-    err << kErrorPrefix << *problem << '\n' << kLogUsage;
-    return kExitUsage;
-  }
+  if (const auto status = parse_log_args(args, parsed, out, err)) return *status;
   std::error_code error;
   if (std::filesystem::is_directory(parsed.file, error)) {
     err << kErrorPrefix << "cannot read " << parsed.file << ": is a directory\n";

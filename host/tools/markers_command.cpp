@@ -16,6 +16,7 @@
 #include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/decode.hpp"
 
@@ -73,8 +74,10 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
       ->delimiter(',')
       ->expected(6);
-  app.add_option("--sigma-px", a.matching.sigma_px, "a ray's standard deviation (0.2)");
-  app.add_option("--tolerance-px", a.matching.tolerance_px, "a ray's largest miss (2)");
+  app.add_option("--sigma-px", a.matching.sigma_px, "a ray's standard deviation (0.2)")
+      ->check(cli::number_in(0.001, 10));
+  app.add_option("--tolerance-px", a.matching.tolerance_px, "a ray's largest miss (2)")
+      ->check(cli::number_in(0.01, 100));
   app.add_flag("--keep-not-round", a.keep_not_round,
                "also match blobs the edge flagged NOT_ROUND (left out by default)");
   host_app::add_tracking_options(app, a.tracking);

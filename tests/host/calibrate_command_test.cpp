@@ -12,6 +12,7 @@
 
 #include "calibration/simulated_observations.hpp"
 #include "estimators/bundle_adjustment_simulation.hpp"
+#include "help_check.hpp"
 #include "lcm_log_reader.hpp"
 #include "malformed_messages.hpp"
 #include "sensor/camera_file.hpp"
@@ -127,19 +128,92 @@ TEST(CalibrateCommand, UsageErrorsNameTheOption) {
   EXPECT_NE(err.find("--interior: 'q' is not one of"), std::string::npos);
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--model", "some"}, out, err),
             kExitUsage);
-  EXPECT_NE(err.find("--model must be auto or all, got 'some'"), std::string::npos) << err;
+  EXPECT_NE(err.find("--model: 'some' is not one of auto, all"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--start-fovs", "40,x"}, out, err),
             kExitUsage);
-  EXPECT_NE(err.find("--start-fovs needs a number, got 'x'"), std::string::npos) << err;
+  EXPECT_NE(err.find("--start-fovs: 'x' is not a number"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--check-share", "0.7"}, out, err),
             kExitUsage);
-  EXPECT_NE(err.find("--check-share must lie in [0, 0.5]"), std::string::npos) << err;
+  EXPECT_NE(err.find("--check-share: '0.7' is not a number in [0, 0.5]"), std::string::npos) << err;
   EXPECT_EQ(
       run({"--input", "lcm:udpm://239.255.76.67:7667?ttl=0", "--led", "--out", "d"}, out, err),
       kExitUsage);
   EXPECT_NE(err.find("lcm: needs --cameras"), std::string::npos) << err;
+  EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--bogus"}, out, err), kExitUsage);
+  EXPECT_NE(err.find("unknown option '--bogus'"), std::string::npos) << err;
+  EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--k", "nan"}, out, err), kExitUsage);
+  EXPECT_NE(err.find("unknown option '--k'"), std::string::npos) << err;
+  EXPECT_EQ(run({"--led", "--out", "d"}, out, err), kExitUsage);
+  EXPECT_NE(err.find("--input is required"), std::string::npos) << err;
+}
+
+// Not finite, not whole, not in range, trailing junk: each named with its option and value.
+TEST(CalibrateCommand, BadNumbersAreUsageErrorsNamingOptionAndValue) {
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--wand-ratio", "nan"},   {"--sigma-px", "inf"},
+      {"--pixel-size", "0"},     {"--fov", "60deg"},
+      {"--wand-targets", "4"},   {"--wand-targets", "2.5"},
+      {"--frames", "-1"},        {"--bootstrap", "1.5"},
+      {"--idle-timeout", "nan"}, {"--cameras", "100"},
+      {"--image-size", "640x"},  {"--scale-from", "0,0,100"},
+      {"--wand-ends", "color"},  {"--principal-point-sigma", "-1"}};
+  for (const auto& [option, value] : bad) {
+    std::string out, err;
+    EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", option, value}, out, err), kExitUsage)
+        << option << ' ' << value;
+    EXPECT_NE(err.find(option + ": '"), std::string::npos) << err;
+    EXPECT_NE(err.find(value), std::string::npos) << err;
+  }
+}
+
+// --help lists every option with its meaning and default, the sources and the exit statuses.
+TEST(CalibrateCommand, HelpIsComplete) {
+  std::string out, err;
   EXPECT_EQ(run({"--help"}, out, err), kExitOk);
-  EXPECT_NE(out.find("usage: syncap calibrate"), std::string::npos);
+  EXPECT_EQ(err, "");
+  syncap::test::expect_help_mentions(out, {"usage: syncap calibrate",
+                                           "lcm:URL",
+                                           "lcmlog:FILE",
+                                           "csv:FILE",
+                                           "mcsc:DIR",
+                                           "--input SOURCE",
+                                           "--out DIR",
+                                           "--wand-length MM",
+                                           "--led",
+                                           "--scale-from A,B,MM",
+                                           "--wand-targets N",
+                                           "(default 3)",
+                                           "--wand-ratio R",
+                                           "(default 0.4)",
+                                           "--wand-ends size|continuity",
+                                           "--pixel-size MM",
+                                           "(default 0.005",
+                                           "--image-size WxH",
+                                           "--fov DEG",
+                                           "(default 60)",
+                                           "--start-fovs LIST",
+                                           "40,50,60,70,80,90,100",
+                                           "--principal-point-sigma S",
+                                           "--check-share S",
+                                           "(default 0.1",
+                                           "--interior LIST",
+                                           "--shared-interior",
+                                           "--model auto|all",
+                                           "--sigma-px PX",
+                                           "(0.1)",
+                                           "--wand-sigma MM",
+                                           "(0.2)",
+                                           "--critical-w W",
+                                           "(3.29)",
+                                           "--max-frames N",
+                                           "--bootstrap N",
+                                           "--cameras LIST",
+                                           "--frame-range A-B",
+                                           "--frames N",
+                                           "--idle-timeout S",
+                                           "(default 5)",
+                                           "--progress",
+                                           "Exit status: 0 calibrated"});
 }
 
 // Issue 15: one record whose num_blobs reads -1 made the decoder throw, and `syncap calibrate`
@@ -281,8 +355,7 @@ TEST(CalibrateCommand, BadMaxFramesAndUnwritableOutAreUsageErrorsBeforeReading) 
   EXPECT_EQ(run({"--input", "csv:/nonexistent.csv", "--led", "--out", "d", "--max-frames", "-5"},
                 out, err),
             kExitUsage);
-  EXPECT_NE(err.find("--max-frames must be a whole number >= 1, got '-5'"), std::string::npos)
-      << err;
+  EXPECT_NE(err.find("--max-frames: '-5' is not a whole number in [1, "), std::string::npos) << err;
   EXPECT_EQ(
       run({"--input", "csv:/nonexistent.csv", "--led", "--out", "/proc/syncap-out"}, out, err),
       kExitUsage);

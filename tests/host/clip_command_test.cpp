@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "help_check.hpp"
 #include "sensor/camera_file.hpp"
 #include "sensor/test_cameras.hpp"
 #include "subcommand.hpp"
@@ -20,6 +21,7 @@ namespace {
 struct ClipRun {
   int status = -1;
   std::vector<nlohmann::json> lines;
+  std::string out;  // the JSON lines, or --help
   std::string err;
 };
 
@@ -27,8 +29,12 @@ ClipRun run(const std::vector<std::string>& args) {
   std::ostringstream out, err;
   ClipRun r;
   r.status = clip_command(args, out, err);
-  std::istringstream lines(out.str());
-  for (std::string line; std::getline(lines, line);) r.lines.push_back(nlohmann::json::parse(line));
+  r.out = out.str();
+  if (r.out.starts_with("{")) {
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);)
+      r.lines.push_back(nlohmann::json::parse(line));
+  }
   r.err = err.str();
   return r;
 }
@@ -76,6 +82,14 @@ TEST_F(ClipCommandTest, OnlyTheCamerasAskedForAndRemove) {
   ASSERT_EQ(r.lines.size(), 1u);
   EXPECT_EQ(r.lines[0]["camera_id"], 4);
   EXPECT_EQ(r.lines[0]["num_points"], 0);
+  // --camera repeats, one id each time.
+  const ClipRun both =
+      run({"--cameras", file_.string(), "--remove", "--camera", "3", "--camera", "4"});
+  ASSERT_EQ(both.status, kExitOk) << both.err;
+  EXPECT_EQ(both.lines.size(), 2u);
+  const ClipRun two_ids = run({"--cameras", file_.string(), "--remove", "--camera", "3", "4"});
+  EXPECT_EQ(two_ids.status, kExitUsage);
+  EXPECT_NE(two_ids.err.find("unexpected argument '4'"), std::string::npos) << two_ids.err;
 }
 
 TEST_F(ClipCommandTest, AVolumeACameraCannotSeeIsNamedAndTheOthersStillGo) {
@@ -96,7 +110,18 @@ TEST_F(ClipCommandTest, AVolumeACameraCannotSeeIsNamedAndTheOthersStillGo) {
 TEST_F(ClipCommandTest, BadArgumentsAndFilesAreNamed) {
   ClipRun r = run({"--cameras", file_.string(), "--volume", "1,2,3"});
   EXPECT_EQ(r.status, kExitUsage);
-  EXPECT_NE(r.err.find("--volume '1,2,3'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--volume: '1,2,3'"), std::string::npos) << r.err;
+  r = run({"--cameras", file_.string(), "--volume", "nan,0,0,1,1,1"});
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("--volume: 'nan,0,0,1,1,1'"), std::string::npos) << r.err;
+  for (const std::string margin : {"nan", "-1", "1001", "8px"}) {
+    r = run({"--cameras", file_.string(), "--remove", "--margin", margin});
+    EXPECT_EQ(r.status, kExitUsage) << margin;
+    EXPECT_NE(r.err.find("--margin: '" + margin + "'"), std::string::npos) << r.err;
+  }
+  r = run({"--cameras", file_.string(), "--remove", "--camera", "1.5"});
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("--camera: '1.5'"), std::string::npos) << r.err;
   r = run({"--cameras", file_.string(), "--volume", "0,0,0,1,1,1", "--remove"});
   EXPECT_EQ(r.status, kExitUsage);
   r = run({"--cameras", "/nonexistent/cameras.json", "--remove"});
@@ -135,6 +160,17 @@ TEST_F(ClipCommandTest, UnknownOptionIsNamedAsUnknownWherever) {
     EXPECT_EQ(r.status, kExitUsage);
     EXPECT_EQ(r.err.rfind("syncap clip: unknown option '--x'\n", 0), 0u) << r.err;
   }
+}
+
+// --help: every option with its meaning and default, both forms, the exit statuses.
+TEST_F(ClipCommandTest, HelpIsComplete) {
+  const ClipRun r = run({"--help"});
+  EXPECT_EQ(r.status, kExitOk);
+  syncap::test::expect_help_mentions(
+      r.out, {"usage: syncap clip --cameras FILE --volume", "syncap clip --cameras FILE --remove",
+              "--cameras FILE", "--volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", "--margin PX",
+              "(default 8)", "--camera ID", "(repeatable)", "--remove", "--publish", "--key FILE",
+              "--lcm-url URL", "(default udpm://", "Exit status: 0 done"});
 }
 
 }  // namespace

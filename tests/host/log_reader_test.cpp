@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "help_check.hpp"
 #include "lcm_log_reader.hpp"
 #include "log_command.hpp"
 #include "malformed_messages.hpp"
@@ -539,14 +540,33 @@ TEST(LogCommand, UsageErrorsAndUnreadableFilesExitWithTwo) {
   std::ostringstream err;
   const std::vector<std::string> no_file;
   EXPECT_EQ(log_command(no_file, out, err), kExitUsage);
+  EXPECT_EQ(err.str().rfind("syncap log: FILE is required\n", 0), 0u) << err.str();
 
   const std::vector<std::string> missing{"/nonexistent/syncap.log"};
   EXPECT_EQ(log_command(missing, out, err), kExitUsage);
   EXPECT_NE(err.str().find("cannot open /nonexistent/syncap.log"), std::string::npos) << err.str();
 
   const std::vector<std::string> bad_regex{"x.log", "--channel", "("};
+  err.str("");
   EXPECT_EQ(log_command(bad_regex, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--channel: bad REGEX '('"), std::string::npos) << err.str();
   EXPECT_TRUE(out.str().empty());
+
+  const std::vector<std::string> two_files{"a.log", "b.log"};
+  err.str("");
+  EXPECT_EQ(log_command(two_files, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("unexpected argument 'b.log'"), std::string::npos) << err.str();
+}
+
+// --help: both forms, every option with its meaning, the exit statuses.
+TEST(LogCommand, HelpIsComplete) {
+  std::ostringstream out, err;
+  const std::vector<std::string> help{"--help"};
+  EXPECT_EQ(log_command(help, out, err), kExitOk);
+  syncap::test::expect_help_mentions(
+      out.str(),
+      {"usage: syncap log FILE [--channel REGEX]", "syncap log --stats FILE", "-c,--channel REGEX",
+       "(ECMAScript)", "--stats", "per camera the bytes per", "Exit status: 0 all decoded"});
 }
 
 TEST(Base64, EncodesWithPadding) {

@@ -1,11 +1,9 @@
 // syncap-hil-compare: what the system produced (the host's frame groups) against the simulator's
 // ground truth; prints a summary and PASS or FAIL: reasons (hil/compare/README.md).
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <fstream>
 #include <iostream>
-#include <map>
+#include <optional>
 #include <string>
 
 #include "calibration_check.hpp"
@@ -15,37 +13,12 @@
 #include "markers_check.hpp"
 #include "sensor/camera_file.hpp"
 #include "summary.hpp"
+#include "syncap/cli/options.hpp"
 #include "truth.hpp"
 
 namespace {
 
-const char* kUsage =
-    "usage: syncap-hil-compare --truth DIR --groups FILE [--json FILE] [--max-rms-px 0.1]\n"
-    "                          [--min-detection 0.98] [--match-radius-px 3] [--min-frames 0.99]\n"
-    "                          [--min-iou 0.95] [--require-silhouettes]\n"
-    "  --truth DIR            the simulator's output: DIR/cameras.json, DIR/truth/*.csv\n"
-    "  --groups FILE          the host's frame groups (syncap-host --out), JSON lines\n"
-    "  --json FILE            also write the figures as JSON\n"
-    "  --max-rms-px PX        per camera: RMS centroid error of matched targets at most PX\n"
-    "  --min-detection SHARE  per camera: matched / visible targets in reported frames\n"
-    "  --match-radius-px PX   a blob matches the nearest free target within PX\n"
-    "  --min-frames SHARE     complete groups / truth frames\n"
-    "  --min-iou SHARE        per camera: mean IoU of its silhouettes against the true masks\n"
-    "  --require-silhouettes  per camera: a silhouette in min-frames of the frames with a mask\n"
-    "  When the groups carry 3D markers (syncap-host --calibration), against truth/targets.csv:\n"
-    "  --marker-radius-mm MM  a marker finds the nearest free true target within MM (5)\n"
-    "  --min-markers-found SHARE  found / targets seen by two or more cameras (0.995)\n"
-    "  --max-ghosts SHARE     markers near no target / markers (0.005)\n"
-    "  --max-marker-rms-mm MM 3D RMS error of the found markers (0.5)\n"
-    "       syncap-hil-compare --truth DIR --cameras FILE [--max-reprojection-px 0.5]\n"
-    "  --cameras FILE         a calibration (cameras.json) against DIR/cameras.json, aligned by\n"
-    "                         a similarity; the true targets reprojected through both\n"
-    "  --max-reprojection-px PX  RMS of that reprojection at most PX\n"
-    "  Both --groups and --cameras: the groups' markers were measured through that calibration\n"
-    "  (syncap markers --calibration FILE); they are moved into the truth's frame by the rigid\n"
-    "  motion that best maps its projection centres onto the true ones (the scale is the\n"
-    "  calibration's own) before they are checked; both checks must pass.\n"
-    "exit 0 PASS, 1 FAIL, 2 unusable inputs\n";
+namespace cli = syncap::cli;
 
 // The host's 3D markers, when the groups carry them (syncap-host --calibration).
 struct MarkerLimits {
@@ -62,65 +35,80 @@ struct Options {
   double max_reprojection_px = 0.5;
 };
 
-[[noreturn]] void usage_error(const std::string& message) {
-  std::cerr << "syncap-hil-compare: " << message << "\n" << kUsage;
-  std::exit(2);
+constexpr const char* kDescription =
+    "Compares the host's frame groups, or a calibration, with the simulator's ground truth;\n"
+    "prints a summary and PASS or FAIL: reasons (hil/compare/README.md).\n"
+    "usage: syncap-hil-compare --truth DIR --groups FILE [--json FILE] [thresholds]\n"
+    "       syncap-hil-compare --truth DIR --cameras FILE [--max-reprojection-px 0.5]\n";
+
+constexpr const char* kFooter =
+    "Both --groups and --cameras: the groups' markers were measured through that calibration\n"
+    "(syncap markers --calibration FILE); they are moved into the truth's frame by the rigid\n"
+    "motion that best maps its projection centres onto the true ones (the scale is the\n"
+    "calibration's own) before they are checked; both checks must pass.\n"
+    "exit 0 PASS, 1 FAIL, 2 unusable inputs";
+
+void add_group_options(CLI::App& app, Options& o) {
+  auto& t = o.thresholds;
+  app.add_option("--truth", o.truth, "the simulator's output: DIR/cameras.json, DIR/truth/*.csv")
+      ->option_text("DIR")
+      ->required();
+  app.add_option("--groups", o.groups, "the host's frame groups (syncap-host --out), JSON lines")
+      ->option_text("FILE");
+  app.add_option("--json", o.json, "also write the figures as JSON")->option_text("FILE");
+  cli::add_checked(app, "--max-rms-px", t.max_rms_px, "PX", cli::non_negative(),
+                   "per camera: RMS centroid error of matched targets at most PX (0.1)");
+  cli::add_checked(app, "--min-detection", t.min_detection, "SHARE", cli::number_in(0, 1),
+                   "per camera: matched / visible targets in reported frames (0.98)");
+  cli::add_checked(app, "--match-radius-px", t.match_radius_px, "PX", cli::non_negative(),
+                   "a blob matches the nearest free target within PX (3)");
+  cli::add_checked(app, "--min-frames", t.min_frames, "SHARE", cli::number_in(0, 1),
+                   "complete groups / truth frames (0.99)");
+  cli::add_checked(app, "--min-iou", t.min_iou, "SHARE", cli::number_in(0, 1),
+                   "per camera: mean IoU of its silhouettes against the true masks (0.95)");
+  app.add_flag("--require-silhouettes", t.require_silhouettes,
+               "per camera: a silhouette in min-frames of the frames with a mask");
 }
 
-double positive_number(const std::string& option, const std::string& text) {
-  double value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value < 0) {
-    usage_error(option + " '" + text + "' is not a non-negative number");
-  }
-  return value;
+void add_marker_options(CLI::App& app, MarkerLimits& m) {
+  const std::string group =
+      "When the groups carry 3D markers (syncap-host --calibration), against truth/targets.csv";
+  cli::add_checked(app, "--marker-radius-mm", m.match_radius_mm, "MM", cli::non_negative(),
+                   "a marker finds the nearest free true target within MM (5)")
+      ->group(group);
+  cli::add_checked(app, "--min-markers-found", m.min_found, "SHARE", cli::non_negative(),
+                   "found / targets seen by two or more cameras (0.995)")
+      ->group(group);
+  cli::add_checked(app, "--max-ghosts", m.max_ghosts, "SHARE", cli::non_negative(),
+                   "markers near no target / markers (0.005)")
+      ->group(group);
+  cli::add_checked(app, "--max-marker-rms-mm", m.max_rms_mm, "MM", cli::non_negative(),
+                   "3D RMS error of the found markers (0.5)")
+      ->group(group);
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  std::map<std::string, std::string*> paths{{"--truth", &o.truth},
-                                            {"--groups", &o.groups},
-                                            {"--json", &o.json},
-                                            {"--cameras", &o.cameras}};
-  std::map<std::string, double*> numbers{{"--max-rms-px", &o.thresholds.max_rms_px},
-                                         {"--min-detection", &o.thresholds.min_detection},
-                                         {"--match-radius-px", &o.thresholds.match_radius_px},
-                                         {"--min-frames", &o.thresholds.min_frames},
-                                         {"--min-iou", &o.thresholds.min_iou},
-                                         {"--max-reprojection-px", &o.max_reprojection_px},
-                                         {"--marker-radius-mm", &o.markers.match_radius_mm},
-                                         {"--min-markers-found", &o.markers.min_found},
-                                         {"--max-ghosts", &o.markers.max_ghosts},
-                                         {"--max-marker-rms-mm", &o.markers.max_rms_mm}};
-  for (int i = 1; i < argc; ++i) {
-    const std::string option = argv[i];
-    if (option == "--help" || option == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    }
-    if (option == "--require-silhouettes") {
-      o.thresholds.require_silhouettes = true;
-      continue;
-    }
-    const auto p = paths.find(option);
-    const auto n = numbers.find(option);
-    // Known before its value is looked for: an unknown last option is no missing value.
-    if (p == paths.end() && n == numbers.end()) usage_error("unknown option '" + option + "'");
-    if (i + 1 >= argc) usage_error("option '" + option + "' needs a value");
-    const std::string value = argv[++i];
-    if (p != paths.end()) {
-      *p->second = value;
-    } else {
-      *n->second = positive_number(option, value);
-    }
-  }
-  if (o.truth.empty() || (o.groups.empty() && o.cameras.empty())) {
-    usage_error("--truth and --groups (or --cameras) are required");
-  }
-  if (o.thresholds.min_detection > 1 || o.thresholds.min_frames > 1 || o.thresholds.min_iou > 1) {
-    usage_error("--min-detection, --min-frames and --min-iou are shares from 0 to 1");
-  }
-  return o;
+void add_calibration_options(CLI::App& app, Options& o) {
+  const std::string group = "A calibration against the truth";
+  app.add_option("--cameras", o.cameras,
+                 "a calibration (cameras.json) against DIR/cameras.json, aligned by\n"
+                 "a similarity; the true targets reprojected through both")
+      ->option_text("FILE")
+      ->group(group);
+  cli::add_checked(app, "--max-reprojection-px", o.max_reprojection_px, "PX", cli::non_negative(),
+                   "RMS of that reprojection at most PX (0.5)")
+      ->group(group);
+}
+
+// Parses into `o`; the exit status when the run is over already (help, usage error).
+std::optional<int> parse(int argc, char** argv, Options& o) {
+  cli::App app("syncap-hil-compare", kDescription, kFooter);
+  add_group_options(app, o);
+  add_marker_options(app, o.markers);
+  add_calibration_options(app, o);
+  return cli::parse_main(app, argc, argv, [&o] {
+    if (o.groups.empty() && o.cameras.empty())
+      throw CLI::ValidationError("--groups FILE (or --cameras FILE) is required");
+  });
 }
 
 void write_json(const std::string& file, const syncap::compare::Report& report) {
@@ -184,7 +172,8 @@ int check_cameras(const Options& o) {
 }
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  Options o;
+  if (const auto status = parse(argc, argv, o)) return *status;
   int cameras_status = 0;
   if (!o.cameras.empty()) {
     try {

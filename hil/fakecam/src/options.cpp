@@ -2,12 +2,15 @@
 
 #include <arpa/inet.h>
 
+#include <array>
 #include <charconv>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
 
+#include "syncap/cli/options.hpp"
 #include "syncap/trigger/gpiosim.h"
 
 namespace syncap::fakecam {
@@ -108,32 +111,68 @@ struct Parser {
   }
 };
 
-const std::vector<std::string_view> kValueOptions = {
-    "--address", "--images",   "--serial",      "--trigger",  "--drop",
-    "--seed",    "--delay-ms", "--start-frame", "--cache-mb", "--link-mbps"};
+// The options with a value: name, value in --help, meaning.
+constexpr std::array<std::array<const char*, 3>, 10> kValueOptions{{
+    {"--address", "A",
+     "required: IPv4 address on the loopback to serve on (127.0.0.2-33\nin hil/netns-run)"},
+    {"--images", "DIR", "required: the images; all of one size, 8-bit single channel"},
+    {"--serial", "NAME", "serial number, 1-15 characters (default SYNCAP-FAKE-<octet>)"},
+    {"--trigger", "SOURCE",
+     "software (default): one frame per TriggerSoftware command;\n"
+     "gpiosim:NAME:LINE: one frame per rising edge of LINE on the\n"
+     "shared simulated chip NAME (syncap-trigger --chip sim:NAME)"},
+    {"--drop", "LIST|RATE", "leave out frames 3,17,40-45, or a rate: 0.05 or 5% (default none)"},
+    {"--seed", "N", "seed of a drop rate (default 1)"},
+    {"--delay-ms", "N", "send each frame N ms after its trigger (default 0)"},
+    {"--start-frame", "K", "frame number of the first trigger (default 0)"},
+    {"--cache-mb", "N", "keep up to N MiB of decoded images in memory (default 256)"},
+    {"--link-mbps", "N",
+     "send frames no faster than a link of N Mbit/s, as a GigE\ncamera does (default 1000; 0: "
+     "unpaced)"},
+}};
 
-bool takes_value(std::string_view name) {
-  for (std::string_view option : kValueOptions) {
-    if (option == name) return true;
+// The values are kept as given and applied after parsing, so that --help wins over a bad one.
+void add_options(CLI::App& app, Parser& parser, std::map<std::string, std::string>& given) {
+  for (const auto& [name, metavar, meaning] : kValueOptions) {
+    app.add_option_function<std::string>(
+           name, [&given, name](const std::string& value) { given[name] = value; }, meaning)
+        ->option_text(metavar);
   }
-  return false;
+  app.add_flag("--loop", parser.options.loop,
+               "frame f shows image first + (f - first) mod (number of\n"
+               "images): a short render serves a long run (soak)");
+  app.add_flag("--quiet", parser.options.quiet, "no start line and no summary");
 }
 
-ParsedOptions invalid(std::string error) {
-  return {ParsedOptions::Result::invalid, {}, std::move(error)};
-}
-
-// Checks what only the whole command line can tell and fills in the derived values.
-ParsedOptions finish(Parser& parser) {
+// Applies the values, checks what only the whole command line can tell and fills in the derived
+// values; throws CLI::ValidationError naming the option and the value.
+void apply_and_finish(Parser& parser, const std::map<std::string, std::string>& given) {
+  for (const auto& [name, value] : given) {
+    try {
+      parser.apply(name, value);
+    } catch (const std::invalid_argument& why) {
+      throw CLI::ValidationError("invalid " + name + " '" + value + "': " + why.what());
+    }
+  }
   Options& options = parser.options;
-  if (options.address.empty()) return invalid("missing --address (e.g. --address 127.0.0.2)");
-  if (options.images.empty()) return invalid("missing --images DIR");
+  if (options.address.empty())
+    throw CLI::ValidationError("missing --address (e.g. --address 127.0.0.2)");
+  if (options.images.empty()) throw CLI::ValidationError("missing --images DIR");
   if (options.serial.empty()) {
     options.serial = "SYNCAP-FAKE-" + std::to_string(*loopback_last_octet(options.address));
   }
   if (parser.has_drop) options.drop = DropPolicy::parse(parser.drop_text, options.seed);
-  return {ParsedOptions::Result::run, std::move(options), {}};
 }
+
+constexpr const char* kDescription =
+    "usage: syncap-fakecam --address 127.0.0.X --images DIR [OPTIONS]\n"
+    "Serves the 8-bit images DIR/<prefix><frame number>.pgm|.png as a GigE Vision camera\n"
+    "(Aravis fake camera) on the address, one frame per trigger. Run it inside\n"
+    "hil/netns-run. See docs/fakecam.md.\n";
+
+constexpr const char* kFooter =
+    "Exit status: 0 after SIGINT/SIGTERM; 1 for bad input or a runtime failure (message on\n"
+    "stderr, nothing served); 2 for wrong arguments (message naming the option and the value).";
 
 }  // namespace
 
@@ -143,54 +182,23 @@ std::string TriggerSpec::describe() const {
 }
 
 ParsedOptions parse_options(std::span<const char* const> arguments) {
-  for (const std::string_view argument : arguments) {
-    if (argument == "--help" || argument == "-h") return {ParsedOptions::Result::help, {}, {}};
-  }
   Parser parser;
-  for (std::size_t i = 0; i < arguments.size(); ++i) {
-    const std::string_view name = arguments[i];
-    if (name == "--quiet" || name == "--loop") {
-      (name == "--quiet" ? parser.options.quiet : parser.options.loop) = true;
-      continue;
-    }
-    if (!takes_value(name)) return invalid("unknown option '" + std::string(name) + "'");
-    if (i + 1 == arguments.size()) {
-      return invalid("missing value for option '" + std::string(name) + "'");
-    }
-    const std::string_view value = arguments[++i];
-    try {
-      parser.apply(name, value);
-    } catch (const std::invalid_argument& why) {
-      return invalid("invalid " + std::string(name) + " '" + std::string(value) +
-                     "': " + why.what());
-    }
-  }
-  return finish(parser);
+  std::map<std::string, std::string> given;
+  cli::App app("syncap-fakecam", kDescription, kFooter);
+  add_options(app, parser, given);
+  const std::vector<std::string> args(arguments.begin(), arguments.end());
+  const auto stop = cli::try_parse(app, args, [&] { apply_and_finish(parser, given); });
+  if (!stop) return {ParsedOptions::Result::run, std::move(parser.options), {}};
+  if (stop->help) return {ParsedOptions::Result::help, {}, {}};
+  return {ParsedOptions::Result::invalid, {}, stop->error};
 }
 
 std::string usage() {
-  return "usage: syncap-fakecam --address 127.0.0.X --images DIR [OPTIONS]\n"
-         "Serves the 8-bit images DIR/<prefix><frame number>.pgm|.png as a GigE Vision camera\n"
-         "(Aravis fake camera) on the address, one frame per trigger. Run it inside\n"
-         "hil/netns-run. See docs/fakecam.md.\n"
-         "  --address A            IPv4 address on the loopback to serve on (127.0.0.2-33 in\n"
-         "                         hil/netns-run)\n"
-         "  --images DIR           the images; all of one size, 8-bit single channel\n"
-         "  --serial NAME          serial number, 1-15 characters (default SYNCAP-FAKE-<octet>)\n"
-         "  --trigger SOURCE       software (default): one frame per TriggerSoftware command;\n"
-         "                         gpiosim:NAME:LINE: one frame per rising edge of LINE on the\n"
-         "                         shared simulated chip NAME (syncap-trigger --chip sim:NAME)\n"
-         "  --drop LIST|RATE       leave out frames 3,17,40-45, or a rate: 0.05 or 5%\n"
-         "  --seed N               seed of a drop rate (default 1)\n"
-         "  --delay-ms N           send each frame N ms after its trigger (default 0)\n"
-         "  --start-frame K        frame number of the first trigger (default 0)\n"
-         "  --cache-mb N           keep up to N MiB of decoded images in memory (default 256)\n"
-         "  --link-mbps N          send frames no faster than a link of N Mbit/s, as a GigE\n"
-         "                         camera does (default 1000; 0: unpaced)\n"
-         "  --loop                 frame f shows image first + (f - first) mod (number of\n"
-         "                         images): a short render serves a long run (soak)\n"
-         "  --quiet                no start line and no summary\n"
-         "  --help                 this text\n";
+  Parser parser;
+  std::map<std::string, std::string> given;
+  cli::App app("syncap-fakecam", kDescription, kFooter);
+  add_options(app, parser, given);
+  return app.help();
 }
 
 }  // namespace syncap::fakecam

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <charconv>
 #include <csignal>
 #include <cstring>
 #include <ctime>
@@ -15,10 +14,12 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "impairment.hpp"
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 
 namespace {
@@ -26,31 +27,7 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
-const char* kUsage =
-    "usage: syncap-hil-impair --in URL --out URL [options]\n"
-    "Relays every LCM message received on --in to --out, impaired as below; decisions are a\n"
-    "hash of (seed, channel, the message's index on its channel), so a run is reproducible.\n"
-    "  --in URL              LCM URL the senders publish on (received with a 4 MiB buffer)\n"
-    "  --out URL             LCM URL the impaired messages are published on\n"
-    "  --loss P              drop a message with probability P: 0.05 or 5% (default 0)\n"
-    "  --duplicate P         send a message twice (default 0)\n"
-    "  --reorder P           hold a message back --reorder-delay-ms, so that later ones\n"
-    "                        overtake it (default 0)\n"
-    "  --reorder-delay-ms N  how long a reordered message is held, 1..10000 (default 10)\n"
-    "  --corrupt P           flip one bit of a message, anywhere in it (default 0)\n"
-    "  --seed N              seed of the decisions (default 1)\n"
-    "  --stats FILE          at exit, write the counts (total and per channel) as JSON\n"
-    "  --quiet               no start line and no summary\n"
-    "  --help                this text\n"
-    "Prints 'syncap-hil-impair: relaying IN -> OUT ...' once listening, and on SIGINT/SIGTERM\n"
-    "(after sending the messages still held) 'syncap-hil-impair: received N, forwarded N,\n"
-    "dropped N, duplicated N, reordered N, corrupted N'. Exit 0; 1 when an LCM URL cannot be\n"
-    "opened or FILE written; 2 for wrong arguments.\n";
-
-[[noreturn]] void usage_error(const std::string& message) {
-  std::cerr << "syncap-hil-impair: " << message << "\n" << kUsage;
-  std::exit(2);
-}
+namespace cli = syncap::cli;
 
 struct Options {
   std::string in, out, stats;
@@ -60,70 +37,67 @@ struct Options {
   bool quiet = false;
 };
 
-// "0.05" or "5%": a probability in [0, 1].
-double parse_probability(const std::string& option, const std::string& text) {
-  const bool percent = !text.empty() && text.back() == '%';
-  const std::string number = percent ? text.substr(0, text.size() - 1) : text;
-  double v = -1;
-  auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), v);
-  if (percent) v /= 100;
-  if (number.empty() || ec != std::errc() || end != number.data() + number.size() || v < 0 ||
-      v > 1) {
-    usage_error(option + " '" + text + "': expected a probability, 0 to 1 or 0% to 100%");
-  }
-  return v;
+// "0.05" or "5%": a probability in [0, 1]; the text becomes the fraction CLI11 then converts.
+CLI::Validator probability() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool percent = !text.empty() && text.back() == '%';
+        std::optional<double> v =
+            cli::finite_number(percent ? text.substr(0, text.size() - 1) : text);
+        if (v && percent) *v /= 100;
+        if (!v || *v < 0 || *v > 1)
+          return "'" + text + "': expected a probability, 0 to 1 or 0% to 100%";
+        text = cli::number_text(*v);
+        return {};
+      },
+      "0..1 or 0%..100%");
 }
 
-uint64_t parse_count(const std::string& option, const std::string& text, uint64_t low,
-                     uint64_t high) {
-  uint64_t v = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < low ||
-      v > high) {
-    usage_error(option + " '" + text + "': expected a whole number in " + std::to_string(low) +
-                ".." + std::to_string(high));
-  }
-  return v;
+constexpr const char* kDescription =
+    "usage: syncap-hil-impair --in URL --out URL [options]\n"
+    "Relays every LCM message received on --in to --out, impaired as below; decisions are a\n"
+    "hash of (seed, channel, the message's index on its channel), so a run is reproducible.\n";
+
+constexpr const char* kFooter =
+    "Prints 'syncap-hil-impair: relaying IN -> OUT ...' once listening, and on SIGINT/SIGTERM\n"
+    "(after sending the messages still held) 'syncap-hil-impair: received N, forwarded N,\n"
+    "dropped N, duplicated N, reordered N, corrupted N'. Exit 0; 1 when an LCM URL cannot be\n"
+    "opened or FILE written; 2 for wrong arguments.";
+
+void add_impairment_options(CLI::App& app, Options& o) {
+  auto& r = o.rates;
+  cli::add_checked(app, "--loss", r.loss, "P", probability(),
+                   "drop a message with probability P: 0.05 or 5% (default 0)");
+  cli::add_checked(app, "--duplicate", r.duplicate, "P", probability(),
+                   "send a message twice (default 0)");
+  cli::add_checked(app, "--reorder", r.reorder, "P", probability(),
+                   "hold a message back --reorder-delay-ms, so that later ones\n"
+                   "overtake it (default 0)");
+  cli::add_checked(app, "--reorder-delay-ms", o.reorder_delay_ms, "N", cli::whole_in(1, 10000),
+                   "how long a reordered message is held, 1..10000 (default 10)");
+  cli::add_checked(app, "--corrupt", r.corrupt, "P", probability(),
+                   "flip one bit of a message, anywhere in it (default 0)");
+  cli::add_checked(app, "--seed", o.seed, "N", cli::whole_in<uint64_t>(0, UINT64_MAX),
+                   "seed of the decisions (default 1)");
 }
 
-Options parse_options(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--in") {
-      o.in = value();
-    } else if (a == "--out") {
-      o.out = value();
-    } else if (a == "--loss") {
-      o.rates.loss = parse_probability(a, value());
-    } else if (a == "--duplicate") {
-      o.rates.duplicate = parse_probability(a, value());
-    } else if (a == "--reorder") {
-      o.rates.reorder = parse_probability(a, value());
-    } else if (a == "--reorder-delay-ms") {
-      o.reorder_delay_ms = static_cast<int>(parse_count(a, value(), 1, 10000));
-    } else if (a == "--corrupt") {
-      o.rates.corrupt = parse_probability(a, value());
-    } else if (a == "--seed") {
-      o.seed = parse_count(a, value(), 0, UINT64_MAX);
-    } else if (a == "--stats") {
-      o.stats = value();
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      usage_error("unknown option '" + a + "'");
-    }
-  }
-  if (o.in.empty() || o.out.empty()) usage_error("--in and --out are required");
-  if (o.in == o.out) usage_error("--in and --out are both '" + o.in + "': the relay would loop");
-  return o;
+// Parses into `o`; the exit status when the run is over already (help, usage error).
+std::optional<int> parse_options(int argc, char** argv, Options& o) {
+  cli::App app("syncap-hil-impair", kDescription, kFooter);
+  app.add_option("--in", o.in, "LCM URL the senders publish on (received with a 4 MiB buffer)")
+      ->option_text("URL")
+      ->required();
+  app.add_option("--out", o.out, "LCM URL the impaired messages are published on")
+      ->option_text("URL")
+      ->required();
+  add_impairment_options(app, o);
+  app.add_option("--stats", o.stats, "at exit, write the counts (total and per channel) as JSON")
+      ->option_text("FILE");
+  app.add_flag("--quiet", o.quiet, "no start line and no summary");
+  return cli::parse_main(app, argc, argv, [&o] {
+    if (o.in == o.out)
+      throw CLI::ValidationError("--in and --out are both '" + o.in + "': the relay would loop");
+  });
 }
 
 int64_t monotonic_ns() {
@@ -250,7 +224,8 @@ void on_lcm_message(const lcm_recv_buf_t* rbuf, const char* channel, void* relay
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse_options(argc, argv);
+  Options options;
+  if (const auto status = parse_options(argc, argv, options)) return *status;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   const std::string in_url = syncap::proto::receiving_lcm_url(options.in);

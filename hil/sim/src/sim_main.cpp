@@ -3,10 +3,10 @@
 //   syncap-sim --scenario FILE --out DIR [--max-phase-frames N] [--quiet]
 //
 // Deterministic: the same scenario (and seed in it) gives the same bytes.
-#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,19 +15,12 @@
 #include "scenario.hpp"
 #include "sensor/camera_file.hpp"
 #include "sequence.hpp"
+#include "syncap/cli/options.hpp"
 #include "truth_writer.hpp"
 
 namespace {
 
-const char* kUsage =
-    "usage: syncap-sim --scenario FILE --out DIR [--max-phase-frames N] [--quiet]\n"
-    "  --scenario FILE         scenario (YAML, docs/scenario.md)\n"
-    "  --out DIR               output folder: cameraNN/frame_*.pgm, cameras.json, truth/\n"
-    "  --max-phase-frames N    render at most N frames of each phase (short runs, CI)\n"
-    "  --quiet                 only errors\n"
-    "A relative motion (bvh) path is looked for beside the scenario, then under $SYNCAP_DATA\n"
-    "(default ../shared/data). Exit status: 0 rendered, 1 writing failed, 2 usage error or a\n"
-    "bad scenario or motion file.\n";
+namespace cli = syncap::cli;
 
 struct Options {
   std::filesystem::path scenario, out;
@@ -35,41 +28,25 @@ struct Options {
   bool quiet = false;
 };
 
-[[noreturn]] void usage_error(const std::string& message) {
-  std::cerr << "syncap-sim: " << message << "\n" << kUsage;
-  std::exit(2);
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--scenario") {
-      o.scenario = value();
-    } else if (a == "--out") {
-      o.out = value();
-    } else if (a == "--max-phase-frames") {
-      const std::string v = value();
-      auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), o.max_phase_frames);
-      if (ec != std::errc() || end != v.data() + v.size() || o.max_phase_frames < 1) {
-        usage_error("--max-phase-frames '" + v + "': expected a whole number >= 1");
-      }
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      usage_error("unknown option '" + a + "'");
-    }
-  }
-  if (o.scenario.empty()) usage_error("--scenario is required");
-  if (o.out.empty()) usage_error("--out is required");
-  return o;
+// Parses into `o`; the exit status when the run is over already (help, usage error).
+std::optional<int> parse(int argc, char** argv, Options& o) {
+  cli::App app(
+      "syncap-sim",
+      "Renders a scenario into per-camera images and ground truth (docs/scenario.md).",
+      "A relative motion (bvh) path is looked for beside the scenario, then under $SYNCAP_DATA\n"
+      "(default ../shared/data). Exit status: 0 rendered, 1 writing failed, 2 usage error or a\n"
+      "bad scenario or motion file.");
+  app.add_option("--scenario", o.scenario, "scenario (YAML, docs/scenario.md)")
+      ->option_text("FILE")
+      ->required();
+  app.add_option("--out", o.out, "output folder: cameraNN/frame_*.pgm, cameras.json, truth/")
+      ->option_text("DIR")
+      ->required();
+  cli::add_checked(app, "--max-phase-frames", o.max_phase_frames, "N",
+                   cli::whole_in(1, 1'000'000'000),
+                   "render at most N frames of each phase (short runs, CI; default all)");
+  app.add_flag("--quiet", o.quiet, "only errors");
+  return cli::parse_main(app, argc, argv);
 }
 
 uint64_t noise_seed(unsigned seed, int frame, int camera) {
@@ -117,7 +94,8 @@ int run(const Options& o, bool& input_read) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
+  Options options;
+  if (const auto status = parse(argc, argv, options)) return *status;
   bool input_read = false;
   try {
     return run(options, input_read);

@@ -5,33 +5,25 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "calibration_study.hpp"
 #include "real_data.hpp"
 #include "scenario.hpp"
 #include "study_report.hpp"
+#include "syncap/cli/options.hpp"
 
 namespace {
 
-constexpr const char* kUsage =
-    R"(usage: syncap-calib-study [--short] [--out FILE] [--scenarios DIR] [--runs N] [--data DIR]
+namespace cli = syncap::cli;
 
-The calibration accuracy study: Monte Carlo runs of the whole calibration (network start from the
+constexpr const char* kDescription =
+    R"(The calibration accuracy study: Monte Carlo runs of the whole calibration (network start from the
 measurements, self-calibrating bundle adjustment) on simulated wand networks, compared with the
 truth: thesis Table 4.3 (wand-3cam-basler, 10/40/100 wand positions) and the six-camera network
 of section 4.4.1 (ring-6cam-person); and the real strawlab LED recordings through the code of
 `syncap calibrate --led`. Writes Markdown (docs/calibration-accuracy.md).
-
-  --short          few runs, no real data (seconds; what ctest runs)
-  --out FILE       write the page to FILE (default: standard output)
-  --scenarios DIR  where wand-3cam-basler.yaml and ring-6cam-person.yaml are
-                   (default: the source tree's hil/scenarios)
-  --runs N         runs per Table 4.3 row and for the ring (default: 50 and 20; short: 4 and 3)
-  --data DIR       the data folder with calibration/strawlab-* (default: $SYNCAP_DATA, else the
-                   source tree's ../shared/data)
-
-Exit status: 0 every claim holds, 1 a claim fails, 2 bad usage or input.
 )";
 
 std::filesystem::path default_data() {
@@ -47,47 +39,38 @@ struct Arguments {
   std::filesystem::path scenarios = SYNCAP_SOURCE_DIR "/hil/scenarios";
   int runs = 0;
   std::filesystem::path data = default_data();
-  std::string command = "syncap-calib-study";
+  std::string command;  // as given, for the page
 };
 
-Arguments parse(int argc, char** argv) {
-  Arguments a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (arg == "--short") {
-      a.short_mode = true;
-      a.command += " --short";
-    } else if (arg == "--out") {
-      a.out = value();
-      a.command += " --out " + a.out;
-    } else if (arg == "--scenarios") {
-      a.scenarios = value();
-    } else if (arg == "--data") {
-      a.data = value();
-    } else if (arg == "--runs") {
-      const std::string text = value();
-      size_t used = 0;
-      try {
-        a.runs = std::stoi(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != text.size() || a.runs < 1) {
-        throw std::invalid_argument("--runs: \"" + text + "\" is not a positive number");
-      }
-      a.command += " --runs " + text;
-    } else {
-      throw std::invalid_argument("unknown argument \"" + arg + "\"");
-    }
-  }
-  return a;
+// The command line the page says it was made with.
+std::string command_of(const Arguments& a) {
+  std::string command = "syncap-calib-study";
+  if (a.short_mode) command += " --short";
+  if (!a.out.empty()) command += " --out " + a.out;
+  if (a.runs > 0) command += " --runs " + std::to_string(a.runs);
+  return command;
+}
+
+// Parses into `a`; the exit status when the run is over already (help, usage error).
+std::optional<int> parse(int argc, char** argv, Arguments& a) {
+  cli::App app("syncap-calib-study", kDescription,
+               "Exit status: 0 every claim holds, 1 a claim fails, 2 bad usage or input.");
+  app.add_flag("--short", a.short_mode, "few runs, no real data (seconds; what ctest runs)");
+  app.add_option("--out", a.out, "write the page to FILE (default: standard output)")
+      ->option_text("FILE");
+  app.add_option("--scenarios", a.scenarios,
+                 "where wand-3cam-basler.yaml and ring-6cam-person.yaml are\n"
+                 "(default: the source tree's hil/scenarios)")
+      ->option_text("DIR");
+  cli::add_checked(app, "--runs", a.runs, "N", cli::whole_in(1, 1'000'000),
+                   "runs per Table 4.3 row and for the ring (default: 50 and 20; short: 4 and 3)");
+  app.add_option("--data", a.data,
+                 "the data folder with calibration/strawlab-* (default: $SYNCAP_DATA, else the\n"
+                 "source tree's ../shared/data)")
+      ->option_text("DIR");
+  const auto status = cli::parse_main(app, argc, argv);
+  a.command = command_of(a);
+  return status;
 }
 
 syncap::study::StudyReport study_options(const Arguments& a) {
@@ -111,12 +94,12 @@ syncap::study::StudyReport study_options(const Arguments& a) {
 int main(int argc, char** argv) {
   Arguments arguments;
   syncap::sim::Scenario basler, ring;
+  if (const auto status = parse(argc, argv, arguments)) return *status;
   try {
-    arguments = parse(argc, argv);
     basler = syncap::sim::load_scenario(arguments.scenarios / "wand-3cam-basler.yaml");
     ring = syncap::sim::load_scenario(arguments.scenarios / "ring-6cam-person.yaml");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "syncap-calib-study: %s\n%s", e.what(), kUsage);
+    std::fprintf(stderr, "syncap-calib-study: %s\n", e.what());
     return 2;
   }
   syncap::study::StudyReport report = study_options(arguments);

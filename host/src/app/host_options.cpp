@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 
 namespace syncap::host_app {
@@ -31,7 +32,7 @@ void add_tracking_options(CLI::App& app, TrackingArgs& args) {
          [&args](double m_s2) { args.tracker.acceleration_mm_s2 = m_s2 * 1000.0; },
          "the markers' accelerations the tracker allows for, m/s^2 (default 10): larger "
          "widens every track's gate")
-      ->check(CLI::Range(0.1, 1000.0));
+      ->check(cli::number_in(0.1, 1000));
   app.add_option("--rigid-sets", args.rigid_sets_path,
                  "rigid marker sets (YAML, docs/reconstruction.md): each set's 6-DoF pose in "
                  "every frame, found among the tracked markers")
@@ -65,8 +66,9 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   app.add_flag("--until-last", o.until_last,
                "exit after the frame of the trigger's last pulse, or once --max-lag frames at its "
                "rate have passed since it arrived");
+  // cli::number_in, not CLI::Range: that lets NaN through.
   app.add_option("--idle-timeout", o.idle_timeout_s, "exit when nothing arrived for S seconds")
-      ->check(CLI::Range(1.0, 86400.0));
+      ->check(cli::number_in(1, 86400));
   app.add_option("--out", o.out, "write every frame group (and its markers) as a JSON line");
   app.add_option("--lcm-url", o.lcm_url, "LCM provider (default " + o.lcm_url + ")");
   app.add_flag("--quiet", o.quiet, "no line per frame, summary only");
@@ -81,11 +83,11 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
       ->expected(6);
   app.add_option("--tolerance-px", o.matching.tolerance_px,
                  "how far a ray may miss another, or a point, in its image (default 2)")
-      ->check(CLI::Range(0.01, 100.0));
+      ->check(cli::number_in(0.01, 100));
   app.add_option("--sigma-px", o.matching.sigma_px,
                  "a ray's standard deviation in its image: blob noise and the calibration's RMS "
                  "(default 0.2)")
-      ->check(CLI::Range(0.001, 10.0));
+      ->check(cli::number_in(0.001, 10));
   app.add_flag("--keep-not-round", o.keep_not_round,
                "also match blobs the edge flagged NOT_ROUND (by default they are left out: a "
                "partly hidden or merged spot's centroid is off)");

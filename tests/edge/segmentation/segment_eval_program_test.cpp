@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "help_check.hpp"
 #include "program_run.hpp"
 
 namespace {
@@ -25,16 +26,53 @@ void expect_usage_error(const std::string& arguments, const std::string& message
 // folder exited 1.
 TEST(SegmentEvalProgram, BadValuesUnknownOptionsAndBadInputExitTwoNamingThem) {
   const std::string scene = "--scene /nonexistent/scene";
-  expect_usage_error(scene + " --k nan", "--k 'nan': expected a number in 0.100000..100.000000");
+  expect_usage_error(scene + " --k nan", "--k: 'nan': expected a number in 0.100000..100.000000");
   expect_usage_error(scene + " --frame-step 2xyz",
-                     "--frame-step '2xyz': expected a number in 1..16777216");
-  expect_usage_error(scene + " --min-area x", "--min-area 'x': expected a number in 0..16777216");
-  expect_usage_error(scene + " --closing 99999", "--closing '99999': expected a number in 0..255");
+                     "--frame-step: '2xyz' is not a whole number in [1, 16777216]");
+  expect_usage_error(scene + " --min-area x", "--min-area: 'x': expected a number in 0..16777216");
+  expect_usage_error(scene + " --closing 99999", "--closing: '99999': expected a number in 0..255");
+  expect_usage_error(scene + " --method mog2", "--scene scores medi-picture only");
+  expect_usage_error("--cdnet /nonexistent/cdnet", "--method is required");
+  expect_usage_error("--cdnet /nonexistent/cdnet --method x",
+                     "--method: unknown method 'x' (medipicture, mog2 or knn)");
   expect_usage_error(scene + " --x", "unknown option '--x'");
   expect_usage_error(scene + " --x 1", "unknown option '--x'");
   const ProgramRun missing = run_segment_eval(scene);
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
   EXPECT_NE(missing.output.find("/nonexistent/scene"), std::string::npos) << missing.output;
+}
+
+// --help: both forms, every option with its meaning and default, the exit statuses.
+TEST(SegmentEvalProgram, HelpIsComplete) {
+  const ProgramRun run = run_segment_eval("--help");
+  EXPECT_EQ(run.exit_code, 0);
+  syncap::test::expect_help_mentions(run.output, {"syncap segment-eval --cdnet DIR --method",
+                                                  "syncap segment-eval --scene DIR",
+                                                  "--cdnet DIR",
+                                                  "--scene DIR",
+                                                  "--method medipicture|mog2|knn",
+                                                  "--person",
+                                                  "--train-frames N",
+                                                  "--frame-step N",
+                                                  "(default 1)",
+                                                  "--k K",
+                                                  "(default 3)",
+                                                  "--min-difference D",
+                                                  "(default 6)",
+                                                  "--ncc L",
+                                                  "(default 0.98)",
+                                                  "--no-shadows",
+                                                  "--shadow-test T",
+                                                  "--shadow-sigmas S",
+                                                  "(default 4)",
+                                                  "--fill-holes A",
+                                                  "(default 0)",
+                                                  "--closing D",
+                                                  "(default 9)",
+                                                  "--min-area A",
+                                                  "(default 40)",
+                                                  "--update-rate R",
+                                                  "Exit status: 0"});
 }
 
 }  // namespace

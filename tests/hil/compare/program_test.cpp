@@ -3,7 +3,11 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "help_check.hpp"
 #include "program_run.hpp"
 #include "scratch_files.hpp"
 
@@ -111,9 +115,51 @@ TEST(Program, RejectsUnusableInputNamingFileAndLine) {
 
 TEST(Program, RejectsBadOptions) {
   EXPECT_EQ(run_compare("--truth x").exit_code, 2);
-  EXPECT_EQ(run_compare("--truth x --groups y --max-rms-px fast").exit_code, 2);
-  EXPECT_EQ(run_compare("--truth x --groups y --min-detection 98").exit_code, 2);
-  EXPECT_EQ(run_compare("--help").exit_code, 0);
+  // Each bad value is named with its option.
+  const std::vector<std::pair<std::string, std::string>> bad = {{"--max-rms-px", "fast"},
+                                                                {"--min-detection", "98"},
+                                                                {"--min-iou", "nan"},
+                                                                {"--max-ghosts", "-1"},
+                                                                {"--max-reprojection-px", "inf"}};
+  for (const auto& [option, value] : bad) {
+    const ProgramRun run = run_compare("--truth x --groups y " + option + " " + value);
+    EXPECT_EQ(run.exit_code, 2) << option << ' ' << value;
+    EXPECT_NE(run.output.find(option + ": '" + value + "'"), std::string::npos) << run.output;
+  }
+}
+
+// --help: both forms and every option with its meaning and default.
+TEST(Program, HelpIsComplete) {
+  const ProgramRun run = run_compare("--help");
+  EXPECT_EQ(run.exit_code, 0);
+  syncap::test::expect_help_mentions(run.output, {"syncap-hil-compare --truth DIR --groups FILE",
+                                                  "syncap-hil-compare --truth DIR --cameras",
+                                                  "--truth DIR",
+                                                  "--groups FILE",
+                                                  "--json FILE",
+                                                  "--max-rms-px PX",
+                                                  "(0.1)",
+                                                  "--min-detection SHARE",
+                                                  "(0.98)",
+                                                  "--match-radius-px PX",
+                                                  "(3)",
+                                                  "--min-frames SHARE",
+                                                  "(0.99)",
+                                                  "--min-iou SHARE",
+                                                  "(0.95)",
+                                                  "--require-silhouettes",
+                                                  "--marker-radius-mm MM",
+                                                  "(5)",
+                                                  "--min-markers-found SHARE",
+                                                  "(0.995)",
+                                                  "--max-ghosts SHARE",
+                                                  "(0.005)",
+                                                  "--max-marker-rms-mm MM",
+                                                  "(0.5)",
+                                                  "--cameras FILE",
+                                                  "--max-reprojection-px PX",
+                                                  "Both --groups and --cameras",
+                                                  "exit 0 PASS, 1 FAIL, 2 unusable inputs"});
 }
 
 // Issue 15: an unknown last option said "needs a value".

@@ -1,6 +1,8 @@
 // The command line of syncap-fakecam: defaults, every option, and errors naming option and value.
 #include "options.hpp"
 
+#include "help_check.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -57,6 +59,32 @@ TEST(FakecamOptions, HelpWins) {
   EXPECT_EQ(parse({"--address", "x", "--help"}).result, ParsedOptions::Result::help);
 }
 
+// The usage text: every option with its meaning and default, the exit statuses.
+TEST(FakecamOptions, UsageIsComplete) {
+  syncap::test::expect_help_mentions(syncap::fakecam::usage(),
+                                     {"usage: syncap-fakecam --address 127.0.0.X --images DIR",
+                                      "--address A",
+                                      "--images DIR",
+                                      "--serial NAME",
+                                      "(default SYNCAP-FAKE-<octet>)",
+                                      "--trigger SOURCE",
+                                      "software (default)",
+                                      "gpiosim:NAME:LINE",
+                                      "--drop LIST|RATE",
+                                      "--seed N",
+                                      "(default 1)",
+                                      "--delay-ms N",
+                                      "(default 0)",
+                                      "--start-frame K",
+                                      "--cache-mb N",
+                                      "(default 256)",
+                                      "--link-mbps N",
+                                      "(default 1000; 0: unpaced)",
+                                      "--loop",
+                                      "--quiet",
+                                      "2 for wrong arguments"});
+}
+
 struct BadCase {
   std::vector<const char*> arguments;
   std::string error;
@@ -82,7 +110,9 @@ TEST(FakecamOptions, RejectsWrongValuesNamingOptionAndValue) {
        "invalid --serial 'SIXTEEN-CHARS-XX': must be 1 to 15 characters"},
       {{"--address", "127.0.0.2", "--images", "d", "--frobnicate"},
        "unknown option '--frobnicate'"},
-      {{"--address", "127.0.0.2", "--images"}, "missing value for option '--images'"},
+      {{"--address", "127.0.0.2", "--images"}, "--images: 1 required TEXT missing"},
+      {{"--address", "127.0.0.2", "--images", "d", "--seed", "nan"},
+       "invalid --seed 'nan': not a number"},
   };
   for (const BadCase& c : cases) {
     const ParsedOptions parsed = parse(c.arguments);

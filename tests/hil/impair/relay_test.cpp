@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "../fakecam/child_process.hpp"
+#include "help_check.hpp"
 
 namespace {
 
@@ -134,10 +135,13 @@ TEST_F(RelayTest, ReorderedMessagesArriveLaterButAllArrive) {
 
 TEST(RelayProgram, RefusesBadArgumentsNamingThem) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
-      {{"--in", kBoardUrl}, "--in and --out are required"},
+      {{"--in", kBoardUrl}, "--out is required"},
       {{"--in", kBoardUrl, "--out", kBoardUrl}, "the relay would loop"},
-      {{"--in", kBoardUrl, "--out", kHostUrl, "--loss", "150%"}, "--loss '150%'"},
-      {{"--in", kBoardUrl, "--out", kHostUrl, "--reorder-delay-ms", "0"}, "--reorder-delay-ms '0'"},
+      {{"--in", kBoardUrl, "--out", kHostUrl, "--loss", "150%"}, "--loss: '150%'"},
+      {{"--in", kBoardUrl, "--out", kHostUrl, "--loss", "nan"}, "--loss: 'nan'"},
+      {{"--in", kBoardUrl, "--out", kHostUrl, "--seed", "-1"}, "--seed: '-1'"},
+      {{"--in", kBoardUrl, "--out", kHostUrl, "--reorder-delay-ms", "0"},
+       "--reorder-delay-ms: '0'"},
       {{"--in", kBoardUrl, "--out", kHostUrl, "--bogus"}, "unknown option '--bogus'"},
   };
   for (const auto& [arguments, message] : cases) {
@@ -147,6 +151,17 @@ TEST(RelayProgram, RefusesBadArgumentsNamingThem) {
     EXPECT_EQ(relay.wait(5s), 2) << message;
     EXPECT_NE(relay.output().find(message), std::string::npos) << relay.output();
   }
+}
+
+// --help: every option with its meaning and default, what it prints, the exit statuses.
+TEST(RelayProgram, HelpIsComplete) {
+  ChildProcess relay({SYNCAP_IMPAIR_EXE, "--help"});
+  EXPECT_EQ(relay.wait(5s), 0);
+  syncap::test::expect_help_mentions(
+      relay.output(), {"--in URL", "--out URL", "--loss P", "0.05 or 5% (default 0)",
+                       "--duplicate P", "--reorder P", "--reorder-delay-ms N", "(default 10)",
+                       "--corrupt P", "--seed N", "(default 1)", "--stats FILE", "--quiet",
+                       "syncap-hil-impair: relaying IN -> OUT", "2 for wrong arguments"});
 }
 
 }  // namespace

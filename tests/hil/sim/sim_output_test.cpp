@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "camera_rig.hpp"
+#include "help_check.hpp"
+#include "program_run.hpp"
 #include "render.hpp"
 #include "scenario.hpp"
 #include "sensor/camera_file.hpp"
@@ -157,6 +159,27 @@ TEST_F(SimOutput, MissingMotionNamesSyncapDataAndThePathTriedAndExitsTwo) {
   EXPECT_NE(err.find("$SYNCAP_DATA (/nonexistent-data/motion/none.bvh)"), std::string::npos) << err;
   EXPECT_NE(err.find("set SYNCAP_DATA"), std::string::npos) << err;
   fs::remove_all(dir);
+}
+
+TEST(SimOptions, BadValuesAreUsageErrorsNamingOptionAndValue) {
+  for (const std::string value : {"0", "2xyz", "nan", "1.5"}) {
+    const auto run = syncap::test::run_program(
+        std::string(SYNCAP_SIM_EXE) + " --scenario s.yaml --out o --max-phase-frames " + value);
+    EXPECT_EQ(run.exit_code, 2) << value;
+    EXPECT_NE(run.output.find("--max-phase-frames: '" + value + "'"), std::string::npos)
+        << run.output;
+  }
+  const auto missing = syncap::test::run_program(std::string(SYNCAP_SIM_EXE) + " --out o");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("--scenario is required"), std::string::npos) << missing.output;
+}
+
+TEST(SimOptions, HelpIsComplete) {
+  const auto run = syncap::test::run_program(std::string(SYNCAP_SIM_EXE) + " --help");
+  EXPECT_EQ(run.exit_code, 0);
+  syncap::test::expect_help_mentions(
+      run.output, {"--scenario FILE", "scenario (YAML", "--out DIR", "cameras.json",
+                   "--max-phase-frames N", "--quiet", "$SYNCAP_DATA", "Exit status: 0"});
 }
 
 }  // namespace

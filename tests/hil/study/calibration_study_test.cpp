@@ -13,6 +13,7 @@
 #include <string>
 
 #include "calibration_study.hpp"
+#include "help_check.hpp"
 #include "scenario.hpp"
 #include "study_report.hpp"
 
@@ -135,7 +136,22 @@ TEST(CalibrationStudy, ProgramNamesABadArgument) {
   const std::string output = run_program("--runs zero", status);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  EXPECT_NE(output.find("--runs: \"zero\" is not a positive number"), std::string::npos) << output;
+  EXPECT_NE(output.find("--runs: 'zero' is not a whole number"), std::string::npos) << output;
+  EXPECT_EQ(
+      WEXITSTATUS(std::system((std::string(SYNCAP_STUDY_EXE) + " --runs 0 2>/dev/null").c_str())),
+      2);
+}
+
+// --help: every option with its meaning and default, the exit statuses.
+TEST(CalibrationStudy, ProgramHelpIsComplete) {
+  int status = 0;
+  const std::string help = run_program("--help", status);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  syncap::test::expect_help_mentions(
+      help, {"Table 4.3", "--short", "--out FILE", "(default: standard output)", "--scenarios DIR",
+             "hil/scenarios", "--runs N", "(default: 50 and 20", "--data DIR", "$SYNCAP_DATA",
+             "Exit status: 0 every claim holds"});
 }
 
 }  // namespace

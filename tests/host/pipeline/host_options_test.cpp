@@ -46,6 +46,16 @@ TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
   EXPECT_NE(err.find("--colour"), std::string::npos) << err;
 }
 
+// CLI::Range let NaN through: --idle-timeout nan never timed out.
+TEST(HostOptions, NotANumberIsRefusedNamingOptionAndValue) {
+  for (const char* option : {"--idle-timeout", "--tolerance-px", "--sigma-px"}) {
+    std::string err;
+    EXPECT_EQ(parse({option, "nan"}, &err).exit_status, 2) << option;
+    EXPECT_NE(err.find(std::string(option) + ": 'nan' is not a number in ["), std::string::npos)
+        << err;
+  }
+}
+
 TEST(HostOptions, HelpNamesEveryOption) {
   std::string text;
   const ParsedHostOptions p = parse({"--help"}, &text);

@@ -16,6 +16,7 @@
 
 #include "bundle_command.hpp"
 #include "estimators/bundle_adjustment_simulation.hpp"
+#include "help_check.hpp"
 #include "sdl/sdl.hpp"
 #include "sensor/camera_model.hpp"
 #include "subcommand.hpp"
@@ -273,10 +274,22 @@ TEST(BundleCommand, ErrorsNameTheFileAndThePlace) {
 
   run = run_bundle({});
   EXPECT_EQ(run.status, kExitUsage);
-  EXPECT_EQ(run.err.rfind("syncap bundle: no FILE given\nusage: syncap bundle", 0), 0u);
+  EXPECT_EQ(run.err.rfind("syncap bundle: FILE is required\n", 0), 0u) << run.err;
+  EXPECT_NE(run.err.find("Usage: syncap bundle [OPTIONS] FILE"), std::string::npos) << run.err;
+  run = run_bundle({"a.sdl", "b.sdl"});
+  EXPECT_EQ(run.status, kExitUsage);
+  EXPECT_EQ(run.err.rfind("syncap bundle: unexpected argument 'b.sdl'\n", 0), 0u) << run.err;
+  run = run_bundle({"a.sdl", "--output", "d"});
+  EXPECT_EQ(run.status, kExitUsage);
+  EXPECT_EQ(run.err.rfind("syncap bundle: unknown option '--output'\n", 0), 0u) << run.err;
   run = run_bundle({"--help"});
   EXPECT_EQ(run.status, kExitOk);
-  EXPECT_EQ(run.out, kBundleUsage);
+  // Complete: the design tags, every option with its meaning, the exit statuses.
+  syncap::test::expect_help_mentions(
+      run.out,
+      {"Usage: syncap bundle [OPTIONS] FILE", "SIMULATE", "SORT", "OUTPUT MESSAGES",
+       "OUTPUT MISCLOSURES", "OUTPUT CORRECTIONS", "OUTPUT COEFFICIENT MATRIX", "RESIDUALS",
+       "DEBUG", "--out DIR", "writes DIR/adjusted.sdl", "Exit status: 0 adjusted"});
   std::filesystem::remove_all(dir);
 }
 
