@@ -26,3 +26,10 @@ faketime_library() {
   done
   return 0
 }
+
+# "FIRST LAST": the frames of the render's first phase when it is a wand phase (the frames a
+# mocap scenario calibrates from); nothing otherwise. hil/run and hil/calibrated-markers.
+wand_phase_frames() {
+  awk -F, 'NR > 1 && $3 == 0 && $4 == "wand" { if (first == "") first = $1; last = $1 }
+    END { if (first != "") print first, last }' "$1/truth/frames.csv"
+}
