@@ -240,15 +240,17 @@ class FakecamTest : public ::testing::Test {
 
 const Region kFull{0, 0, kWidth, kHeight};
 
-// The key run: syncap-trigger fires 100 pulses at 200 Hz on the shared chip; the fake camera
-// sends exactly one frame per pulse, numbered like the pulse, stamped with the pulse's edge time
-// (the very time syncap-trigger publishes), showing the image of that number.
-// DISABLED (2026-11-27, issue 15): the test's own chip watcher saw 99 of the 100 edges in a fresh
-// clone's ctest and in 1 of 2 runs alone after it; cause open (the watcher coalescing two edges
-// at 200 Hz?). Run it with --gtest_also_run_disabled_tests. The next session's first item.
-TEST_F(FakecamTest, DISABLED_TriggerRunDeliversEveryFrameOnceWithItsNumberTimeAndImage) {
-  constexpr int kPulses = 100;
-  write_images(0, kPulses);
+// The key run: syncap-trigger fires 100 periods at 200 Hz on the shared chip; the fake camera
+// sends exactly one frame per pulse, numbered like its trigger count, stamped with the pulse's
+// edge time (the very time syncap-trigger publishes), showing the image of that number.
+// syncap-trigger keeps its time grid: a period its thread wakes for too late is skipped, not
+// driven late (its next message carries FLAG_MISSED and the period's number is never sent). On
+// this 2-core machine in a full ctest that happens to 1-2 of 100 periods, so the pulses driven
+// are the trigger's messages, and the test checks that skipped periods are few and flagged.
+TEST_F(FakecamTest, TriggerRunDeliversEveryFrameOnceWithItsNumberTimeAndImage) {
+  constexpr int kPeriods = 100;
+  constexpr std::size_t kMinPulses = 90;
+  write_images(0, kPeriods);
   auto fakecam = start_fakecam("127.0.0.2", {"--trigger", gpiosim_trigger()});
   ChipWatcher watcher(chip_, 0);
   ASSERT_TRUE(watcher.ok());
@@ -259,28 +261,42 @@ TEST_F(FakecamTest, DISABLED_TriggerRunDeliversEveryFrameOnceWithItsNumberTimeAn
   ASSERT_TRUE(log.good());
 
   ChildProcess trigger({SYNCAP_TRIGGER_EXE, "--chip", "sim:" + chip_, "--count",
-                        std::to_string(kPulses), "--rate", "200", "--lines", "0",
+                        std::to_string(kPeriods), "--rate", "200", "--lines", "0",
                         "--start-delay-ms", "100", "--lcm-url", proto::kDefaultLcmUrl});
-  const std::vector<ReceivedFrame> frames = receive_frames(*client, kPulses);
+  // Received while the trigger runs: the client has fewer buffers than the run has frames. With a
+  // skipped period this waits one frame timeout for the frame that never comes.
+  const std::vector<ReceivedFrame> frames = receive_frames(*client, kPeriods);
   EXPECT_EQ(trigger.wait(5s), 0) << trigger.output();
-  const std::vector<syncap::trigger_t> messages = log.messages(kPulses, 5s);
+  const std::vector<syncap::trigger_t> messages = log.messages(kPeriods, 1s);
 
   const std::vector<std::int64_t> edges = watcher.edge_times();
-  ASSERT_EQ(edges.size(), static_cast<std::size_t>(kPulses));
-  ASSERT_EQ(messages.size(), static_cast<std::size_t>(kPulses));
-  ASSERT_EQ(frames.size(), static_cast<std::size_t>(kPulses));
+  ASSERT_GE(messages.size(), kMinPulses) << trigger.output();
+  ASSERT_EQ(edges.size(), messages.size());
+  ASSERT_EQ(frames.size(), messages.size());
+  EXPECT_EQ(messages.back().frame_number, kPeriods - 1);
+  EXPECT_TRUE(messages.back().flags & syncap::trigger_t::FLAG_LAST);
+  const std::string missed = std::to_string(kPeriods - messages.size());
+  EXPECT_NE(trigger.output().find("pulses=" + std::to_string(messages.size()) + " "),
+            std::string::npos)
+      << trigger.output();
+  EXPECT_NE(trigger.output().find("missed=" + missed), std::string::npos) << trigger.output();
   FrameNumberTracker tracker;
+  std::int64_t previous_number = -1;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     expect_frame(frames[i], i, tracker, kFull);
     EXPECT_EQ(frames[i].timestamp_ns, static_cast<std::uint64_t>(edges[i])) << "frame " << i;
-    EXPECT_EQ(messages[i].frame_number, static_cast<std::int64_t>(i));
     EXPECT_EQ(messages[i].monotonic_ns, edges[i]) << "frame " << i;
+    const bool skipped = messages[i].frame_number > previous_number + 1;
+    EXPECT_GT(messages[i].frame_number, previous_number) << "pulse " << i;
+    EXPECT_EQ(skipped, (messages[i].flags & syncap::trigger_t::FLAG_MISSED) != 0) << "pulse " << i;
+    previous_number = messages[i].frame_number;
   }
   EXPECT_EQ(client->missing_frames(), 0u);
   client.reset();  // first: it releases the camera while the camera still answers
   EXPECT_EQ(fakecam->stop(SIGTERM), 0);
-  EXPECT_NE(fakecam->output().find("triggers=100 sent=100 dropped=0 idle=0 no_image=0 missed=0 "
-                                   "errors=0"),
+  const std::string sent = std::to_string(messages.size());
+  EXPECT_NE(fakecam->output().find("triggers=" + sent + " sent=" + sent +
+                                   " dropped=0 idle=0 no_image=0 missed=0 errors=0"),
             std::string::npos)
       << fakecam->output();
 }
