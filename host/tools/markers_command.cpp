@@ -31,10 +31,9 @@ struct MarkersArgs {
   std::string out;          // folder
   std::string cameras;      // expected ids; default: the calibration's
   std::set<int> camera_ids;
-  matching::MatchOptions matching;
+  host_app::MarkerArgs markers;
   std::vector<double> volume;
   int max_lag = 30;
-  bool keep_not_round = false;
   host_app::TrackingArgs tracking;
 };
 
@@ -74,12 +73,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
       ->delimiter(',')
       ->expected(6);
-  app.add_option("--sigma-px", a.matching.sigma_px, "a ray's standard deviation (0.2)")
-      ->check(cli::number_in(0.001, 10));
-  app.add_option("--tolerance-px", a.matching.tolerance_px, "a ray's largest miss (2)")
-      ->check(cli::number_in(0.01, 100));
-  app.add_flag("--keep-not-round", a.keep_not_round,
-               "also match blobs the edge flagged NOT_ROUND (left out by default)");
+  host_app::add_marker_options(app, a.markers);
   host_app::add_tracking_options(app, a.tracking);
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
@@ -88,7 +82,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
-    if (!a.volume.empty()) a.matching.volume = host_app::parse_volume(a.volume);
+    if (!a.volume.empty()) a.markers.matching.volume = host_app::parse_volume(a.volume);
     host_app::load_rigid_sets(a.tracking);
   } catch (const CLI::CallForHelp&) {
     out << app.help();
@@ -151,7 +145,7 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
     return kExitUsage;
   }
   auto marker_stage =
-      std::make_unique<reconstruction::MarkerStage>(cameras, a.matching, a.keep_not_round);
+      std::make_unique<reconstruction::MarkerStage>(cameras, a.markers.matching, a.markers.stage);
   const reconstruction::MarkerStage* markers = marker_stage.get();
   tracking::TrackHistory history;
   auto tracking_stage =
@@ -184,7 +178,8 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   const auto s = node.stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "
       << markers->stats().markers << " markers (" << markers->stats().two_camera_markers
-      << " seen by two cameras only), " << rejected << " messages rejected; "
+      << " seen by two cameras only, " << markers->stats().partial_spots_left_out
+      << " partly hidden spots left out of their position), " << rejected << " messages rejected; "
       << tracker->tracker().counters().tracks_started << " tracks; "
       << (std::filesystem::path(a.out) / "markers.jsonl").string() << " (and markers.c3d, "
       << "markers.trc)\n";

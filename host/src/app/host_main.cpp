@@ -40,7 +40,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
   const bool markers = !o.calibration.empty();
   if (markers) {
     auto stage = std::make_unique<reconstruction::MarkerStage>(sensor::read_cameras(o.calibration),
-                                                               o.matching, o.keep_not_round);
+                                                               o.markers.matching, o.markers.stage);
     s.markers = stage.get();
     s.chain.push_back(std::move(stage));
     s.chain.push_back(std::make_unique<reconstruction::TrackingStage>(o.tracking.tracker));

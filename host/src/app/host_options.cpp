@@ -26,6 +26,30 @@ std::set<int> parse_camera_list(const std::string& text) {
   return ids;
 }
 
+void add_marker_options(CLI::App& app, MarkerArgs& args) {
+  app.add_option("--tolerance-px", args.matching.tolerance_px,
+                 "how far a ray may miss another, or a point, in its image (default 2)")
+      ->check(cli::number_in(0.01, 100));
+  app.add_option("--sigma-px", args.matching.sigma_px,
+                 "a ray's standard deviation in its image: blob noise and the calibration's RMS "
+                 "(default 0.2)")
+      ->check(cli::number_in(0.001, 10));
+  app.add_flag("--keep-not-round", args.stage.keep_not_round,
+               "also match blobs the edge flagged NOT_ROUND (by default they are left out: a "
+               "partly hidden or merged spot's centroid is off)");
+  reconstruction::PartialSpotOptions& partial = args.stage.partial_spots;
+  app.add_option("--partial-spot-ratio", partial.min_width_ratio,
+                 "a marker's spot narrower than this fraction of its second widest spot (widths at "
+                 "the point's distance) counts as partly hidden and is left out of its point; 0: "
+                 "keep every spot (default " +
+                     cli::number_text(partial.min_width_ratio) + ")")
+      ->check(cli::number_in(0, 1));
+  app.add_option("--partial-spot-min-rays", partial.min_whole_rays,
+                 "leave partial spots out only when this many whole ones remain (default " +
+                     std::to_string(partial.min_whole_rays) + ")")
+      ->check(cli::whole_in<int>(2, 64));
+}
+
 void add_tracking_options(CLI::App& app, TrackingArgs& args) {
   app.add_option_function<double>(
          "--acceleration",
@@ -81,16 +105,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                  "points outside are no markers")
       ->delimiter(',')
       ->expected(6);
-  app.add_option("--tolerance-px", o.matching.tolerance_px,
-                 "how far a ray may miss another, or a point, in its image (default 2)")
-      ->check(cli::number_in(0.01, 100));
-  app.add_option("--sigma-px", o.matching.sigma_px,
-                 "a ray's standard deviation in its image: blob noise and the calibration's RMS "
-                 "(default 0.2)")
-      ->check(cli::number_in(0.001, 10));
-  app.add_flag("--keep-not-round", o.keep_not_round,
-               "also match blobs the edge flagged NOT_ROUND (by default they are left out: a "
-               "partly hidden or merged spot's centroid is off)");
+  add_marker_options(app, o.markers);
   add_tracking_options(app, o.tracking);
   app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
 }
@@ -112,7 +127,7 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
   try {
     app.parse(reversed);
     o.cameras = parse_camera_list(cameras);
-    if (!volume.empty()) o.matching.volume = parse_volume(volume);
+    if (!volume.empty()) o.markers.matching.volume = parse_volume(volume);
     load_rigid_sets(o.tracking);
   } catch (const CLI::CallForHelp&) {
     out << app.help();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "matching/marker_matcher.hpp"
+#include "reconstruction/marker_stage.hpp"
 #include "tracking/marker_tracker.hpp"
 #include "tracking/rigid_set.hpp"
 
@@ -24,6 +25,12 @@ struct TrackingArgs {
   std::vector<tracking::RigidSet> rigid_sets;  // read from it once parsed (load_rigid_sets)
 };
 
+// The matching options syncap-host and syncap markers share.
+struct MarkerArgs {
+  matching::MatchOptions matching;
+  reconstruction::MarkerStageOptions stage;
+};
+
 struct HostOptions {
   std::set<int> cameras{0};
   std::string lcm_url;
@@ -34,9 +41,8 @@ struct HostOptions {
   std::string out;            // JSON lines of the groups
   bool quiet = false;
   std::string calibration;  // cameras.json: the markers are reconstructed live
-  matching::MatchOptions matching;
-  bool keep_not_round = false;  // also match blobs the edge flagged NOT_ROUND
-  bool marker_message = true;   // publish marker_frame_t on SYNCAP_MARKERS
+  MarkerArgs markers;
+  bool marker_message = true;  // publish marker_frame_t on SYNCAP_MARKERS
   TrackingArgs tracking;
 };
 
@@ -46,6 +52,9 @@ std::set<int> parse_camera_list(const std::string& text);
 // --acceleration (m/s^2, the tracker's process noise, into mm/s^2) and --rigid-sets FILE on
 // `app`; syncap-host and syncap markers share them.
 void add_tracking_options(CLI::App& app, TrackingArgs& args);
+// --tolerance-px, --sigma-px, --keep-not-round and the partial spots' --partial-spot-ratio and
+// --partial-spot-min-rays on `app`; syncap-host and syncap markers share them.
+void add_marker_options(CLI::App& app, MarkerArgs& args);
 // Reads args.rigid_sets_path, if given, into args.rigid_sets; CLI::ValidationError naming
 // --rigid-sets with the file's "path:line: problem" when it cannot be used.
 void load_rigid_sets(TrackingArgs& args);

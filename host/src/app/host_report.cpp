@@ -29,9 +29,9 @@ void print_reconstruction(const SummaryInputs& in, std::ostream& out) {
   std::snprintf(line, sizeof line,
                 "host markers: %ld frames, %ld markers (%ld seen by two cameras only), %ld of "
                 "%ld blobs in a marker, %ld of cameras outside the calibration, %ld not round "
-                "(left out)\n",
+                "(left out), %ld partly hidden (left out of their marker's position)\n",
                 m.frames, m.markers, m.two_camera_markers, m.blobs_used, m.blobs,
-                m.blobs_of_unknown_cameras, m.blobs_not_round);
+                m.blobs_of_unknown_cameras, m.blobs_not_round, m.partial_spots_left_out);
   out << line;
   std::snprintf(line, sizeof line,
                 "host time per group: p50 %.3f ms, p99 %.3f ms (%ld groups, %ld dropped by a "

@@ -4,6 +4,8 @@
 // a marker partly hidden by the body, or two markers run together, make a spot whose centroid is
 // off by up to a pixel; on the mocap replay (markers-8cam-body) leaving them out took the ghosts
 // from 4.7 % to 1.8 % and the found markers from 97.3 % to 98.8 % (docs/reconstruction.md).
+// A point with spots the body hides in part (smaller, with their centroids off; see
+// partial_spots.hpp) is triangulated again from its whole spots when enough remain.
 #pragma once
 
 #include <map>
@@ -11,6 +13,7 @@
 
 #include "matching/marker_matcher.hpp"
 #include "pipeline/frame_work.hpp"
+#include "reconstruction/partial_spots.hpp"
 #include "sensor/camera_model.hpp"
 
 namespace syncap::reconstruction {
@@ -23,19 +26,31 @@ struct MarkerStageStats {
   long blobs_of_unknown_cameras = 0;  // cameras outside the calibration
   long blobs_not_round = 0;           // flagged NOT_ROUND by the edge: left out
   long blobs_used = 0;                // in a marker
+  long partial_spots_left_out = 0;    // matched, but left out of the point's position
+};
+
+struct MarkerStageOptions {
+  bool keep_not_round = false;  // also match blobs the edge flagged NOT_ROUND
+  PartialSpotOptions partial_spots;
 };
 
 class MarkerStage : public pipeline::Stage {
  public:
   MarkerStage(std::vector<sensor::CameraModel> cameras, matching::MatchOptions options,
-              bool keep_not_round = false);
+              MarkerStageOptions stage_options = {});
   const char* name() const override { return "markers"; }
   void process(pipeline::FrameWork& work) override;
   const MarkerStageStats& stats() const { return stats_; }
 
  private:
+  // The marker of matched point `p`, its position from its whole spots.
+  pipeline::Marker3d marker_of(const matching::MatchedPoint& p,
+                               const std::vector<std::vector<Eigen::Vector2d>>& pixels,
+                               const std::vector<std::vector<double>>& areas);
+
   matching::MarkerMatcher matcher_;
-  bool keep_not_round_;
+  double sigma_px_;
+  MarkerStageOptions options_;
   std::map<int, std::size_t> index_of_camera_;  // camera id -> the matcher's index
   MarkerStageStats stats_;
 };

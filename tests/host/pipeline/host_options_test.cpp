@@ -15,19 +15,23 @@ ParsedHostOptions parse(std::vector<std::string> args, std::string* err_text = n
 }
 
 TEST(HostOptions, MarkersOptionsAreParsed) {
-  const ParsedHostOptions p =
-      parse({"--cameras", "0,2,5", "--volume", "-1000,-1000,0,1000,1000,2000", "--sigma-px", "0.3",
-             "--tolerance-px", "1.5", "--no-marker-message", "--max-lag", "30", "--keep-not-round",
-             "--acceleration", "25"});
+  const ParsedHostOptions p = parse(
+      {"--cameras", "0,2,5", "--volume", "-1000,-1000,0,1000,1000,2000", "--sigma-px", "0.3",
+       "--tolerance-px", "1.5", "--no-marker-message", "--max-lag", "30", "--keep-not-round",
+       "--acceleration", "25", "--partial-spot-ratio", "0.9", "--partial-spot-min-rays", "4"});
   ASSERT_TRUE(p.options.has_value());
   EXPECT_EQ(p.options->cameras, (std::set<int>{0, 2, 5}));
-  ASSERT_TRUE(p.options->matching.volume.has_value());
-  EXPECT_EQ(p.options->matching.volume->max().z(), 2000);
-  EXPECT_DOUBLE_EQ(p.options->matching.sigma_px, 0.3);
-  EXPECT_DOUBLE_EQ(p.options->matching.tolerance_px, 1.5);
+  ASSERT_TRUE(p.options->markers.matching.volume.has_value());
+  EXPECT_EQ(p.options->markers.matching.volume->max().z(), 2000);
+  EXPECT_DOUBLE_EQ(p.options->markers.matching.sigma_px, 0.3);
+  EXPECT_DOUBLE_EQ(p.options->markers.matching.tolerance_px, 1.5);
   EXPECT_FALSE(p.options->marker_message);
   EXPECT_EQ(p.options->max_lag, 30);
-  EXPECT_TRUE(p.options->keep_not_round);
+  EXPECT_TRUE(p.options->markers.stage.keep_not_round);
+  EXPECT_DOUBLE_EQ(p.options->markers.stage.partial_spots.min_width_ratio, 0.9);
+  EXPECT_EQ(p.options->markers.stage.partial_spots.min_whole_rays, 4);
+  EXPECT_EQ(parse({"--partial-spot-ratio", "1.5"}).exit_status, 2);
+  EXPECT_EQ(parse({"--partial-spot-min-rays", "1"}).exit_status, 2);
   EXPECT_DOUBLE_EQ(p.options->tracking.tracker.acceleration_mm_s2, 25000);
 }
 

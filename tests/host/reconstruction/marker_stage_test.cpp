@@ -35,6 +35,19 @@ pipeline::FrameWork work_of(const test::MarkerFrame& f,
   return w;
 }
 
+// One marker at a random place, seen by every camera without noise.
+std::pair<std::vector<Eigen::Vector3d>, test::MarkerFrame> one_exact_marker(
+    const std::vector<sensor::CameraModel>& cameras, unsigned seed) {
+  std::mt19937 rng(seed);
+  test::MarkerFrameOptions o;
+  o.hidden = 0;
+  o.spurious_per_camera = 0;
+  o.noise_px = 0.0;
+  auto truth = test::random_markers(rng, 1);
+  test::MarkerFrame f = test::observe(cameras, truth, o, rng);
+  return {std::move(truth), std::move(f)};
+}
+
 TEST(MarkerStage, TheMarkersOfAGroupAreFoundWithTheirCameraIds) {
   auto cameras = test::marker_ring(6);
   for (auto& c : cameras) c.id += 10;  // ids are not indices
@@ -70,13 +83,7 @@ TEST(MarkerStage, TheMarkersOfAGroupAreFoundWithTheirCameraIds) {
 // and counted; with keep_not_round it takes part and pulls its marker away.
 TEST(MarkerStage, BlobsFlaggedNotRoundAreLeftOutUnlessKept) {
   const auto cameras = test::marker_ring(6);
-  std::mt19937 rng(5);
-  test::MarkerFrameOptions o;
-  o.hidden = 0;
-  o.spurious_per_camera = 0;
-  o.noise_px = 0.0;
-  const auto truth = test::random_markers(rng, 1);
-  const test::MarkerFrame f = test::observe(cameras, truth, o, rng);
+  const auto [truth, f] = one_exact_marker(cameras, 5);
   struct Outcome {
     double error_mm = 1e9;
     MarkerStageStats stats;
@@ -86,7 +93,9 @@ TEST(MarkerStage, BlobsFlaggedNotRoundAreLeftOutUnlessKept) {
     blob_t& cut = w.group.blobs[cameras[0].id].blobs.at(0);
     cut.x += 0.3f;
     cut.flags = blob_t::FLAG_NOT_ROUND;
-    MarkerStage stage(cameras, {}, keep);
+    MarkerStageOptions options;
+    options.keep_not_round = keep;
+    MarkerStage stage(cameras, {}, options);
     stage.process(w);
     Outcome out;
     out.stats = stage.stats();
@@ -100,6 +109,38 @@ TEST(MarkerStage, BlobsFlaggedNotRoundAreLeftOutUnlessKept) {
   EXPECT_EQ(kept.stats.blobs_not_round, 0);
   EXPECT_EQ(kept.stats.blobs_used, 6);
   EXPECT_GT(kept.error_mm, 10 * left_out.error_mm);
+}
+
+// A spot the body hides in part: smaller than the marker's other spots (at their distances) and
+// 0.6 px off. With enough whole spots left, the marker's position comes from those alone.
+TEST(MarkerStage, APartlyHiddenSpotIsLeftOutOfItsMarkersPosition) {
+  const auto cameras = test::marker_ring(6);
+  const auto [truth, f] = one_exact_marker(cameras, 8);
+  auto run = [&](PartialSpotOptions partial) {
+    pipeline::FrameWork w = work_of(f, cameras);
+    for (std::size_t c = 0; c < cameras.size(); ++c) {
+      blob_t& spot = w.group.blobs[cameras[c].id].blobs.at(0);
+      const geometry::ViewRay ray = geometry::view_ray(cameras[c], {spot.x, spot.y});
+      const double radius_px = 12.5 / (truth[0] - ray.ray.origin).norm() * ray.pixels_per_rad;
+      spot.area = static_cast<float>(3.14159 * radius_px * radius_px);
+    }
+    blob_t& hidden = w.group.blobs[cameras[2].id].blobs.at(0);
+    hidden.area *= 0.6f;
+    hidden.x += 0.6f;
+    MarkerStageOptions options;
+    options.partial_spots = partial;
+    MarkerStage stage(cameras, {}, options);
+    stage.process(w);
+    EXPECT_EQ(w.markers.size(), 1u);
+    EXPECT_EQ(w.markers.at(0).camera_ids.size(), 6u);  // every camera that saw it
+    return std::pair{(w.markers.at(0).position - truth[0]).norm(), stage.stats()};
+  };
+  const auto [error_mm, stats] = run({});
+  const auto [error_kept_mm, stats_kept] = run({.min_width_ratio = 0, .min_whole_rays = 3});
+  EXPECT_EQ(stats.partial_spots_left_out, 1);
+  EXPECT_LT(error_mm, 1e-3);  // five exact rays (float pixels)
+  EXPECT_EQ(stats_kept.partial_spots_left_out, 0);
+  EXPECT_GT(error_kept_mm, 10 * error_mm);
 }
 
 TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
