@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "app/host_options.hpp"
+#include "app/host_report.hpp"
 #include "io/c3d_writer.hpp"
 #include "io/export_error.hpp"
 #include "io/trc_writer.hpp"
@@ -183,6 +184,7 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
       << tracker->tracker().counters().tracks_started << " tracks; "
       << (std::filesystem::path(a.out) / "markers.jsonl").string() << " (and markers.c3d, "
       << "markers.trc)\n";
+  out << kName << ": " << host_app::host_time_line(s);
   if (rigid != nullptr) out << rigid->summary();
   return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;
 }

@@ -25,7 +25,7 @@ void print_grouping(const SummaryInputs& in, std::ostream& out) {
 void print_reconstruction(const SummaryInputs& in, std::ostream& out) {
   const pipeline::HostNodeStats s = in.node.stats();
   const reconstruction::MarkerStageStats& m = in.markers->stats();
-  char line[256];
+  char line[384];
   std::snprintf(line, sizeof line,
                 "host markers: %ld frames, %ld markers (%ld seen by two cameras only), %ld of "
                 "%ld blobs in a marker, %ld of cameras outside the calibration, %ld not round "
@@ -33,23 +33,35 @@ void print_reconstruction(const SummaryInputs& in, std::ostream& out) {
                 m.frames, m.markers, m.two_camera_markers, m.blobs_used, m.blobs,
                 m.blobs_of_unknown_cameras, m.blobs_not_round, m.partial_spots_left_out);
   out << line;
-  std::snprintf(line, sizeof line,
-                "host time per group: p50 %.3f ms, p99 %.3f ms (%ld groups, %ld dropped by a "
-                "full queue)\n",
-                pipeline::quantile(s.host_us.values(), 0.5) * 1e-3,
-                pipeline::quantile(s.host_us.values(), 0.99) * 1e-3, s.processed, s.dropped);
-  out << line;
+  out << host_time_line(s);
   if (in.marker_message != nullptr && in.marker_message->latency().added() > 0) {
     const auto& latency = in.marker_message->latency().values();
+    const auto& host = in.marker_message->host_us().values();
+    const auto& cpu = in.marker_message->host_cpu_us().values();
     std::snprintf(line, sizeof line,
-                  "latency trigger to marker message: p50 %.3f ms, p99 %.3f ms (%zu frames)\n",
+                  "latency trigger to marker message: p50 %.3f ms, p99 %.3f ms (%zu frames); the "
+                  "host's part p50 %.3f ms, p99 %.3f ms, its CPU time p50 %.3f ms, p99 %.3f ms\n",
                   pipeline::quantile(latency, 0.5), pipeline::quantile(latency, 0.99),
-                  in.marker_message->latency().added());
+                  in.marker_message->latency().added(), pipeline::quantile(host, 0.5) * 1e-3,
+                  pipeline::quantile(host, 0.99) * 1e-3, pipeline::quantile(cpu, 0.5) * 1e-3,
+                  pipeline::quantile(cpu, 0.99) * 1e-3);
     out << line;
   }
 }
 
 }  // namespace
+
+std::string host_time_line(const pipeline::HostNodeStats& s) {
+  char line[384];
+  std::snprintf(line, sizeof line,
+                "host time per group: p50 %.3f ms, p99 %.3f ms; its CPU time p50 %.3f ms, p99 "
+                "%.3f ms (%ld groups, %ld dropped by a full queue)\n",
+                pipeline::quantile(s.host_us.values(), 0.5) * 1e-3,
+                pipeline::quantile(s.host_us.values(), 0.99) * 1e-3,
+                pipeline::quantile(s.host_cpu_us.values(), 0.5) * 1e-3,
+                pipeline::quantile(s.host_cpu_us.values(), 0.99) * 1e-3, s.processed, s.dropped);
+  return line;
+}
 
 void FrameLineStage::process(pipeline::FrameWork& work) {
   const host::FrameGroup& g = work.group;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 
 #include "aggregator/arrival_tally.hpp"
 #include "outputs/marker_message_stage.hpp"
@@ -25,6 +26,10 @@ class FrameLineStage : public pipeline::Stage {
   std::size_t expected_;
   bool with_markers_;
 };
+
+// "host time per group: p50 ... ms, p99 ... ms; its CPU time ...\n": the wall time from a group's
+// hand-out to its last stage's end and the worker's CPU time in the stages.
+std::string host_time_line(const pipeline::HostNodeStats& stats);
 
 // Counts of the receiving side, kept by host_main.
 struct Arrivals {

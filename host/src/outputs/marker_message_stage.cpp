@@ -51,6 +51,10 @@ void MarkerMessageStage::process(pipeline::FrameWork& work) {
                            .count();
   const marker_frame_t whole = marker_message(work, static_cast<int32_t>(host_us));
   for (const marker_frame_t& part : proto::split_marker_frame(whole)) publish_(part);
+  host_us_.add(
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - work.ready)
+          .count());
+  host_cpu_us_.add(pipeline::thread_cpu_us() - work.cpu_start_us);
   if (!work.group.trigger) return;
   // Trigger board and host share one clock on the replay bench; on a network, NTP/PTP's offset
   // is in this figure too.

@@ -25,10 +25,14 @@ class MarkerMessageStage : public pipeline::Stage {
   const char* name() const override { return "marker message"; }
   void process(pipeline::FrameWork& work) override;
   const LatencyStats& latency() const { return latency_; }
+  // Of the latest frames: the host's part up to the message leaving, wall and CPU time [us].
+  const pipeline::RecentValues& host_us() const { return host_us_; }
+  const pipeline::RecentValues& host_cpu_us() const { return host_cpu_us_; }
 
  private:
   Publish publish_;
   LatencyStats latency_;
+  pipeline::RecentValues host_us_, host_cpu_us_;
 };
 
 }  // namespace syncap::outputs

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,19 @@ struct FrameWork {
   host::FrameGroup group;
   // When the grouper handed the group out: the host's time for it starts here.
   std::chrono::steady_clock::time_point ready;
+  // The worker thread's CPU time when the first stage started on the group [us, thread_cpu_us].
+  double cpu_start_us = 0;
   std::vector<Marker3d> markers;
   std::vector<RigidBody> rigid_bodies;  // one per set of the rigid set stage, found or not
 };
+
+// The calling thread's CPU time [us] (CLOCK_THREAD_CPUTIME_ID): what a stage cost the host,
+// without the waits for a CPU that the wall time holds on a loaded machine.
+inline double thread_cpu_us() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
+}
 
 // A step of the host's per-frame work. Stages run in order on the pipeline's worker thread, one
 // frame at a time; a stage keeps its own state across frames (a tracker does).

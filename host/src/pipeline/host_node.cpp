@@ -42,7 +42,10 @@ void HostNode::hand_out(std::vector<host::FrameGroup> groups) {
         queue_.pop_front();  // the oldest: live output wants the newest frames
         ++stats_.dropped;
       }
-      queue_.push_back(FrameWork{std::move(g), now, {}, {}});
+      FrameWork work;
+      work.group = std::move(g);
+      work.ready = now;
+      queue_.push_back(std::move(work));
     }
   }
   wake_.notify_one();
@@ -58,12 +61,15 @@ void HostNode::work() {
       work = std::move(queue_.front());
       queue_.pop_front();
     }
+    work.cpu_start_us = thread_cpu_us();
     for (const auto& stage : stages_) stage->process(work);
+    const double cpu_us = thread_cpu_us() - work.cpu_start_us;
     const double us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - work.ready)
             .count();
     const std::lock_guard lock(mutex_);
     stats_.host_us.add(us);
+    stats_.host_cpu_us.add(cpu_us);
     ++stats_.processed;
   }
 }

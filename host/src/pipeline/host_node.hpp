@@ -33,6 +33,9 @@ struct HostNodeStats {
   long processed = 0;    // through every stage
   long dropped = 0;      // dropped from a full queue
   RecentValues host_us;  // ready to the last stage's end, of the latest processed groups
+  // The worker thread's CPU time in the stages of each of those groups: the host's own cost,
+  // without the waits for a CPU that host_us holds on a loaded machine.
+  RecentValues host_cpu_us;
 };
 
 class HostNode {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <future>
 #include <thread>
 
@@ -116,6 +117,39 @@ TEST(HostNode, AFullQueueDropsTheOldestAndCountsThem) {
   EXPECT_EQ(s.processed + s.dropped, 50);
   EXPECT_GE(s.dropped, 39);
   EXPECT_EQ(n.recorder->frames.back(), 49) << "the newest frames are kept";
+}
+
+// Sleeps (no CPU), then spins until its thread has used `spin` of CPU time.
+class WaitThenSpinStage : public Stage {
+ public:
+  const char* name() const override { return "wait-then-spin"; }
+  void process(FrameWork&) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    timespec start{}, now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &start);
+    do {
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    } while ((now.tv_sec - start.tv_sec) * 1'000'000'000L + (now.tv_nsec - start.tv_nsec) <
+             10'000'000L);
+  }
+};
+
+// host_us is the wall time from the group's hand-out to the last stage's end; host_cpu_us the
+// worker's CPU time in the stages (a stage that waits for a CPU, or sleeps, adds to the first
+// only).
+TEST(HostNode, TheHostsWallAndCpuTimePerGroupAreMeasuredApart) {
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<WaitThenSpinStage>());
+  HostNode node(HostNodeOptions{{0}, 2, 1000}, std::move(stages));
+  node.on_trigger(trigger(0));
+  node.on_blob_part(blobs(0, 0));
+  node.poll();
+  node.finish();
+  const HostNodeStats s = node.stats();
+  ASSERT_EQ(s.host_cpu_us.values().size(), 1u);
+  EXPECT_GE(s.host_us.values()[0], 40'000);
+  EXPECT_GE(s.host_cpu_us.values()[0], 10'000);
+  EXPECT_LT(s.host_cpu_us.values()[0], s.host_us.values()[0] - 25'000);
 }
 
 TEST(RecentValues, KeepsTheLatestAndTheQuantilesAreNearestRank) {

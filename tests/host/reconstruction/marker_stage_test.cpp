@@ -149,6 +149,7 @@ TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
   w.group.trigger = trigger_t{};
   w.group.trigger->realtime_ns = 1;  // long ago: the latency is large, but measured
   w.ready = std::chrono::steady_clock::now();
+  w.cpu_start_us = pipeline::thread_cpu_us();
   for (int i = 0; i < 50; ++i) {
     pipeline::Marker3d m;
     m.id = i;
@@ -167,6 +168,11 @@ TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
   EXPECT_EQ(sent[0].markers[3].flags, marker_t::FLAG_TWO_CAMERAS);
   EXPECT_FLOAT_EQ(sent[0].markers[3].sigma_y, 0.2f);
   EXPECT_EQ(stage.latency().added(), 1u);
+  ASSERT_EQ(stage.host_us().added(), 1u);
+  ASSERT_EQ(stage.host_cpu_us().added(), 1u);
+  // The host's part since `ready`, in CPU time no more than in wall time (and both small).
+  EXPECT_LE(stage.host_cpu_us().values()[0], stage.host_us().values()[0] + 1);
+  EXPECT_LT(stage.host_us().values()[0], 1e6);
 }
 
 // Markers moving at 1 m/s keep their ids from frame to frame; one hidden for two frames comes back
