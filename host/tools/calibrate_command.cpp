@@ -23,7 +23,7 @@
 #include "calibration/calibrate.hpp"
 #include "calibration/observations.hpp"
 #include "calibration/outputs.hpp"
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 #include "subcommand.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/cli/options.hpp"
@@ -306,7 +306,7 @@ calibration::Observations read_lcm_log(const std::string& file, const CalibrateA
   std::ifstream in(file, std::ios::binary);
   if (!in) throw calibration::ObservationError(file + ": cannot open for reading");
   if (cameras.empty()) {  // every camera in the log
-    LcmLogReader scan(in);
+    io::LcmLogReader scan(in);
     while (auto event = scan.next()) {
       if (!is_blob_channel(event->channel)) continue;
       blob_frame_t frame;
@@ -319,11 +319,11 @@ calibration::Observations read_lcm_log(const std::string& file, const CalibrateA
   }
   if (cameras.empty()) throw calibration::ObservationError(file + ": no blob frames in the log");
   calibration::BlobFrameCollector collector("lcmlog:" + file, cameras);
-  LcmLogReader reader(in);
+  io::LcmLogReader reader(in);
   long undecodable = 0;
   // A malformed record (the decoder throws on a negative array length) is skipped and named;
   // the records around it are kept.
-  const auto decode = [&](const LogEvent& event, auto& msg) {
+  const auto decode = [&](const io::LogEvent& event, auto& msg) {
     const proto::DecodeResult decoded =
         proto::try_decode(event.data.data(), event.data.size(), msg);
     if (!decoded.ok() && undecodable++ < 5) {
@@ -346,7 +346,7 @@ calibration::Observations read_lcm_log(const std::string& file, const CalibrateA
   if (undecodable > 0) {
     err << kPrefix << file << ": " << undecodable << " malformed records skipped\n";
   }
-  for (const LogError& e : reader.take_errors())
+  for (const io::LogError& e : reader.take_errors())
     err << kPrefix << file << ": " << e.message << '\n';
   for (const std::string& p : collector.problems()) err << kPrefix << p << '\n';
   return collector.finish();

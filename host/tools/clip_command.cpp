@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "message_json.hpp"
+#include "io/message_json.hpp"
 #include "sensor/camera_file.hpp"
 #include "sensor/volume_outline.hpp"
 #include "subcommand.hpp"

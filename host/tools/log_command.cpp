@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
+#include "io/message_json.hpp"
 #include "log_stats.hpp"
-#include "message_json.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 
@@ -24,7 +24,7 @@ struct LogArgs {
   bool stats = false;
 };
 
-nlohmann::ordered_json event_json(const LogEvent& event, const DecodedMessage& decoded) {
+nlohmann::ordered_json event_json(const io::LogEvent& event, const io::DecodedMessage& decoded) {
   nlohmann::ordered_json line = {{"event", event.event_number},
                                  {"timestamp_us", event.timestamp_us},
                                  {"channel", event.channel},
@@ -35,9 +35,9 @@ nlohmann::ordered_json event_json(const LogEvent& event, const DecodedMessage& d
 }
 
 // Prints the reader's queued damage reports; true when there were any.
-bool report_reader_errors(LcmLogReader& reader, std::ostream& err) {
+bool report_reader_errors(io::LcmLogReader& reader, std::ostream& err) {
   const auto errors = reader.take_errors();
-  for (const LogError& error : errors) err << kErrorPrefix << error.message << '\n';
+  for (const io::LogError& error : errors) err << kErrorPrefix << error.message << '\n';
   return !errors.empty();
 }
 
@@ -45,9 +45,9 @@ bool report_reader_errors(LcmLogReader& reader, std::ostream& err) {
 // records it. It is not ours and not damage: shown as its text, never reported.
 constexpr const char* kLcmSelfTestChannel = "LCM_SELF_TEST";
 
-DecodedMessage decode_event(const LogEvent& event) {
-  if (event.channel != kLcmSelfTestChannel) return decode_message(event.data);
-  DecodedMessage decoded;
+io::DecodedMessage decode_event(const io::LogEvent& event) {
+  if (event.channel != kLcmSelfTestChannel) return io::decode_message(event.data);
+  io::DecodedMessage decoded;
   decoded.type = "lcm.self_test";
   decoded.fields =
       nlohmann::ordered_json{{"text", std::string(event.data.begin(), event.data.end())}};
@@ -55,8 +55,8 @@ DecodedMessage decode_event(const LogEvent& event) {
 }
 
 // Prints one event; true when its payload could not be fully decoded (reported on `err`).
-bool print_event(const LogEvent& event, std::ostream& out, std::ostream& err) {
-  const DecodedMessage decoded = decode_event(event);
+bool print_event(const io::LogEvent& event, std::ostream& out, std::ostream& err) {
+  const io::DecodedMessage decoded = decode_event(event);
   // Channel names and string fields are not guaranteed UTF-8; replace rather than throw.
   out << event_json(event, decoded).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
       << '\n';
@@ -107,7 +107,7 @@ std::optional<int> parse_log_args(std::span<const std::string> args, LogArgs& pa
 
 int print_log(std::istream& log, const std::optional<std::regex>& channel_filter, std::ostream& out,
               std::ostream& err) {
-  LcmLogReader reader(log);
+  io::LcmLogReader reader(log);
   bool reported = false;
   while (const auto event = reader.next()) {
     reported |= report_reader_errors(reader, err);
@@ -133,7 +133,7 @@ int log_command(std::span<const std::string> args, std::ostream& out, std::ostre
   }
   if (parsed.stats) {
     const TrafficStats stats = collect_traffic(log);
-    for (const LogError& e : stats.damage)
+    for (const io::LogError& e : stats.damage)
       err << kErrorPrefix << parsed.file << ": " << e.message << '\n';
     if (stats.events == 0 && !stats.damage.empty()) {
       err << kErrorPrefix << parsed.file << ": no valid LCM log event found (damage from offset "

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
@@ -17,13 +17,13 @@ namespace {
 constexpr std::int64_t kLcmShortHeaderBytes = 8;
 
 template <class Msg>
-bool decode(const LogEvent& event, Msg& msg) {
+bool decode(const io::LogEvent& event, Msg& msg) {
   return proto::try_decode(event.data.data(), event.data.size(), msg).used ==
          static_cast<int>(event.data.size());
 }
 
 // Adds one event of a camera channel to its camera; false when the payload does not decode.
-bool count_camera_event(const LogEvent& event, std::int64_t bytes, TrafficStats& stats) {
+bool count_camera_event(const io::LogEvent& event, std::int64_t bytes, TrafficStats& stats) {
   if (event.channel.starts_with(proto::kBlobChannelPrefix)) {
     blob_frame_t frame;
     if (!decode(event, frame)) return false;
@@ -60,7 +60,7 @@ std::int64_t datagram_bytes(const std::string& channel, std::size_t payload_byte
 
 TrafficStats collect_traffic(std::istream& log) {
   TrafficStats stats;
-  LcmLogReader reader(log);
+  io::LcmLogReader reader(log);
   while (const auto event = reader.next()) {
     ++stats.events;
     const std::int64_t bytes = datagram_bytes(event->channel, event->data.size());
@@ -69,9 +69,9 @@ TrafficStats collect_traffic(std::istream& log) {
     channel.datagram_bytes += bytes;
     channel.max_datagram_bytes = std::max(channel.max_datagram_bytes, bytes);
     if (!count_camera_event(*event, bytes, stats)) ++stats.undecodable;
-    for (LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
+    for (io::LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
   }
-  for (LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
+  for (io::LogError& e : reader.take_errors()) stats.damage.push_back(std::move(e));
   return stats;
 }
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 
 namespace syncap::tools {
 
@@ -34,8 +34,8 @@ struct TrafficStats {
   std::map<std::string, ChannelTraffic> channels;
   std::map<int, CameraTraffic> cameras;
   long events = 0;
-  long undecodable = 0;          // syncap messages that did not decode (not counted per camera)
-  std::vector<LogError> damage;  // what the reader skipped, in file order
+  long undecodable = 0;              // syncap messages that did not decode (not counted per camera)
+  std::vector<io::LogError> damage;  // what the reader skipped, in file order
 };
 
 // The bytes one message takes on the wire as a single LCM datagram.

@@ -8,8 +8,8 @@
 #include "app/host_report.hpp"
 #include "io/c3d_writer.hpp"
 #include "io/export_error.hpp"
+#include "io/lcm_log_reader.hpp"
 #include "io/trc_writer.hpp"
-#include "lcm_log_reader.hpp"
 #include "outputs/json_lines_stage.hpp"
 #include "pipeline/host_node.hpp"
 #include "reconstruction/marker_stage.hpp"
@@ -39,7 +39,7 @@ struct MarkersArgs {
 };
 
 // Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
-bool feed(pipeline::HostNode& node, const LogEvent& e, long& rejected) {
+bool feed(pipeline::HostNode& node, const io::LogEvent& e, long& rejected) {
   const auto decode_into = [&](auto& msg) {
     return proto::try_decode(e.data.data(), e.data.size(), msg).ok();
   };
@@ -163,13 +163,13 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   }
   stages.push_back(std::make_unique<outputs::JsonLinesStage>(jsonl, true));
   pipeline::HostNode node({expected_cameras(a, cameras), a.max_lag, 1'000'000}, std::move(stages));
-  LcmLogReader reader(log);
+  io::LcmLogReader reader(log);
   long rejected = 0;
   bool damaged = false;
   while (const auto event = reader.next()) {
     feed(node, *event, rejected);
     node.poll();
-    for (const LogError& e : reader.take_errors()) {
+    for (const io::LogError& e : reader.take_errors()) {
       err << kName << ": " << e.message << '\n';
       damaged = true;
     }

@@ -1,5 +1,5 @@
 // libFuzzer target: the LCM log reader of `syncap log` and the calibration's log input
-// (tools::LcmLogReader), on the input as a whole log file.
+// (io::LcmLogReader), on the input as a whole log file.
 //
 // Contract: the reader never throws and always ends; each event it returns is an intact record
 // of the file, at an offset after the previous event's, and encodes (encode_log_record) to
@@ -12,14 +12,14 @@
 #include <vector>
 
 #include "fuzz_check.hpp"
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 
 namespace {
 
 using syncap::fuzz::check;
 
-void check_event(const syncap::tools::LogEvent& event, const std::string& file) {
-  const std::vector<uint8_t> record = syncap::tools::encode_log_record(
+void check_event(const syncap::io::LogEvent& event, const std::string& file) {
+  const std::vector<uint8_t> record = syncap::io::encode_log_record(
       event.event_number, event.timestamp_us, event.channel, event.data);
   check(event.offset + record.size() <= file.size(), "an event extends past the end of the file");
   check(file.compare(event.offset, record.size(), std::string(record.begin(), record.end())) == 0,
@@ -31,10 +31,10 @@ void check_event(const syncap::tools::LogEvent& event, const std::string& file) 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string file(reinterpret_cast<const char*>(data), size);
   std::istringstream in(file);
-  std::vector<syncap::tools::LogError> errors;
-  std::vector<syncap::tools::LogEvent> events;
+  std::vector<syncap::io::LogError> errors;
+  std::vector<syncap::io::LogEvent> events;
   syncap::fuzz::decodes<syncap::fuzz::NothingThrown>("LcmLogReader", [&] {
-    syncap::tools::LcmLogReader reader(in);
+    syncap::io::LcmLogReader reader(in);
     while (auto event = reader.next()) {
       check(events.empty() || event->offset > events.back().offset, "events out of file order");
       check_event(*event, file);

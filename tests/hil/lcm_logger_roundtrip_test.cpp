@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/edge_command_t.hpp"
@@ -91,10 +91,10 @@ class LcmLogger {
 };
 
 // The complete events in the log so far; a record the logger is still writing is left out.
-std::vector<tools::LogEvent> recorded_events(const std::filesystem::path& path) {
+std::vector<io::LogEvent> recorded_events(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  tools::LcmLogReader reader(in);
-  std::vector<tools::LogEvent> events;
+  io::LcmLogReader reader(in);
+  std::vector<io::LogEvent> events;
   while (auto event = reader.next()) events.push_back(std::move(*event));
   return events;
 }

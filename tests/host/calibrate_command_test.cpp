@@ -13,7 +13,7 @@
 #include "calibration/simulated_observations.hpp"
 #include "estimators/bundle_adjustment_simulation.hpp"
 #include "help_check.hpp"
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 #include "malformed_messages.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -244,7 +244,7 @@ void write_log(const fs::path& file,
   std::int64_t event = 0;
   for (const auto& [key, frame] : frames) {
     const auto record =
-        encode_log_record(event++, 0, proto::blob_channel(key.second), test::encoded(frame));
+        io::encode_log_record(event++, 0, proto::blob_channel(key.second), test::encoded(frame));
     log.insert(log.end(), record.begin(), record.end());
   }
   std::ofstream out(file, std::ios::binary);
@@ -322,12 +322,13 @@ TEST(CalibrateCommand, MalformedLogRecordIsSkippedAndTheRestCalibrates) {
   for (const auto& [key, frame] : frames) {
     if (event == 40) {
       bad_offset = log.size();
-      const auto bad = encode_log_record(event++, 0, proto::blob_channel(key.second),
-                                         test::blob_frame_with_negative_count(key.second, 1000));
+      const auto bad =
+          io::encode_log_record(event++, 0, proto::blob_channel(key.second),
+                                test::blob_frame_with_negative_count(key.second, 1000));
       log.insert(log.end(), bad.begin(), bad.end());
     }
     const auto record =
-        encode_log_record(event++, 0, proto::blob_channel(key.second), test::encoded(frame));
+        io::encode_log_record(event++, 0, proto::blob_channel(key.second), test::encoded(frame));
     log.insert(log.end(), record.begin(), record.end());
   }
   {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 #include "log_command.hpp"
 #include "malformed_messages.hpp"
 #include "subcommand.hpp"
@@ -30,7 +30,7 @@ class Log {
  public:
   template <class Msg>
   void add(const std::string& channel, const Msg& msg) {
-    const auto record = encode_log_record(next_++, 0, channel, encoded(msg));
+    const auto record = io::encode_log_record(next_++, 0, channel, encoded(msg));
     bytes_.append(record.begin(), record.end());
   }
   std::istringstream stream() const { return std::istringstream(bytes_); }
@@ -94,7 +94,7 @@ TEST(LogStats, UndecodableCameraMessagesAreCountedApart) {
   blob_frame_t broken = frame(1, 0, 1, 0);
   std::vector<std::uint8_t> bytes = encoded(broken);
   bytes.resize(bytes.size() - 5);
-  const auto record = encode_log_record(0, 0, proto::blob_channel(1), bytes);
+  const auto record = io::encode_log_record(0, 0, proto::blob_channel(1), bytes);
   std::istringstream in(std::string(record.begin(), record.end()));
   const TrafficStats stats = collect_traffic(in);
   EXPECT_EQ(stats.undecodable, 1);
@@ -104,9 +104,9 @@ TEST(LogStats, UndecodableCameraMessagesAreCountedApart) {
 
 // Issue 15: the decoder threw std::length_error on a negative num_blobs and ended `syncap log`.
 TEST(LogStats, NegativeArrayLengthIsCountedAndTheRestKept) {
-  auto log =
-      encode_log_record(0, 0, proto::blob_channel(1), test::blob_frame_with_negative_count(1, 0));
-  const auto good = encode_log_record(1, 0, proto::blob_channel(1), encoded(frame(1, 1, 2, 0)));
+  auto log = io::encode_log_record(0, 0, proto::blob_channel(1),
+                                   test::blob_frame_with_negative_count(1, 0));
+  const auto good = io::encode_log_record(1, 0, proto::blob_channel(1), encoded(frame(1, 1, 2, 0)));
   log.insert(log.end(), good.begin(), good.end());
   std::istringstream in(std::string(log.begin(), log.end()));
   const TrafficStats stats = collect_traffic(in);

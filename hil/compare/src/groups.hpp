@@ -1,9 +1,6 @@
-// The host's frame groups as syncap-host --out writes them (host/src/app/host_main.cpp,
-// group_json), one JSON object a line:
-//   {"frame":k,"complete":true,"missing_cameras":[..],"trigger_monotonic_ns":..,
-//    "cameras":{"0":{"processing_us":..,"blobs":[{"x":..,"y":..,"area":..},...],
-//                    "silhouette":{"width":..,"height":..,"contours":[{"hole":false,
-//                                  "points":[[x,y],...]},...]}},...}}
+// The host's frame groups as the comparison scores them: the host's JSON lines (syncap-host
+// --out), read by the host's own reader (io::read_frame_lines, host/src/io/frame_json.hpp), less
+// what is not scored: a camera whose blob frame was lost, the tracker's predicted markers.
 #pragma once
 
 #include <filesystem>
@@ -52,7 +49,8 @@ struct Group {
 // One line; `where` ("groups.jsonl:17") starts every InputError message.
 Group parse_group(std::string_view line, const std::string& where);
 
-// Every non-empty line of `file`, in file order; a frame may appear only once.
+// Every non-empty line of `file`, in file order; a frame may appear only once. Throws
+// InputError naming the file and the line.
 std::vector<Group> read_groups(const std::filesystem::path& file);
 
 }  // namespace syncap::compare

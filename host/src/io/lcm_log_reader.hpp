@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace syncap::tools {
+namespace syncap::io {
 
 inline constexpr std::uint32_t kLcmLogSyncWord = 0xEDA1DA01;
 inline constexpr std::size_t kLcmLogHeaderSize = 28;
@@ -71,4 +71,4 @@ std::vector<std::uint8_t> encode_log_record(std::int64_t event_number, std::int6
                                             const std::string& channel,
                                             std::span<const std::uint8_t> data);
 
-}  // namespace syncap::tools
+}  // namespace syncap::io

@@ -1,4 +1,4 @@
-#include "lcm_log_reader.hpp"
+#include "io/lcm_log_reader.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <utility>
 
-namespace syncap::tools {
+namespace syncap::io {
 namespace {
 
 // Reads are chunked so that a garbage length field never allocates more than the file holds.
@@ -178,4 +178,4 @@ std::vector<std::uint8_t> encode_log_record(std::int64_t event_number, std::int6
   return record;
 }
 
-}  // namespace syncap::tools
+}  // namespace syncap::io

@@ -1,4 +1,4 @@
-#include "message_json.hpp"
+#include "io/message_json.hpp"
 
 #include <array>
 #include <iomanip>
@@ -43,15 +43,11 @@ void to_json(nlohmann::ordered_json& json, const blob_frame_t& msg) {
 
 void to_json(nlohmann::ordered_json& json, const silhouette_part_t& msg) {
   json = {
-      {"camera_id", msg.camera_id},
-      {"frame_number", msg.frame_number},
-      {"image_width", msg.image_width},
-      {"image_height", msg.image_height},
-      {"part_index", msg.part_index},
-      {"part_count", msg.part_count},
-      {"num_pieces", msg.num_pieces},
-      {"data_size", msg.data_size},
-      {"data", tools::base64_encode(msg.data)},
+      {"camera_id", msg.camera_id},          {"frame_number", msg.frame_number},
+      {"image_width", msg.image_width},      {"image_height", msg.image_height},
+      {"part_index", msg.part_index},        {"part_count", msg.part_count},
+      {"num_pieces", msg.num_pieces},        {"data_size", msg.data_size},
+      {"data", io::base64_encode(msg.data)},
   };
 }
 
@@ -168,7 +164,7 @@ void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg) {
 
 }  // namespace syncap
 
-namespace syncap::tools {
+namespace syncap::io {
 namespace {
 
 constexpr std::size_t kFingerprintSize = 8;
@@ -262,4 +258,4 @@ std::string base64_encode(std::span<const std::uint8_t> bytes) {
   return text;
 }
 
-}  // namespace syncap::tools
+}  // namespace syncap::io

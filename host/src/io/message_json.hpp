@@ -34,7 +34,7 @@ void to_json(nlohmann::ordered_json& json, const marker_frame_t& msg);
 
 }  // namespace syncap
 
-namespace syncap::tools {
+namespace syncap::io {
 
 struct DecodedMessage {
   std::optional<std::string> type;               // "syncap.trigger_t"; nothing: unknown fingerprint
@@ -49,4 +49,4 @@ DecodedMessage decode_message(std::span<const std::uint8_t> payload);
 // Standard base64 (RFC 4648) with padding.
 std::string base64_encode(std::span<const std::uint8_t> bytes);
 
-}  // namespace syncap::tools
+}  // namespace syncap::io

@@ -1,0 +1,243 @@
+// The messages' JSON views (io::decode_message, what `syncap log` prints as "fields"): every
+// field of every type, in declaration order, byte arrays as base64.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/message_json.hpp"
+#include "lcm_log_samples.hpp"
+#include "syncap/trigger_status_t.hpp"
+
+namespace syncap::io {
+namespace {
+
+using test::Bytes;
+using test::sample_blob;
+using test::sample_trigger;
+
+// The fields of `msg` decoded by its fingerprint, as `syncap log` prints them (dumped and read
+// back, so numbers compare as printed).
+template <class Message>
+nlohmann::json fields_of(const Message& msg) {
+  const DecodedMessage decoded = decode_message(test::encoded(msg));
+  EXPECT_EQ(decoded.type, std::string("syncap.") + Message::getTypeName());
+  EXPECT_EQ(decoded.error, "");
+  if (!decoded.fields) return nullptr;
+  return nlohmann::json::parse(decoded.fields->dump());
+}
+
+TEST(MessageJson, TriggerRoundTrips) {
+  const nlohmann::json fields = fields_of(sample_trigger(42));
+  EXPECT_EQ(fields["frame_number"], 42);
+  EXPECT_EQ(fields["monotonic_ns"], 1'234'567'890'123'456'789);
+  EXPECT_EQ(fields["realtime_ns"], -5);
+  EXPECT_EQ(fields["rate_hz"], 99.75);
+  EXPECT_EQ(fields["pulse_width_us"], 500);
+  EXPECT_EQ(fields["trigger_id"], 2);
+  EXPECT_EQ(fields["flags"], trigger_t::FLAG_LATE | trigger_t::FLAG_LAST);
+}
+
+TEST(MessageJson, BlobRoundTrips) {
+  const nlohmann::json fields = fields_of(sample_blob(1.5f));
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"x":1.5,"y":-2.25,"area":17.5,"peak":4095,
+      "bbox_x":10,"bbox_y":20,"bbox_w":5,"bbox_h":6,"flags":1})"));
+}
+
+TEST(MessageJson, BlobFrameRoundTripsWithNestedBlobs) {
+  blob_frame_t msg{};
+  msg.camera_id = 3;
+  msg.frame_number = 1'000'000'000'000;
+  msg.monotonic_ns = 987'654'321;
+  msg.exposure_us = 1200;
+  msg.processing_us = 340;
+  msg.image_width = 2048;
+  msg.image_height = 1536;
+  msg.part_index = 1;
+  msg.part_count = 2;
+  msg.total_blobs = 60;
+  msg.blobs = {sample_blob(1.5f), sample_blob(-0.5f)};
+  msg.num_blobs = static_cast<int16_t>(msg.blobs.size());
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields["camera_id"], 3);
+  EXPECT_EQ(fields["frame_number"], 1'000'000'000'000);
+  EXPECT_EQ(fields["monotonic_ns"], 987'654'321);
+  EXPECT_EQ(fields["exposure_us"], 1200);
+  EXPECT_EQ(fields["processing_us"], 340);
+  EXPECT_EQ(fields["image_width"], 2048);
+  EXPECT_EQ(fields["image_height"], 1536);
+  EXPECT_EQ(fields["part_index"], 1);
+  EXPECT_EQ(fields["part_count"], 2);
+  EXPECT_EQ(fields["total_blobs"], 60);
+  EXPECT_EQ(fields["num_blobs"], 2);
+  ASSERT_EQ(fields["blobs"].size(), 2u);
+  EXPECT_EQ(fields["blobs"][0]["x"], 1.5);
+  EXPECT_EQ(fields["blobs"][1]["x"], -0.5);
+  EXPECT_EQ(fields["blobs"][1]["peak"], 4095);
+}
+
+TEST(MessageJson, SilhouettePartRoundTripsWithBase64Data) {
+  silhouette_part_t msg{};
+  msg.camera_id = 12;
+  msg.frame_number = 77;
+  msg.image_width = 640;
+  msg.image_height = 480;
+  msg.part_index = 0;
+  msg.part_count = 1;
+  msg.num_pieces = 1;
+  msg.data = {0x00, 0xff, 0x10, 0x80};
+  msg.data_size = static_cast<int16_t>(msg.data.size());
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields["camera_id"], 12);
+  EXPECT_EQ(fields["frame_number"], 77);
+  EXPECT_EQ(fields["image_width"], 640);
+  EXPECT_EQ(fields["image_height"], 480);
+  EXPECT_EQ(fields["part_index"], 0);
+  EXPECT_EQ(fields["part_count"], 1);
+  EXPECT_EQ(fields["num_pieces"], 1);
+  EXPECT_EQ(fields["data_size"], 4);
+  EXPECT_EQ(fields["data"], "AP8QgA==");
+}
+
+TEST(MessageJson, CameraStatusRoundTrips) {
+  camera_status_t msg{};
+  msg.camera_id = 99;
+  msg.state = camera_status_t::STATE_ERROR;
+  msg.monotonic_ns = 11;
+  msg.realtime_ns = 22;
+  msg.last_frame_number = -1;
+  msg.frames_received = 33;
+  msg.frames_lost = 4;
+  msg.frames_incomplete = 5;
+  msg.frame_rate_hz = 59.5f;
+  msg.processing_us_mean = 812.25f;
+  msg.message = "buffer underrun \"x\"";
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields["camera_id"], 99);
+  EXPECT_EQ(fields["state"], camera_status_t::STATE_ERROR);
+  EXPECT_EQ(fields["monotonic_ns"], 11);
+  EXPECT_EQ(fields["realtime_ns"], 22);
+  EXPECT_EQ(fields["last_frame_number"], -1);
+  EXPECT_EQ(fields["frames_received"], 33);
+  EXPECT_EQ(fields["frames_lost"], 4);
+  EXPECT_EQ(fields["frames_incomplete"], 5);
+  EXPECT_EQ(fields["frame_rate_hz"], 59.5);
+  EXPECT_EQ(fields["processing_us_mean"], 812.25);
+  EXPECT_EQ(fields["message"], "buffer underrun \"x\"");
+}
+
+TEST(MessageJson, TriggerStatusRoundTrips) {
+  trigger_status_t msg{};
+  msg.trigger_id = 3;
+  msg.state = trigger_status_t::STATE_STOPPED;
+  msg.monotonic_ns = 11;
+  msg.realtime_ns = 22;
+  msg.pulses = 1000;
+  msg.late = 2;
+  msg.missed = 1;
+  msg.last_frame_number = 1000;
+  msg.rate_hz = 99.75;
+  msg.message = "exiting";
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields["trigger_id"], 3);
+  EXPECT_EQ(fields["state"], trigger_status_t::STATE_STOPPED);
+  EXPECT_EQ(fields["monotonic_ns"], 11);
+  EXPECT_EQ(fields["realtime_ns"], 22);
+  EXPECT_EQ(fields["pulses"], 1000);
+  EXPECT_EQ(fields["late"], 2);
+  EXPECT_EQ(fields["missed"], 1);
+  EXPECT_EQ(fields["last_frame_number"], 1000);
+  EXPECT_EQ(fields["rate_hz"], 99.75);
+  EXPECT_EQ(fields["message"], "exiting");
+}
+
+TEST(MessageJson, EdgeCommandRoundTrips) {
+  edge_command_t msg{};
+  msg.camera_id = edge_command_t::ALL_CAMERAS;
+  msg.sender = -5;
+  msg.sequence = 9'000'000'000;
+  msg.sent_realtime_ns = 1'800'000'000'000'000'000;
+  msg.command = edge_command_t::SET_ROI;
+  msg.int_value = -7;
+  msg.real_value = 0.125;
+  msg.roi_x = 8;
+  msg.roi_y = 16;
+  msg.roi_width = 320;
+  msg.roi_height = 240;
+  msg.mac[0] = 0x0f;
+  msg.mac[31] = -1;
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":-1,"sender":-5,"sequence":9000000000,
+      "sent_realtime_ns":1800000000000000000,"command":6,
+      "int_value":-7,"real_value":0.125,"roi_x":8,"roi_y":16,"roi_width":320,"roi_height":240,
+      "mac":"0f000000000000000000000000000000000000000000000000000000000000ff"})"));
+}
+
+TEST(MessageJson, ClipPolygonRoundTrips) {
+  clip_polygon_t msg{};
+  msg.camera_id = 3;
+  msg.sequence = 12;
+  msg.image_width = 640;
+  msg.image_height = 480;
+  msg.num_points = 3;
+  msg.x = {10, 600, 300};
+  msg.y = {470, 470, 200};
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":3,"sender":0,"sequence":12,
+      "sent_realtime_ns":0,"image_width":640,"image_height":480,"num_points":3,
+      "x":[10,600,300],"y":[470,470,200],"mac":"0000000000000000000000000000000000000000000000000000000000000000"})"));
+}
+
+TEST(MessageJson, MarkerFrameRoundTripsWithItsMarkers) {
+  marker_frame_t msg{};
+  msg.frame_number = 7;
+  msg.trigger_realtime_ns = 1'700'000'000'000'000'000;
+  msg.host_us = 412;
+  msg.flags = marker_frame_t::FLAG_COMPLETE;
+  msg.cameras = 8;
+  msg.part_count = 1;
+  marker_t m{};
+  m.id = 3;
+  m.x = 12.5f;
+  m.y = -1.25f;
+  m.z = 1000.0f;
+  m.sigma_x = m.sigma_y = m.sigma_z = 0.25f;
+  m.residual_px = 0.125f;
+  m.cameras = 5;
+  m.flags = marker_t::FLAG_TWO_CAMERAS;
+  msg.markers = {m};
+  msg.num_markers = msg.total_markers = 1;
+
+  const nlohmann::json fields = fields_of(msg);
+
+  EXPECT_EQ(fields, nlohmann::json::parse(R"({"frame_number":7,"trigger_monotonic_ns":0,
+      "trigger_realtime_ns":1700000000000000000,"host_us":412,"flags":1,"cameras":8,
+      "part_index":0,"part_count":1,"total_markers":1,"num_markers":1,
+      "markers":[{"id":3,"x":12.5,"y":-1.25,"z":1000.0,"sigma_x":0.25,"sigma_y":0.25,
+      "sigma_z":0.25,"residual_px":0.125,"cameras":5,"flags":1}]})"));
+}
+
+TEST(Base64, EncodesWithPadding) {
+  EXPECT_EQ(base64_encode(Bytes{}), "");
+  EXPECT_EQ(base64_encode(Bytes{'f'}), "Zg==");
+  EXPECT_EQ(base64_encode(Bytes{'f', 'o'}), "Zm8=");
+  EXPECT_EQ(base64_encode(Bytes{'f', 'o', 'o'}), "Zm9v");
+  EXPECT_EQ(base64_encode(Bytes{'f', 'o', 'o', 'b', 'a', 'r'}), "Zm9vYmFy");
+}
+
+}  // namespace
+}  // namespace syncap::io
