@@ -2,7 +2,6 @@
 // scene rendered by syncap-sim.
 //   syncap-segment-eval --cdnet DIR --method medipicture|mog2|knn [--train-frames N] ...
 //   syncap-segment-eval --scene DIR [--person] [medi-picture options]
-#include <array>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -34,20 +33,6 @@ constexpr const char* kFooter =
     "Values out of range are refused (as syncap-edge's --mask-* options). Exit status: 0\n"
     "scored, 2 bad arguments or bad input (a missing, undecodable or truncated image).";
 
-// The medi-picture options: name (without dashes), value, meaning; checked by
-// apply_masking_option as syncap-edge's --mask-* are.
-constexpr std::array<std::array<const char*, 3>, 9> kMaskingOptions{{
-    {"k", "K", "interval width in units of d (default 3)"},
-    {"min-difference", "D", "floor of d, DN (default 6)"},
-    {"ncc", "L", "shadow threshold L_NCC (default 0.98)"},
-    {"shadow-test", "T", "correlation (eqs 5.6-5.11, default) or common-ratio"},
-    {"shadow-sigmas", "S", "common-ratio tolerance in training sigmas (default 4)"},
-    {"fill-holes", "A", "fill holes of the mask up to A pixels (default 0)"},
-    {"closing", "D", "elliptical closing diameter, pixels, 0 = none (default 9)"},
-    {"min-area", "A", "smallest component kept, pixels (default 40)"},
-    {"update-rate", "R", "slow model update where background (default 0)"},
-}};
-
 struct Arguments {
   std::string cdnet, scene_dir, method;
   std::string folder;
@@ -72,10 +57,14 @@ void add_options(CLI::App& app, Arguments& a) {
                    "range (default: all of them)");
   cli::add_checked(app, "--frame-step", a.options.frame_step, "N", cli::whole_in(1, 1 << 24),
                    "score every N-th frame (default 1)");
-  for (const auto& [name, metavar, meaning] : kMaskingOptions) {
+  // The medi-picture options, checked by apply_masking_option as syncap-edge's --mask-* are;
+  // their defaults are medi-picture's own (--person changes them).
+  for (const auto& [name, metavar, meaning] : syncap::edge::kMaskingOptions) {
+    const std::string fallback =
+        syncap::edge::masking_option_value(syncap::edge::MediPictureOptions{}, name);
     app.add_option_function<std::string>(
            std::string("--") + name, [&a, name](const std::string& v) { a.masking[name] = v; },
-           meaning)
+           std::string(meaning) + " (default " + fallback + ")")
         ->option_text(metavar);
   }
   app.add_flag("--no-shadows", a.no_shadows, "skip the shadow test");

@@ -681,7 +681,7 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
     parse_edge_options({"--camera-id", "300", "--source", "replay:/x"});
     FAIL();
   } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("--camera-id '300'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--camera-id: '300'"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_edge_options({"--camera-id", "1", "--source", "gige:/dev/video0"}),
                UsageError);

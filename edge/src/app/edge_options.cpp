@@ -3,159 +3,230 @@
 #include <yaml-cpp/yaml.h>
 
 #include <charconv>
-#include <cstdio>
 #include <optional>
-#include <set>
 
 #include "segmentation/masking_options.hpp"
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 
 namespace syncap::edge {
 namespace {
 
-bool parse_bool(const std::string& text) {
-  if (text == "true" || text == "yes" || text == "on") return true;
-  if (text == "false" || text == "no" || text == "off") return false;
-  throw BadValue("'" + text + "': expected true or false");
-}
+constexpr const char* kAbout =
+    "usage: syncap-edge --camera-id N --source SPEC [options]\n"
+    "       syncap-edge --config FILE [options]\n"
+    "Grabs the exposure of every trigger pulse, finds the bright targets (and with --mode mask\n"
+    "the person's silhouette) and publishes them over LCM; obeys the host's signed commands.\n";
 
-cv::Rect parse_roi(const std::string& text) {
+constexpr const char* kFooter =
+    "Config file: YAML `key: value` lines, the keys the long options without dashes\n"
+    "(camera-id: 3, quiet: true); options on the command line override it, before or after\n"
+    "--config. Exit status: 0 after a run, 1 a failure while running, 2 a usage error or a bad\n"
+    "config file (the option or file:line:column and key named, with the value).";
+
+// " (default V)": a number's default as the help shows it, from the options' own defaults.
+std::string by_default(double v) { return " (default " + cli::number_text(v) + ")"; }
+
+constexpr const char* kRoiForm = "X,Y,WIDTH,HEIGHT in sensor pixels, each 0..32767";
+
+// "X,Y,W,H", each a decimal 0..32767; nothing for any other text.
+std::optional<cv::Rect> parse_roi(const std::string& text) {
   int v[4];
   const char* at = text.data();
   const char* end = text.data() + text.size();
   for (int i = 0; i < 4; ++i) {
-    if (i > 0) {
-      if (at == end || *at != ',') at = nullptr;
-      if (at) ++at;
-    }
-    auto [next, ec] = at ? std::from_chars(at, end, v[i]) : std::from_chars_result{};
-    if (!at || ec != std::errc() || v[i] < 0 || v[i] > 32767) {
-      throw BadValue("'" + text + "': expected X,Y,WIDTH,HEIGHT in sensor pixels");
-    }
+    if (i > 0 && (at == end || *at++ != ',')) return std::nullopt;
+    const auto [next, ec] = std::from_chars(at, end, v[i]);
+    if (ec != std::errc() || v[i] < 0 || v[i] > 32767) return std::nullopt;
     at = next;
   }
-  if (at != end) throw BadValue("'" + text + "': expected X,Y,WIDTH,HEIGHT in sensor pixels");
-  return {v[0], v[1], v[2], v[3]};
+  if (at != end) return std::nullopt;
+  return cv::Rect(v[0], v[1], v[2], v[3]);
 }
 
-bool is_flag(const std::string& option) {
-  return option == "--udp-socket" || option == "--exit-after-last" || option == "--quiet" ||
-         option == "--roi-follows-windows" || option == "--mask-no-shadows";
+CLI::Validator roi_form() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return parse_roi(text) ? std::string() : "'" + text + "' is not " + kRoiForm;
+      },
+      kRoiForm);
 }
 
-bool takes_value(const std::string& option) {
-  static const std::set<std::string> kOptions{"--config",
-                                              "--command-key",
-                                              "--command-window-s",
-                                              "--camera-id",
-                                              "--source",
-                                              "--trigger-source",
-                                              "--exposure-us",
-                                              "--gain-db",
-                                              "--detection",
-                                              "--full-scan-every",
-                                              "--mode",
-                                              "--train-frames",
-                                              "--train-from-frame",
-                                              "--contour-tolerance",
-                                              "--mask-k",
-                                              "--mask-min-difference",
-                                              "--mask-shadow-test",
-                                              "--mask-shadow-sigmas",
-                                              "--mask-ncc",
-                                              "--mask-fill-holes",
-                                              "--mask-closing",
-                                              "--mask-min-area",
-                                              "--mask-update-rate",
-                                              "--roi",
-                                              "--threshold",
-                                              "--min-area",
-                                              "--max-area",
-                                              "--lcm-url",
-                                              "--heartbeat-s",
-                                              "--publish-queue",
-                                              "--reopen-first-s",
-                                              "--reopen-max-s",
-                                              "--camera-silent-s",
-                                              "--match-tolerance-ms"};
-  return kOptions.contains(option);
-}
-
-// Applies one option. `value` is its argument (nullopt for a flag given on the command line,
-// "true"/"false" for a flag from the config file). Returns false for an unknown option; throws
-// BadValue.
-bool apply_option(EdgeOptions& o, const std::string& a, const std::optional<std::string>& value,
-                  bool& have_camera) {
-  if (is_flag(a)) {
-    const bool on = value ? parse_bool(*value) : true;
-    if (a == "--udp-socket") o.udp_socket = on;
-    if (a == "--exit-after-last") o.exit_after_last = on;
-    if (a == "--quiet") o.quiet = on;
-    if (a == "--roi-follows-windows") o.roi_follows_windows = on;
-    if (a == "--mask-no-shadows") o.masking.remove_shadows = !on;
-    return true;
+// The parser of one EdgeOptions: every option bound to `o`. A parse sets only the options it is
+// given, so parsing the config file's entries and then the command line into the same parser
+// lets the command line override the file.
+class Parser {
+ public:
+  Parser() : app_("syncap-edge", kAbout, kFooter) {
+    o.lcm_url = proto::kDefaultLcmUrl;
+    add_camera_options();
+    add_detection_options();
+    add_mask_options();
+    add_network_options();
+    add_run_options();
   }
-  // --mask-K: the medi-picture option K (docs/segmentation.md has what each does).
-  if (a.rfind("--mask-", 0) == 0)
-    return apply_masking_option(o.masking, a.substr(7), value.value());
-  const std::string& v = value.value();
-  if (a == "--camera-id") {
-    o.camera_id = parse_number<int>(v, 0, proto::kMaxCameraId);
-    have_camera = true;
-  } else if (a == "--source") {
-    o.source = v;
-  } else if (a == "--trigger-source") {
-    o.trigger_source = v;
-  } else if (a == "--exposure-us") {
-    o.exposure_us = parse_number<int>(v, 1, 10'000'000);
-  } else if (a == "--gain-db") {
-    o.gain_db = parse_number<double>(v, 0, 100);
-  } else if (a == "--detection") {
-    if (v != "full" && v != "windowed") throw BadValue("'" + v + "': expected full or windowed");
-    o.detection = v == "full" ? DetectionMode::kFull : DetectionMode::kWindowed;
-  } else if (a == "--full-scan-every") {
-    o.full_scan_every = parse_number<int>(v, 1, 100000);
-  } else if (a == "--mode") {
-    if (v != "blobs" && v != "mask" && v != "both")
-      throw BadValue("'" + v + "': expected blobs, mask or both");
-    o.blobs = v != "mask";
-    o.mask = v != "blobs";
-  } else if (a == "--train-frames") {
-    o.train_frames = parse_number<int>(v, 1, 10000);
-  } else if (a == "--train-from-frame") {
-    o.train_from_frame = parse_number<int64_t>(v, 0, int64_t{1} << 53);
-  } else if (a == "--contour-tolerance") {
-    o.contour_tolerance_px = parse_number<double>(v, 0, 100);
-  } else if (a == "--roi") {
-    o.roi = parse_roi(v);
-  } else if (a == "--threshold") {
-    o.detector.threshold = parse_number<int>(v, 1, 255);
-  } else if (a == "--min-area") {
-    o.detector.min_area = static_cast<float>(parse_number<int>(v, 1, 1 << 24));
-  } else if (a == "--max-area") {
-    o.detector.max_area = static_cast<float>(parse_number<int>(v, 1, 1 << 24));
-  } else if (a == "--lcm-url") {
-    o.lcm_url = v;
-  } else if (a == "--command-key") {
-    o.command_key_path = v;
-  } else if (a == "--command-window-s") {
-    o.command_window_s = parse_number<double>(v, 0.1, 3600);
-  } else if (a == "--heartbeat-s") {
-    o.heartbeat_s = parse_number<int>(v, 1, 3600);
-  } else if (a == "--publish-queue") {
-    o.publish_queue = parse_number<int>(v, 1, 100000);
-  } else if (a == "--reopen-first-s") {
-    o.reopen_first_s = parse_number<double>(v, 0.01, 3600);
-  } else if (a == "--reopen-max-s") {
-    o.reopen_max_s = parse_number<double>(v, 0.01, 3600);
-  } else if (a == "--camera-silent-s") {
-    o.camera_silent_s = parse_number<double>(v, 0, 3600);
-  } else if (a == "--match-tolerance-ms") {
-    o.match_tolerance_ms = parse_number<double>(v, 0.001, 10000);
-  } else {
-    return false;
+
+  EdgeOptions o;
+  std::string config;        // --config FILE
+  bool have_camera = false;  // --camera-id given, on the command line or in the file
+
+  // Throws UsageError: "help", or the problem naming the option and the value.
+  void parse_command_line(const std::vector<std::string>& args) {
+    if (const auto stop = cli::try_parse(app_, args)) {
+      throw UsageError(stop->help ? std::string("help") : "syncap-edge: " + stop->error);
+    }
+    have_camera = have_camera || app_.count("--camera-id") > 0;
   }
-  return true;
+
+  void apply_config_file(const std::string& file);
+  std::string help() const { return app_.help(); }
+
+ private:
+  void add_camera_options();
+  void add_detection_options();
+  void add_mask_options();
+  void add_network_options();
+  void add_run_options();
+  void apply_config_entry(const std::string& file, const YAML::Node& key, const YAML::Node& value);
+
+  cli::App app_;
+};
+
+void Parser::add_camera_options() {
+  app_.add_option("--config", config,
+                  "YAML file of `option: value` lines (below); the command line overrides it")
+      ->option_text("FILE");
+  cli::add_checked(app_, "--camera-id", o.camera_id, "N",
+                   cli::whole_in<int>(0, proto::kMaxCameraId),
+                   "camera id 0..99 (channels SYNCAP_BLOBS_NN ...); required");
+  app_.add_option("--source", o.source,
+                  "replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
+                  "replay:VIDEO   a video file, frame k = its k-th frame (from 0)\n"
+                  "aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
+                  "v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/v4l2.md); required")
+      ->option_text("SPEC");
+  app_.add_option("--trigger-source", o.trigger_source,
+                  "aravis: the camera's TriggerSource (Line1, Software, ...);\n"
+                  "default: as the camera is configured")
+      ->option_text("S");
+  cli::add_checked(app_, "--exposure-us", o.exposure_us, "US", cli::whole_in<int>(1, 10'000'000),
+                   "aravis: exposure time, us 1..10000000; default: as configured");
+  cli::add_checked(app_, "--gain-db", o.gain_db, "DB", cli::number_in(0, 100),
+                   "aravis: analog gain (Gain), dB 0..100; default: as configured");
+  app_.add_flag("--udp-socket", o.udp_socket,
+                "aravis: receive with a UDP socket, not a packet socket (no\n"
+                "CAP_NET_RAW needed; its buffer grows only after the first frame)");
+  app_.add_option_function<std::string>(
+          "--roi", [this](const std::string& v) { o.roi = *parse_roi(v); },
+          "sensor region of interest at start (blobs stay in sensor\n"
+          "pixels); default: the whole sensor")
+      ->option_text("X,Y,W,H")
+      ->check(roi_form());
+  cli::add_checked(app_, "--camera-silent-s", o.camera_silent_s, "S", cli::number_in(0, 3600),
+                   "aravis, v4l2: no frame for S s while triggered = camera lost\n"
+                   "(0: only errors count)" +
+                       by_default(o.camera_silent_s));
+  cli::add_checked(app_, "--reopen-first-s", o.reopen_first_s, "S", cli::number_in(0.01, 3600),
+                   "a lost camera is reopened after S s, doubling up to --reopen-max-s" +
+                       by_default(o.reopen_first_s));
+  cli::add_checked(app_, "--reopen-max-s", o.reopen_max_s, "S", cli::number_in(0.01, 3600),
+                   "the longest wait between reopening attempts, s" + by_default(o.reopen_max_s));
+  cli::add_checked(app_, "--match-tolerance-ms", o.match_tolerance_ms, "MS",
+                   cli::number_in(0.001, 10000),
+                   "v4l2: a frame takes the number of the trigger closest in\n"
+                   "time within MS ms" +
+                       by_default(o.match_tolerance_ms));
+}
+
+void Parser::add_detection_options() {
+  app_.add_option_function<std::string>(
+          "--detection",
+          [this](const std::string& v) {
+            o.detection = v == "full" ? DetectionMode::kFull : DetectionMode::kWindowed;
+          },
+          "full (default): every frame whole; windowed: tracked blobs\n"
+          "searched around their prediction (docs/edge.md)")
+      ->option_text("D")
+      ->check(cli::one_of({"full", "windowed"}));
+  cli::add_checked(
+      app_, "--full-scan-every", o.full_scan_every, "N", cli::whole_in<int>(1, 100000),
+      "windowed: a full scan for new blobs every N frames" + by_default(o.full_scan_every));
+  app_.add_flag("--roi-follows-windows", o.roi_follows_windows,
+                "windowed: the sensor ROI follows the union of the windows");
+  cli::add_checked(app_, "--threshold", o.detector.threshold, "DN", cli::whole_in<int>(1, 255),
+                   "blob threshold, DN 1..255" + by_default(o.detector.threshold));
+  cli::add_checked(app_, "--min-area", o.detector.min_area, "PX", cli::whole_in<int>(1, 1 << 24),
+                   "smallest blob area, pixels" + by_default(o.detector.min_area));
+  cli::add_checked(app_, "--max-area", o.detector.max_area, "PX", cli::whole_in<int>(1, 1 << 24),
+                   "largest blob area, pixels" + by_default(o.detector.max_area));
+}
+
+void Parser::add_mask_options() {
+  app_.add_option_function<std::string>(
+          "--mode",
+          [this](const std::string& v) {
+            o.blobs = v != "mask";
+            o.mask = v != "blobs";
+          },
+          "blobs (default), mask (silhouettes) or both")
+      ->option_text("M")
+      ->check(cli::one_of({"blobs", "mask", "both"}));
+  cli::add_checked(app_, "--train-frames", o.train_frames, "N", cli::whole_in<int>(1, 10000),
+                   "mask: train the background on N frames (default: on the\n"
+                   "host's TRAIN_BACKGROUND command) ...");
+  cli::add_checked(app_, "--train-from-frame", o.train_from_frame, "F",
+                   cli::whole_in<int64_t>(0, int64_t{1} << 53),
+                   "... numbered F..F+N-1 (default: the first N frames)");
+  cli::add_checked(app_, "--contour-tolerance", o.contour_tolerance_px, "PX",
+                   cli::number_in(0, 100),
+                   "mask: polygon simplification, pixels" + by_default(o.contour_tolerance_px));
+  // --mask-NAME: the medi-picture option NAME, from the person preset (docs/segmentation.md),
+  // checked by apply_masking_option as segment-eval's are.
+  for (const MaskingOptionHelp& m : kMaskingOptions) {
+    const std::string option = std::string("--mask-") + m.name;
+    const std::string name = m.name;
+    app_.add_option_function<std::string>(
+            option,
+            [this, option, name](const std::string& v) {
+              try {
+                apply_masking_option(o.masking, name, v);
+              } catch (const BadValue& e) {
+                throw CLI::ValidationError(option, e.what());
+              }
+            },
+            std::string("mask: ") + m.meaning + " (default " +
+                masking_option_value(o.masking, name) + ")")
+        ->option_text(m.metavar);
+  }
+  app_.add_flag_callback(
+      "--mask-no-shadows", [this] { o.masking.remove_shadows = false; },
+      "mask: skip the shadow test");
+}
+
+void Parser::add_network_options() {
+  app_.add_option("--lcm-url", o.lcm_url,
+                  std::string("LCM provider (default ") + proto::kDefaultLcmUrl + ")")
+      ->option_text("URL");
+  app_.add_option("--command-key", o.command_key_path,
+                  "the installation's key (syncap keygen): only commands and clip\n"
+                  "polygons signed with it are obeyed; without it none are\n"
+                  "(docs/security.md)")
+      ->option_text("FILE");
+  cli::add_checked(app_, "--command-window-s", o.command_window_s, "S", cli::number_in(0.1, 3600),
+                   "a command is obeyed only when sent within S s of this\n"
+                   "board's clock (the clocks must agree that well)" +
+                       by_default(o.command_window_s));
+  cli::add_checked(app_, "--heartbeat-s", o.heartbeat_s, "S", cli::whole_in<int>(1, 3600),
+                   "status period, whole seconds" + by_default(o.heartbeat_s));
+  cli::add_checked(
+      app_, "--publish-queue", o.publish_queue, "N", cli::whole_in<int>(1, 100000),
+      "messages waiting to be sent before the oldest is dropped" + by_default(o.publish_queue));
+}
+
+void Parser::add_run_options() {
+  app_.add_flag("--exit-after-last", o.exit_after_last,
+                "exit after the frame of the trigger's last pulse");
+  app_.add_flag("--quiet", o.quiet, "no per-run log lines on stderr");
 }
 
 // "FILE:LINE:COLUMN" of a YAML node (yaml-cpp counts from 0).
@@ -163,7 +234,46 @@ std::string place(const std::string& file, const YAML::Mark& mark) {
   return file + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
 }
 
-void apply_config_file(EdgeOptions& o, const std::string& file, bool& have_camera) {
+bool parse_bool(const std::string& text) {
+  if (text == "true" || text == "yes" || text == "on") return true;
+  if (text == "false" || text == "no" || text == "off") return false;
+  throw UsageError("'" + text + "': expected true or false");
+}
+
+// One `key: value` line, parsed as the command line's --key=value (the '=' form takes a value
+// that starts with a dash too); a flag's value turns it on or leaves it off.
+void Parser::apply_config_entry(const std::string& file, const YAML::Node& key,
+                                const YAML::Node& value) {
+  if (!key.IsScalar()) {  // as<std::string>() would throw yaml-cpp's BadConversion
+    throw UsageError("syncap-edge: " + place(file, key.Mark()) + ": a key must be text");
+  }
+  const std::string name = key.Scalar();
+  const std::string where = "syncap-edge: " + place(file, key.Mark()) + ": key '" + name + "'";
+  if (!value.IsScalar()) throw UsageError(where + ": expected a single value");
+  if (name == "config") throw UsageError(where + ": a config file cannot include another");
+  const CLI::Option* option = app_.get_option_no_throw("--" + name);
+  if (option == nullptr || name == "help") {
+    throw UsageError(where + ": unknown key (keys are syncap-edge's long options)");
+  }
+  std::vector<std::string> args{"--" + name + "=" + value.Scalar()};
+  if (option->get_expected_max() == 0) {  // a flag
+    try {
+      if (!parse_bool(value.Scalar())) return;
+    } catch (const UsageError& e) {
+      throw UsageError(where + " " + e.what());
+    }
+    args = {"--" + name};
+  }
+  if (const auto stop = cli::try_parse(app_, args)) {
+    // CLI11 names the option ("--threshold: '300' is not ..."): the key says it here.
+    const std::string prefix = "--" + name + ": ";
+    const bool named = stop->error.starts_with(prefix);
+    throw UsageError(where + ": " + stop->error.substr(named ? prefix.size() : 0));
+  }
+  have_camera = have_camera || name == "camera-id";
+}
+
+void Parser::apply_config_file(const std::string& file) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(file);
@@ -177,106 +287,11 @@ void apply_config_file(EdgeOptions& o, const std::string& file, bool& have_camer
     throw UsageError("syncap-edge: " + place(file, root.Mark()) +
                      ": expected `key: value` lines (the long option names)");
   }
-  for (const auto& entry : root) {
-    if (!entry.first.IsScalar()) {  // as<std::string>() would throw yaml-cpp's BadConversion
-      throw UsageError("syncap-edge: " + place(file, entry.first.Mark()) + ": a key must be text");
-    }
-    const std::string key = entry.first.Scalar();
-    const std::string where = "syncap-edge: " + place(file, entry.first.Mark()) + ": key '" + key;
-    if (!entry.second.IsScalar()) throw UsageError(where + "': expected a single value");
-    if (key == "config") throw UsageError(where + "': a config file cannot include another");
-    try {
-      if (!apply_option(o, "--" + key, entry.second.Scalar(), have_camera)) {
-        throw UsageError(where + "': unknown key (keys are syncap-edge's long options)");
-      }
-    } catch (const BadValue& e) {
-      throw UsageError(where + "' " + e.what());
-    }
-  }
+  for (const auto& entry : root) apply_config_entry(file, entry.first, entry.second);
 }
 
-}  // namespace
-
-std::string edge_usage() {
-  return "usage: syncap-edge --camera-id N --source replay:FOLDER [options]\n"
-         "       syncap-edge --config FILE [options]\n"
-         "  --config FILE       YAML file of `option: value` lines, keys = the long options\n"
-         "                      below (camera-id: 3); options on the command line override it\n"
-         "  --camera-id N       camera id 0..99 (channel SYNCAP_BLOBS_NN)\n"
-         "  --source SPEC       replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
-         "                      replay:VIDEO   a video file, frame k = its k-th frame (from 0)\n"
-         "                      aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
-         "                      v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/v4l2.md)\n"
-         "  --trigger-source S  aravis: the camera's TriggerSource (Line1, Software, ...)\n"
-         "  --exposure-us US    aravis: exposure time\n"
-         "  --gain-db DB        aravis: analog gain (Gain, in dB)\n"
-         "  --udp-socket        aravis: receive with a UDP socket, not a packet socket (no\n"
-         "                      CAP_NET_RAW needed; its buffer grows only after the first frame)\n"
-         "  --roi X,Y,W,H       sensor region of interest at start (blobs stay in sensor pixels)\n"
-         "  --detection D       full (default): every frame whole; windowed: tracked blobs\n"
-         "                      searched around their prediction (docs/edge.md)\n"
-         "  --full-scan-every N windowed: a full scan for new blobs every N frames (30)\n"
-         "  --roi-follows-windows  windowed: the sensor ROI follows the union of the windows\n"
-         "  --mode M            blobs (default), mask (silhouettes) or both\n"
-         "  --train-frames N    mask: train the background on N frames (else on the host's\n"
-         "                      TRAIN_BACKGROUND command) ...\n"
-         "  --train-from-frame F  ... numbered F..F+N-1 (default: the first N frames)\n"
-         "  --contour-tolerance PX  mask: polygon simplification (default 0.5)\n"
-         "  --mask-k K, --mask-min-difference DN, --mask-shadow-test correlation|common-ratio,\n"
-         "  --mask-shadow-sigmas S, --mask-ncc L, --mask-no-shadows, --mask-fill-holes PX,\n"
-         "  --mask-closing PX, --mask-min-area PX, --mask-update-rate R\n"
-         "                      mask: change the person preset (k 1, min difference 6,\n"
-         "                      common-ratio at 3 sigmas, closing 5, holes to 100 px filled;\n"
-         "                      docs/segmentation.md), as segment-eval --person takes them\n"
-         "  --threshold DN      blob threshold 1..255 (default 128)\n"
-         "  --min-area PX       smallest blob area (default 2)\n"
-         "  --max-area PX       largest blob area (default 20000)\n"
-         "  --lcm-url URL       LCM provider (default " +
-         std::string(proto::kDefaultLcmUrl) +
-         ")\n"
-         "  --command-key FILE  the installation's key (syncap keygen): only commands and clip\n"
-         "                      polygons signed with it are obeyed; without it none are\n"
-         "                      (docs/security.md)\n"
-         "  --command-window-s S  a command is obeyed only when sent within S s of this\n"
-         "                      board's clock (default 5; the clocks must agree that well)\n"
-         "  --heartbeat-s S     status period in seconds (default 1)\n"
-         "  --publish-queue N   messages waiting to be sent before the oldest is dropped (64)\n"
-         "  --camera-silent-s S aravis, v4l2: no frame for S s while triggered = camera lost\n"
-         "                      (default 5; 0: only errors count)\n"
-         "  --reopen-first-s S  a lost camera is reopened after S s (0.5), doubling up to\n"
-         "  --reopen-max-s S    S s (10)\n"
-         "  --match-tolerance-ms MS  v4l2: a frame takes the number of the trigger closest in\n"
-         "                      time within MS (default 10)\n"
-         "  --exit-after-last   exit after the frame of the trigger's last pulse\n"
-         "  --quiet             no per-run log lines on stderr\n";
-}
-
-EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
-  EdgeOptions o;
-  o.lcm_url = proto::kDefaultLcmUrl;
-  bool have_camera = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--help" || args[i] == "-h") throw UsageError("help");
-    if (args[i] != "--config") continue;
-    if (i + 1 >= args.size()) throw UsageError("syncap-edge: --config needs a value");
-    apply_config_file(o, args[i + 1], have_camera);
-  }
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    std::optional<std::string> value;
-    if (!is_flag(a)) {
-      if (!takes_value(a)) throw UsageError("syncap-edge: unknown option '" + a + "'");
-      if (i + 1 >= args.size()) throw UsageError("syncap-edge: " + a + " needs a value");
-      value = args[++i];
-    }
-    if (a == "--config") continue;
-    try {
-      if (!apply_option(o, a, value, have_camera))
-        throw UsageError("syncap-edge: unknown option '" + a + "'");
-    } catch (const BadValue& e) {
-      throw UsageError("syncap-edge: " + a + " " + e.what());
-    }
-  }
+// What no single option can check: the required ones and the combinations.
+void check_combination(const EdgeOptions& o, bool have_camera) {
   if (!have_camera) throw UsageError("syncap-edge: --camera-id is required");
   const bool replay = o.source.starts_with("replay:") && o.source.size() > 7;
   const bool aravis = o.source.starts_with("aravis:") && o.source.size() > 7;
@@ -298,7 +313,22 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
     // The silhouette needs the whole sensor every frame.
     throw UsageError("syncap-edge: --roi-follows-windows needs --mode blobs");
   }
-  return o;
+}
+
+}  // namespace
+
+std::string edge_usage() { return Parser().help(); }
+
+EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
+  // A first parse finds --help, a bad command line and the config file; the file's values then
+  // go first and the command line's over them, wherever --config stands.
+  Parser scan;
+  scan.parse_command_line(args);
+  Parser parser;
+  if (!scan.config.empty()) parser.apply_config_file(scan.config);
+  parser.parse_command_line(args);
+  check_combination(parser.o, parser.have_camera);
+  return parser.o;
 }
 
 }  // namespace syncap::edge

@@ -55,11 +55,14 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Parses argv[1..]; throws UsageError. --help is reported as UsageError("help"). With
-// `--config FILE` the file's keys (the long option names: `camera-id: 3`) are read first and
-// the other command-line options override them.
+// Parses argv[1..] with CLI11 (syncap/cli/options.hpp, as every program); throws UsageError.
+// --help is reported as UsageError("help"). With `--config FILE` the file's keys (the long option
+// names: `camera-id: 3`) are read first, each checked as its option is, and the other
+// command-line options override them.
 EdgeOptions parse_edge_options(const std::vector<std::string>& args);
 
+// The --help text: every option with its value's name, unit and default; the config file; the
+// exit statuses.
 std::string edge_usage();
 
 }  // namespace syncap::edge

@@ -1,6 +1,31 @@
 #include "segmentation/masking_options.hpp"
 
 namespace syncap::edge {
+namespace {
+
+// The shortest text that reads back as `v` (0.98f is "0.98", not 0.9800000190734863).
+template <class T>
+std::string shortest(T v) {
+  char text[32];
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, v);
+  return std::string(text, ec == std::errc() ? end : text);
+}
+
+}  // namespace
+
+std::string masking_option_value(const MediPictureOptions& m, std::string_view name) {
+  if (name == "k") return shortest(m.k);
+  if (name == "min-difference") return shortest(m.min_difference);
+  if (name == "ncc") return shortest(m.ncc_threshold);
+  if (name == "shadow-test")
+    return m.shadow_test == ShadowTest::kCorrelation ? "correlation" : "common-ratio";
+  if (name == "shadow-sigmas") return shortest(m.shadow_ratio_sigmas);
+  if (name == "fill-holes") return shortest(m.max_hole_area);
+  if (name == "closing") return shortest(m.closing_diameter);
+  if (name == "min-area") return shortest(m.min_component_area);
+  if (name == "update-rate") return shortest(m.update_rate);
+  return {};
+}
 
 bool apply_masking_option(MediPictureOptions& m, std::string_view name, const std::string& v) {
   if (name == "k") {

@@ -2,6 +2,7 @@
 // its config file) and `syncap segment-eval` (--k 3), so both check them alike.
 #pragma once
 
+#include <array>
 #include <charconv>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,31 @@ T parse_number(const std::string& text, T low, T high) {
   }
   return value;
 }
+
+// A medi-picture option as a program's --help shows it: its name (syncap-edge prefixes "mask-"),
+// its value's name, and its meaning with the unit. The default is each program's own: the value
+// in the options it starts from (masking_option_value).
+struct MaskingOptionHelp {
+  const char* name;
+  const char* metavar;
+  const char* meaning;
+};
+
+inline constexpr std::array<MaskingOptionHelp, 9> kMaskingOptions{{
+    {"k", "K", "interval width in units of d"},
+    {"min-difference", "D", "floor of d, DN"},
+    {"ncc", "L", "shadow threshold L_NCC (correlation test)"},
+    {"shadow-test", "T", "correlation (eqs 5.6-5.11) or common-ratio"},
+    {"shadow-sigmas", "S", "common-ratio tolerance in training sigmas"},
+    {"fill-holes", "A", "fill holes of the mask up to A pixels"},
+    {"closing", "D", "elliptical closing diameter, pixels, 0 = none"},
+    {"min-area", "A", "smallest component kept, pixels"},
+    {"update-rate", "R", "slow model update where background, per frame, 0 = frozen"},
+}};
+
+// The value the option `name` (of kMaskingOptions) has in `m`, as the option takes it ("3",
+// "0.98", "common-ratio"): a program's default in its help.
+std::string masking_option_value(const MediPictureOptions& m, std::string_view name);
 
 // One medi-picture option by its name without dashes or prefix ("k", "min-difference",
 // "shadow-test", "shadow-sigmas", "ncc", "fill-holes", "closing", "min-area", "update-rate"):

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "app/edge_options.hpp"
+#include "help_check.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -89,7 +90,7 @@ TEST_F(EdgeConfigTest, MaskOptionsChangeThePersonPreset) {
   EXPECT_FLOAT_EQ(o.masking.update_rate, 0.01f);
   EXPECT_EQ(o.masking.min_component_area, person_masking_options().min_component_area);
   write("camera-id: 1\nsource: replay:/x\nmask-shadow-test: ratio\n");
-  EXPECT_NE(error_of().find(":3:1: key 'mask-shadow-test' 'ratio': expected correlation or "
+  EXPECT_NE(error_of().find(":3:1: key 'mask-shadow-test': 'ratio': expected correlation or "
                             "common-ratio"),
             std::string::npos)
       << error_of();
@@ -98,7 +99,7 @@ TEST_F(EdgeConfigTest, MaskOptionsChangeThePersonPreset) {
 TEST_F(EdgeConfigTest, ErrorsNameFileLineAndKey) {
   write("camera-id: 3\nsource: replay:/x\n\nthreshold: 300\n");
   EXPECT_EQ(error_of(), "syncap-edge: " + file_.string() +
-                            ":4:1: key 'threshold' '300': expected a number in 1..255");
+                            ":4:1: key 'threshold': '300' is not a whole number in [1, 255]");
   write("camera-id: 3\n  thresold: 20\n");
   EXPECT_NE(error_of().find(file_.string() + ":2:"), std::string::npos) << error_of();
   write("camera-id: 3\nsource: replay:/x\nthresold: 20\n");
@@ -132,6 +133,46 @@ TEST_F(EdgeConfigTest, TheFileStillNeedsACameraAndASource) {
   EXPECT_EQ(error_of({"--camera-id", "1", "--source", "replay:/x"}), "no error");
 }
 
+// Every kind of option (number, text, choice, flag, region, masking) set in the file is
+// overridden by the command line, wherever --config stands; what the command line leaves is the
+// file's.
+TEST_F(EdgeConfigTest, TheCommandLineWinsForEveryKindOfOption) {
+  write(
+      "camera-id: 3\nsource: replay:/tmp/a\nmode: both\ndetection: full\nroi: 0,0,64,64\n"
+      "mask-k: 2\ngain-db: 12\nheartbeat-s: 4\nudp-socket: true\nlcm-url: udpm://a\n");
+  const EdgeOptions o = parse_edge_options({"--mode", "blobs", "--detection", "windowed", "--roi",
+                                            "8,8,32,32", "--mask-k", "1.5", "--gain-db", "6",
+                                            "--config", file_.string(), "--camera-id", "4"});
+  EXPECT_EQ(o.camera_id, 4);
+  EXPECT_TRUE(o.blobs && !o.mask);
+  EXPECT_EQ(o.detection, DetectionMode::kWindowed);
+  EXPECT_EQ(o.roi, cv::Rect(8, 8, 32, 32));
+  EXPECT_FLOAT_EQ(o.masking.k, 1.5f);
+  EXPECT_DOUBLE_EQ(o.gain_db, 6);
+  EXPECT_DOUBLE_EQ(o.heartbeat_s, 4);  // from the file
+  EXPECT_TRUE(o.udp_socket);           // from the file
+  EXPECT_EQ(o.lcm_url, "udpm://a");    // from the file
+  EXPECT_EQ(o.source, "replay:/tmp/a");
+}
+
+// A flag set false in the file stays off; the command line turns it on.
+TEST_F(EdgeConfigTest, AFlagOffInTheFileIsOnFromTheCommandLine) {
+  write("camera-id: 3\nsource: replay:/tmp/a\nquiet: false\nmask-no-shadows: no\n");
+  EXPECT_FALSE(parse_edge_options({"--config", file_.string()}).quiet);
+  EXPECT_TRUE(parse_edge_options({"--config", file_.string()}).masking.remove_shadows);
+  const EdgeOptions o = parse_edge_options({"--config", file_.string(), "--quiet"});
+  EXPECT_TRUE(o.quiet);
+}
+
+// A value that starts with a dash is the key's value, not an option.
+TEST_F(EdgeConfigTest, AValueThatStartsWithADashIsAValue) {
+  write("camera-id: 3\nsource: replay:/tmp/a\ntrigger-source: -Line1\nhelp: true\n");
+  EXPECT_EQ(error_of(), "syncap-edge: " + file_.string() +
+                            ":4:1: key 'help': unknown key (keys are syncap-edge's long options)");
+  write("camera-id: 3\nsource: replay:/tmp/a\ntrigger-source: -Line1\n");
+  EXPECT_EQ(parse_edge_options({"--config", file_.string()}).trigger_source, "-Line1");
+}
+
 // What edge/systemd/syncap-edge@.service runs with the installed example.
 TEST(EdgeConfigExample, TheShippedExampleParses) {
   const std::string example = SYNCAP_SOURCE_DIR "/edge/systemd/edge.yaml.example";
@@ -141,6 +182,108 @@ TEST(EdgeConfigExample, TheShippedExampleParses) {
   EXPECT_EQ(o.trigger_source, "Line1");
   EXPECT_EQ(o.detector.threshold, 200);
   EXPECT_EQ(o.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
+}
+
+std::string command_line_error(const std::vector<std::string>& args) {
+  try {
+    parse_edge_options(args);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(EdgeOptions, AnUnknownOptionOrAStrayArgumentIsNamed) {
+  EXPECT_EQ(command_line_error({"--camera-id", "1", "--source", "replay:/x", "--thresold", "9"}),
+            "syncap-edge: unknown option '--thresold'");
+  EXPECT_EQ(command_line_error({"--camera-id", "1", "--source", "replay:/x", "stray"}),
+            "syncap-edge: unexpected argument 'stray'");
+}
+
+TEST(EdgeOptions, ABadNumberNamesTheOptionAndTheValue) {
+  const std::vector<std::string> camera{"--camera-id", "1", "--source", "replay:/x"};
+  const auto error = [&](const std::string& option, const std::string& value) {
+    std::vector<std::string> args = camera;
+    args.insert(args.end(), {option, value});
+    return command_line_error(args);
+  };
+  EXPECT_EQ(error("--threshold", "12x"),
+            "syncap-edge: --threshold: '12x' is not a whole number in [1, 255]");
+  EXPECT_EQ(error("--threshold", "010"), "no error");  // decimal, not octal
+  EXPECT_EQ(error("--gain-db", "nan"), "syncap-edge: --gain-db: 'nan' is not a number in [0, 100]");
+  EXPECT_EQ(error("--reopen-max-s", "0"),
+            "syncap-edge: --reopen-max-s: '0' is not a number in [0.01, 3600]");
+  EXPECT_EQ(error("--roi", "1,2,3"),
+            "syncap-edge: --roi: '1,2,3' is not X,Y,WIDTH,HEIGHT in sensor pixels, each 0..32767");
+  EXPECT_EQ(error("--mode", "all"), "syncap-edge: --mode: 'all' is not one of blobs, mask, both");
+  EXPECT_NE(error("--mask-closing", "-1").find("syncap-edge: --mask-closing: '-1': expected"),
+            std::string::npos);
+}
+
+// --help: every option with its value's name and its default or meaning, the config file, the
+// exit statuses.
+TEST(EdgeOptions, HelpIsComplete) {
+  EXPECT_EQ(command_line_error({"--help"}), "help");
+  syncap::test::expect_help_mentions(edge_usage(),
+                                     {"usage: syncap-edge --camera-id N --source SPEC",
+                                      "syncap-edge --config FILE",
+                                      "--config FILE",
+                                      "--camera-id N",
+                                      "--source SPEC",
+                                      "aravis:ADDRESS",
+                                      "v4l2:DEVICE",
+                                      "--trigger-source S",
+                                      "--exposure-us US",
+                                      "--gain-db DB",
+                                      "--udp-socket",
+                                      "--roi X,Y,W,H",
+                                      "--detection D",
+                                      "--full-scan-every N",
+                                      "(default 30)",
+                                      "--roi-follows-windows",
+                                      "--mode M",
+                                      "--train-frames N",
+                                      "--train-from-frame F",
+                                      "--contour-tolerance PX",
+                                      "(default 0.5)",
+                                      "--mask-k K",
+                                      "(default 1)",
+                                      "--mask-min-difference D",
+                                      "(default 6)",
+                                      "--mask-ncc L",
+                                      "--mask-shadow-test T",
+                                      "(default common-ratio)",
+                                      "--mask-shadow-sigmas S",
+                                      "--mask-fill-holes A",
+                                      "(default 100)",
+                                      "--mask-closing D",
+                                      "(default 5)",
+                                      "--mask-min-area A",
+                                      "--mask-update-rate R",
+                                      "--mask-no-shadows",
+                                      "--threshold DN",
+                                      "(default 128)",
+                                      "--min-area PX",
+                                      "(default 2)",
+                                      "--max-area PX",
+                                      "(default 20000)",
+                                      "--lcm-url URL",
+                                      "udpm://239.255.76.67:7667?ttl=0",
+                                      "--command-key FILE",
+                                      "--command-window-s S",
+                                      "(default 5)",
+                                      "--heartbeat-s S",
+                                      "(default 1)",
+                                      "--publish-queue N",
+                                      "(default 64)",
+                                      "--camera-silent-s S",
+                                      "--reopen-first-s S",
+                                      "--reopen-max-s S",
+                                      "(default 10)",
+                                      "--match-tolerance-ms MS",
+                                      "--exit-after-last",
+                                      "--quiet",
+                                      "Exit status: 0"});
 }
 
 }  // namespace
