@@ -20,6 +20,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/hull_frame_t.hpp"
 #include "syncap/marker_frame_t.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/subscriber.hpp"
@@ -103,7 +104,8 @@ struct Harness {
     add<syncap::trigger_status_t>();
     add<syncap::trigger_t>();
     add<syncap::edge_command_t>();
-    add<syncap::marker_frame_t>();  // the eighth: three bits select the type
+    add<syncap::marker_frame_t>();
+    add<syncap::hull_frame_t>();
   }
 };
 
@@ -112,7 +114,8 @@ struct Harness {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static Harness harness;
   if (size == 0) return 0;
-  const std::size_t type = data[0] & 7u;
+  // The low four bits select the type (modulo the count); the high bit, a fingerprint of its own.
+  const std::size_t type = (data[0] & 15u) % harness.channels.size();
   std::vector<uint8_t> datagram;
   if (data[0] < 128) datagram = harness.fingerprints[type];
   datagram.insert(datagram.end(), data + 1, data + size);

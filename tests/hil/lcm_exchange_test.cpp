@@ -48,6 +48,8 @@ pid_t spawn_publisher(int rounds) {
     lcm.publish(kTriggerStatusChannel, &trigger_status);
     const marker_frame_t markers = test::max_marker_frame();
     lcm.publish(proto::kMarkersChannel, &markers);
+    const hull_frame_t hull = test::max_hull_frame();
+    lcm.publish(proto::kHullChannel, &hull);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   _exit(0);
@@ -78,10 +80,13 @@ TEST(LcmExchange, TwoProcessesExchangeEveryMessageType) {
   sub.subscribe<marker_frame_t>(
       proto::kMarkersChannel,
       [&](const marker_frame_t& m, const std::string&) { markers.push_back(m); });
+  std::vector<hull_frame_t> hulls;
+  sub.subscribe<hull_frame_t>(
+      proto::kHullChannel, [&](const hull_frame_t& h, const std::string&) { hulls.push_back(h); });
   const pid_t child = spawn_publisher(3);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
   while (std::chrono::steady_clock::now() < deadline &&
-         (frames.size() < 3 || statuses.size() < 3 || markers.size() < 3)) {
+         (frames.size() < 3 || statuses.size() < 3 || markers.size() < 3 || hulls.size() < 3)) {
     lcm.handleTimeout(50);
   }
   ASSERT_EQ(wait_for_exit(child), 0);
@@ -94,6 +99,8 @@ TEST(LcmExchange, TwoProcessesExchangeEveryMessageType) {
   EXPECT_EQ(statuses[1].message, test::max_camera_status().message);
   ASSERT_EQ(markers.size(), 3u);
   EXPECT_EQ(markers[2].markers.size(), static_cast<std::size_t>(marker_frame_t::MAX_MARKERS));
+  ASSERT_EQ(hulls.size(), 3u);
+  EXPECT_DOUBLE_EQ(hulls[1].volume_mm3, test::max_hull_frame().volume_mm3);
   EXPECT_EQ(sub.malformed(), 0);
 }
 

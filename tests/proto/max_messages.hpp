@@ -10,6 +10,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/hull_frame_t.hpp"
 #include "syncap/marker_frame_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_status_t.hpp"
@@ -158,6 +159,27 @@ inline marker_frame_t max_marker_frame() {
     f.markers.push_back(m);
   }
   return f;
+}
+
+// Fixed size: every field set to a large value.
+inline hull_frame_t max_hull_frame() {
+  hull_frame_t h{};
+  h.frame_number = std::numeric_limits<int64_t>::max() - 1;
+  h.trigger_monotonic_ns = 123'456'789'012'345;
+  h.trigger_realtime_ns = 1'800'000'000'000'000'000;
+  h.host_us = 9'999;
+  h.hull_us = 8'765;
+  h.flags = hull_frame_t::FLAG_CAMERAS_MISSING | hull_frame_t::FLAG_NOT_CLOSED;
+  h.cameras = 99;
+  h.vertices = 2'000'000;
+  h.faces = 4'000'000;
+  h.volume_mm3 = 7.5e7;
+  h.area_mm2 = 1.9e6;
+  for (int i = 0; i < 3; ++i) {
+    h.min_mm[i] = -1234.5f + static_cast<float>(i);
+    h.max_mm[i] = 2345.25f - static_cast<float>(i);
+  }
+  return h;
 }
 
 }  // namespace syncap::test

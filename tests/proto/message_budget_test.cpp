@@ -88,6 +88,14 @@ TEST(MessageBudget, ClipPolygonWithMostPointsFitsAndRoundTrips) {
   EXPECT_EQ(back.y, clip.y);
 }
 
+TEST(MessageBudget, HullFrameIsItsDocumentedFixedSize) {
+  const hull_frame_t hull = test::max_hull_frame();
+  expect_fits_and_round_trips(hull, 91);
+  const hull_frame_t back = decode<hull_frame_t>(encode(hull));
+  EXPECT_EQ(back.faces, hull.faces);
+  EXPECT_FLOAT_EQ(back.max_mm[2], hull.max_mm[2]);
+}
+
 TEST(MessageBudget, MarkerFrameAtMaxMarkersFitsOneDatagram) {
   const marker_frame_t frame = test::max_marker_frame();
   expect_fits_and_round_trips(frame, 8 + 39 + 34 * marker_frame_t::MAX_MARKERS);

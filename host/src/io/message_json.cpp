@@ -103,6 +103,24 @@ void to_json(nlohmann::ordered_json& json, const marker_frame_t& msg) {
   };
 }
 
+void to_json(nlohmann::ordered_json& json, const hull_frame_t& msg) {
+  json = {
+      {"frame_number", msg.frame_number},
+      {"trigger_monotonic_ns", msg.trigger_monotonic_ns},
+      {"trigger_realtime_ns", msg.trigger_realtime_ns},
+      {"host_us", msg.host_us},
+      {"hull_us", msg.hull_us},
+      {"flags", msg.flags},
+      {"cameras", msg.cameras},
+      {"vertices", msg.vertices},
+      {"faces", msg.faces},
+      {"volume_mm3", msg.volume_mm3},
+      {"area_mm2", msg.area_mm2},
+      {"min_mm", msg.min_mm},
+      {"max_mm", msg.max_mm},
+  };
+}
+
 // The trigger module's heartbeat (proto/msg/trigger_status_t.lcm).
 void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg);
 void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg) {
@@ -200,12 +218,12 @@ KnownType known() {
   return {Message::getHash(), &decode_as<Message>};
 }
 
-const std::array<KnownType, 10>& known_types() {
-  static const std::array<KnownType, 10> types{
+const std::array<KnownType, 11>& known_types() {
+  static const std::array<KnownType, 11> types{
       known<trigger_t>(),         known<blob_t>(),          known<blob_frame_t>(),
       known<silhouette_part_t>(), known<camera_status_t>(), known<edge_command_t>(),
       known<trigger_status_t>(),  known<clip_polygon_t>(),  known<marker_t>(),
-      known<marker_frame_t>()};
+      known<marker_frame_t>(),    known<hull_frame_t>()};
   return types;
 }
 

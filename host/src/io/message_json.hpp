@@ -13,6 +13,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/hull_frame_t.hpp"
 #include "syncap/marker_frame_t.hpp"
 #include "syncap/marker_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
@@ -31,6 +32,7 @@ void to_json(nlohmann::ordered_json& json, const edge_command_t& msg);
 void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg);
 void to_json(nlohmann::ordered_json& json, const marker_t& msg);
 void to_json(nlohmann::ordered_json& json, const marker_frame_t& msg);
+void to_json(nlohmann::ordered_json& json, const hull_frame_t& msg);
 
 }  // namespace syncap
 

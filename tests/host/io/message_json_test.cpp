@@ -231,6 +231,26 @@ TEST(MessageJson, MarkerFrameRoundTripsWithItsMarkers) {
       "sigma_z":0.25,"residual_px":0.125,"cameras":5,"flags":1}]})"));
 }
 
+TEST(MessageJson, HullFrameRoundTripsWithItsBox) {
+  hull_frame_t msg{};
+  msg.frame_number = 9;
+  msg.host_us = 5200;
+  msg.hull_us = 4800;
+  msg.flags = hull_frame_t::FLAG_FEW_CAMERAS;
+  msg.cameras = 2;
+  msg.vertices = 100;
+  msg.faces = 196;
+  msg.volume_mm3 = 6.5e7;
+  msg.area_mm2 = 1.25e6;
+  msg.min_mm[0] = -250.5f;
+  msg.max_mm[2] = 1800.25f;
+
+  EXPECT_EQ(fields_of(msg), nlohmann::json::parse(R"({"frame_number":9,"trigger_monotonic_ns":0,
+      "trigger_realtime_ns":0,"host_us":5200,"hull_us":4800,"flags":2,"cameras":2,
+      "vertices":100,"faces":196,"volume_mm3":65000000.0,"area_mm2":1250000.0,
+      "min_mm":[-250.5,0.0,0.0],"max_mm":[0.0,0.0,1800.25]})"));
+}
+
 TEST(Base64, EncodesWithPadding) {
   EXPECT_EQ(base64_encode(Bytes{}), "");
   EXPECT_EQ(base64_encode(Bytes{'f'}), "Zg==");

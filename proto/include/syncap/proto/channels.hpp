@@ -41,6 +41,8 @@ inline constexpr const char* kEdgeCommandChannel = "SYNCAP_EDGE_CMD";
 inline constexpr const char* kEdgeClipChannel = "SYNCAP_EDGE_CLIP";
 // marker_frame_t: the host's 3D markers of each frame (docs/reconstruction.md).
 inline constexpr const char* kMarkersChannel = "SYNCAP_MARKERS";
+// hull_frame_t: the measures of the host's visual hull of each frame (docs/visual-hull.md).
+inline constexpr const char* kHullChannel = "SYNCAP_HULL";
 
 // Per-camera channels carry the camera id as two decimal digits: SYNCAP_BLOBS_03.
 inline constexpr int kMaxCameraId = 99;
