@@ -111,12 +111,6 @@ int64_t new_sender_id() {
   return id;
 }
 
-int64_t realtime_now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
 const char* describe(CommandCheck check) {
   switch (check) {
     case CommandCheck::kAccepted:

@@ -10,15 +10,12 @@
 
 #include "detection/blob_detector.hpp"
 #include "syncap/proto/blob_parts.hpp"
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::edge {
 namespace {
 
-int64_t now_ns(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
-}
+using proto::clock_now_ns;
 
 const char* command_name(int8_t command) {
   switch (command) {
@@ -69,7 +66,7 @@ std::string command_text(const edge_command_t& c) {
 
 // UTC wall-clock time with microseconds, for the command log.
 std::string utc_now() {
-  const int64_t ns = now_ns(CLOCK_REALTIME);
+  const int64_t ns = clock_now_ns(CLOCK_REALTIME);
   const std::time_t seconds = static_cast<std::time_t>(ns / 1'000'000'000);
   std::tm utc{};
   gmtime_r(&seconds, &utc);
@@ -87,11 +84,11 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
     : options_(options),
       source_(source),
       publish_(std::move(publisher)),
-      interval_start_ns_(now_ns(CLOCK_MONOTONIC)),
+      interval_start_ns_(clock_now_ns(CLOCK_MONOTONIC)),
       command_guard_(command_key, static_cast<int64_t>(options.command_window_s * 1e9),
-                     now_ns(CLOCK_REALTIME)),
+                     clock_now_ns(CLOCK_REALTIME)),
       clip_guard_(command_key, static_cast<int64_t>(options.command_window_s * 1e9),
-                  now_ns(CLOCK_REALTIME)),
+                  clock_now_ns(CLOCK_REALTIME)),
       detection_({options.detection, options.detector, options.full_scan_every,
                   options.roi_follows_windows}) {
   if (options_.mask) {
@@ -105,7 +102,7 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
 
 template <class Message>
 bool EdgeNode::admit(const Message& message, proto::CommandGuard& guard, const std::string& what) {
-  const proto::CommandCheck check = guard.check(message, now_ns(CLOCK_REALTIME));
+  const proto::CommandCheck check = guard.check(message, clock_now_ns(CLOCK_REALTIME));
   const bool accepted = check == proto::CommandCheck::kAccepted;
   last_command_sender_ = message.sender;
   last_command_sequence_ = message.sequence;
@@ -221,7 +218,7 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
     }
     return;
   }
-  const int64_t start_ns = now_ns(CLOCK_MONOTONIC);  // processing only, not the wait
+  const int64_t start_ns = clock_now_ns(CLOCK_MONOTONIC);  // processing only, not the wait
   const cv::Size sensor = frame->full_size();
   blob_frame_t out{};
   out.camera_id = static_cast<int16_t>(options_.camera_id);
@@ -239,7 +236,7 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
     silhouette = silhouettes_->process(frame->image, options_.camera_id, trigger.frame_number,
                                        frame->origin, frame->sensor_size);
   }
-  const int64_t done_ns = now_ns(CLOCK_MONOTONIC);
+  const int64_t done_ns = clock_now_ns(CLOCK_MONOTONIC);
   out.processing_us = static_cast<int32_t>((done_ns - start_ns) / 1000);
   // The blob frame is the frame's record, sent in every mode (no blobs in mask-only mode): it
   // tells the host how many silhouette parts to wait for.
@@ -293,7 +290,7 @@ void EdgeNode::follow_windows(cv::Size sensor) {
 }
 
 void EdgeNode::publish_status(bool final) {
-  const int64_t now = now_ns(CLOCK_MONOTONIC);
+  const int64_t now = clock_now_ns(CLOCK_MONOTONIC);
   camera_status_t s{};
   s.camera_id = static_cast<int16_t>(options_.camera_id);
   const std::string problem = source_.problem();
@@ -303,7 +300,7 @@ void EdgeNode::publish_status(bool final) {
             : acquiring_           ? camera_status_t::STATE_ACQUIRING
                                    : camera_status_t::STATE_IDLE;
   s.monotonic_ns = now;
-  s.realtime_ns = now_ns(CLOCK_REALTIME);
+  s.realtime_ns = clock_now_ns(CLOCK_REALTIME);
   s.last_frame_number = last_frame_number_;
   s.frames_received = frames_received_;
   s.frames_lost = frames_lost_;

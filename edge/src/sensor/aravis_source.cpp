@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -22,17 +23,8 @@ struct Unref {
 template <class T>
 using GPtr = std::unique_ptr<T, Unref<T>>;
 
-int64_t monotonic_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-int64_t realtime_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
+using proto::monotonic_now_ns;
+using proto::realtime_now_ns;
 
 // The local address the kernel would send from to reach `device`: a connected UDP socket sends
 // nothing but tells.

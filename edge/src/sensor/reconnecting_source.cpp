@@ -4,15 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::edge {
 namespace {
-
-int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
-}
 
 // Fewer consecutive triggers without a frame are lost frames, not a vanished camera.
 constexpr int kMinMisses = 3;
@@ -31,7 +26,7 @@ ReconnectingSource::ReconnectingSource(SourceFactory open, ReconnectOptions opti
                                        std::function<int64_t()> clock_ns)
     : open_(std::move(open)),
       options_(options),
-      clock_ns_(clock_ns ? std::move(clock_ns) : monotonic_ns),
+      clock_ns_(clock_ns ? std::move(clock_ns) : proto::monotonic_now_ns),
       source_(open_(0)),
       description_(source_->describe()),
       delay_s_(options_.first_delay_s) {}

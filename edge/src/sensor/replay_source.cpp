@@ -6,6 +6,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -13,11 +14,7 @@ namespace {
 const std::set<std::string> kImageExtensions{".pgm",  ".png", ".bmp", ".jpg",
                                              ".jpeg", ".tif", ".tiff"};
 
-int64_t monotonic_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
+using proto::monotonic_now_ns;
 
 // Crops a replayed frame to the region of interest as a sensor window would; `what` names the
 // image in errors.

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "genicam_xml.hpp"
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::fakecam {
 namespace {
@@ -24,11 +25,7 @@ constexpr std::size_t kIpUdpOverhead = 20 + 8;
 // Packets sent back to back before the pacer checks the link's time.
 constexpr std::size_t kPacketsPerBurst = 16;
 
-std::int64_t monotonic_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
+std::int64_t monotonic_ns() { return proto::monotonic_now_ns(); }
 
 // Keeps a frame's packets to the rate of a link, as a real camera's network port does. On the
 // loopback nothing else limits the rate, and a frame of hundreds of packets sent in one go

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "syncap/fakecam/frame_number.hpp"
+#include "syncap/proto/clock.hpp"
 #include "syncap/trigger/gpiosim.h"
 
 namespace syncap::fakecam {
@@ -19,11 +20,7 @@ constexpr auto kSoftwarePollInterval = std::chrono::microseconds(500);
 constexpr auto kStopCheckInterval = std::chrono::milliseconds(20);
 constexpr std::uint64_t kMaxNoImageWarnings = 3;
 
-std::int64_t monotonic_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
+std::int64_t monotonic_ns() { return proto::monotonic_now_ns(); }
 
 // Sleeps until deadline_ns (CLOCK_MONOTONIC); false when a stop came first.
 bool sleep_until(std::int64_t deadline_ns, const std::stop_token& stop) {

@@ -21,6 +21,7 @@
 #include "impairment.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/clock.hpp"
 
 namespace {
 
@@ -100,11 +101,7 @@ std::optional<int> parse_options(int argc, char** argv, Options& o) {
   });
 }
 
-int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
-}
+int64_t monotonic_ns() { return syncap::proto::monotonic_now_ns(); }
 
 struct Counts {
   long received = 0, forwarded = 0, dropped = 0, duplicated = 0, reordered = 0, corrupted = 0;

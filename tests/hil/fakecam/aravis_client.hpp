@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::test {
 
@@ -37,11 +38,7 @@ struct ReceivedFrame {
   std::vector<std::uint8_t> pixels;
 };
 
-inline std::int64_t monotonic_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
+inline std::int64_t monotonic_ns() { return proto::monotonic_now_ns(); }
 
 // Every method throws std::runtime_error saying what failed.
 class AravisClient {

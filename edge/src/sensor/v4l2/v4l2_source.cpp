@@ -13,6 +13,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::edge::v4l2 {
 namespace {
@@ -29,11 +30,7 @@ uint32_t fourcc(PixelFormat format) {
   return 0;
 }
 
-int64_t monotonic_now_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
+using proto::monotonic_now_ns;
 
 std::string c_string(const uint8_t* text, std::size_t size) {
   const auto* begin = reinterpret_cast<const char*>(text);

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::proto {
 
@@ -53,8 +54,6 @@ CommandMac mac_of_encoding(const std::vector<uint8_t>& encoding, const CommandKe
 bool same_mac(const CommandMac& a, const int8_t (&field)[32]);
 // A random non-zero id for this sending process.
 int64_t new_sender_id();
-// CLOCK_REALTIME in ns.
-int64_t realtime_now_ns();
 
 // The message's LCM encoding with its mac field zeroed: what the MAC covers.
 template <class Message>
