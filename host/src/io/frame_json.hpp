@@ -71,7 +71,8 @@ struct FrameRecord {
 // One line. Required: what identifies a frame and its measurements ("frame", "complete",
 // "cameras", a camera's "blobs" or "silhouette", a blob's "x" and "y", a contour's "points", a
 // marker's "x", "y", "z" and "cameras", a rigid set's "name" and "found"); any other field, when
-// absent, takes its default, so hand-written lines in tests stay short. Throws FrameLineError
+// absent, takes its default, so hand-written lines in tests stay short. A number written as null
+// (not finite when written) reads as NaN. Throws FrameLineError
 // naming `where` and the field ("cameras.2.blobs[0].y is not a number").
 FrameRecord parse_frame_line(std::string_view line, const std::string& where);
 

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -141,6 +143,22 @@ TEST(FrameJson, AShortLineTakesTheDefaults) {
   EXPECT_EQ((*r.markers)[0].id, -1);
   EXPECT_EQ((*r.markers)[0].covariance, Eigen::Matrix3d::Zero());
   EXPECT_FALSE((*r.markers)[0].predicted);
+}
+
+TEST(FrameJson, ANumberThatIsNotFiniteIsWrittenAsNullAndReadsBackAsNaN) {
+  pipeline::FrameWork w = sample_work();
+  w.group.blobs.at(0).blobs[0].x = std::numeric_limits<float>::quiet_NaN();
+  w.group.blobs.at(0).blobs[0].area = std::numeric_limits<float>::infinity();
+  w.markers[0].residual_px = std::numeric_limits<double>::quiet_NaN();
+  w.markers[0].covariance(2, 2) = -1;  // its sigma: sqrt(-1)
+  const std::string line = frame_json(w, true).dump();
+  EXPECT_NE(line.find(R"({"area":null,"x":null,"y":2.5})"), std::string::npos) << line;
+  const FrameRecord r = parse_frame_line(line, "g:1");
+  EXPECT_TRUE(std::isnan((*r.cameras.at(0).blobs)[0].x));
+  EXPECT_TRUE(std::isnan((*r.cameras.at(0).blobs)[0].area));
+  EXPECT_TRUE(std::isnan((*r.markers)[0].residual_px));
+  EXPECT_TRUE(std::isnan((*r.markers)[0].covariance(2, 2)));
+  EXPECT_EQ((*r.markers)[0].covariance(1, 1), w.markers[0].covariance(1, 1));
 }
 
 std::string error_of(const std::function<void()>& read) {
