@@ -1,8 +1,9 @@
-// The host's JSON lines read back (frame_json.hpp): the one reader of the format frame_json
+// The host's JSON lines read back (frame_json.hpp): the one reader of the format append_frame_line
 // writes. Each problem names the line (`where`) and the field's path in it.
 #include <charconv>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "io/frame_json.hpp"
 
