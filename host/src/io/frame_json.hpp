@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -18,19 +17,17 @@
 
 namespace syncap::io {
 
-// {"frame", "complete", "missing_cameras", "trigger_monotonic_ns"?, "cameras": {"3": {
-// "processing_us", "blobs": [{"x", "y", "area"}], "silhouette"?}}, "incomplete_silhouettes"?,
-// "markers"?: [...], "rigid_sets"?: [...]} ("markers" only once a reconstruction stage ran,
-// "rigid_sets" with the rigid set stage).
-nlohmann::json frame_json(const pipeline::FrameWork& work, bool with_markers);
-
-// {"id", "x", "y", "z" (mm), "sigma" [sx, sy, sz] (mm), "residual_px", "cameras" [ids],
-// "two_cameras"?, "predicted"?}
-nlohmann::json marker_json(const pipeline::Marker3d& marker);
-
-// {"name", "found", and when found: "translation" [x, y, z] (mm), "rotation" [9, row-major: world
-// = R * set + t], "rms_mm", "marker_ids" [the set's markers' trajectory ids], "collinear"?}
-nlohmann::json rigid_body_json(const pipeline::RigidBody& body);
+// One frame group as its line, without the newline: {"cameras": {"3": {"blobs": [{"area", "x",
+// "y"}], "processing_us", "silhouette"?}}, "complete", "frame", "incomplete_silhouettes"?,
+// "markers"?: [...], "missing_cameras", "rigid_sets"?: [...], "trigger_monotonic_ns"?}, keys in
+// this (sorted) order ("markers" only once a reconstruction stage ran, "rigid_sets" with the
+// rigid set stage). A marker: {"cameras" [ids], "id", "predicted"?, "residual_px", "sigma" [sx,
+// sy, sz] (mm), "two_cameras"?, "x", "y", "z" (mm)}. A rigid set: {"collinear"?, "found",
+// "name", and when found: "marker_ids" [the set's markers' trajectory ids], "rms_mm", "rotation"
+// [9, row-major: world = R * set + t], "translation" [x, y, z] (mm)}. A number that is not
+// finite is written as null. Appends to `out`, so that a writer reuses one buffer for every line.
+void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool with_markers);
+std::string frame_line(const pipeline::FrameWork& work, bool with_markers);
 
 // --- Reading the lines back ---
 
@@ -71,7 +68,8 @@ struct FrameRecord {
 // One line. Required: what identifies a frame and its measurements ("frame", "complete",
 // "cameras", a camera's "blobs" or "silhouette", a blob's "x" and "y", a contour's "points", a
 // marker's "x", "y", "z" and "cameras", a rigid set's "name" and "found"); any other field, when
-// absent, takes its default, so hand-written lines in tests stay short. Throws FrameLineError
+// absent, takes its default, so hand-written lines in tests stay short. A number written as null
+// (not finite when written) reads as NaN. Throws FrameLineError
 // naming `where` and the field ("cameras.2.blobs[0].y is not a number").
 FrameRecord parse_frame_line(std::string_view line, const std::string& where);
 

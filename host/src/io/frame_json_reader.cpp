@@ -1,8 +1,9 @@
-// The host's JSON lines read back (frame_json.hpp): the one reader of the format frame_json
+// The host's JSON lines read back (frame_json.hpp): the one reader of the format append_frame_line
 // writes. Each problem names the line (`where`) and the field's path in it.
 #include <charconv>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "io/frame_json.hpp"
 
@@ -45,7 +46,10 @@ const json& array_at(const json& value, const At& at) {
   return value;
 }
 
+// The writer writes a number that is not finite as null (JSON has no NaN): it reads back as NaN,
+// so that one bad value does not make the whole file unreadable.
 double number_at(const json& value, const At& at) {
+  if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
   if (!value.is_number()) at.fail("is not a number");
   return value.get<double>();
 }

@@ -5,7 +5,10 @@
 namespace syncap::outputs {
 
 void JsonLinesStage::process(pipeline::FrameWork& work) {
-  out_ << io::frame_json(work, with_markers_).dump() << '\n';
+  line_.clear();  // keeps its capacity: no allocation per group once the lines stop growing
+  io::append_frame_line(line_, work, with_markers_);
+  line_ += '\n';
+  out_.write(line_.data(), static_cast<std::streamsize>(line_.size()));
 }
 
 }  // namespace syncap::outputs

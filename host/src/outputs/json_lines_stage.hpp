@@ -1,7 +1,8 @@
-// Writes each frame group as one JSON line (io::frame_json) to a stream the caller owns.
+// Writes each frame group as one JSON line (io::append_frame_line) to a stream the caller owns.
 #pragma once
 
 #include <ostream>
+#include <string>
 
 #include "pipeline/frame_work.hpp"
 
@@ -18,6 +19,7 @@ class JsonLinesStage : public pipeline::Stage {
  private:
   std::ostream& out_;
   bool with_markers_;
+  std::string line_;
 };
 
 }  // namespace syncap::outputs

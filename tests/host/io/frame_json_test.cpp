@@ -1,16 +1,27 @@
-// The host's JSON lines: what frame_json writes reads back (parse_frame_line, read_frame_lines)
-// to the same content, short hand-written lines take defaults, and a malformed line is named by
-// file, line and field.
+// The host's JSON lines: what append_frame_line writes is the text nlohmann::json wrote before it
+// and reads back (parse_frame_line, read_frame_lines) to the same content, short hand-written
+// lines take defaults, and a malformed line is named by file, line and field.
 #include "io/frame_json.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
+#include <random>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "frame_json_reference.hpp"
+#include "outputs/json_lines_stage.hpp"
+#include "sample_groups.hpp"
 
 namespace syncap::io {
 namespace {
@@ -89,7 +100,7 @@ void expect_markers(const std::vector<pipeline::Marker3d>& read,
 
 TEST(FrameJson, WhatTheHostWritesReadsBack) {
   const pipeline::FrameWork w = sample_work();
-  const FrameRecord r = parse_frame_line(frame_json(w, true).dump(), "groups.jsonl:1");
+  const FrameRecord r = parse_frame_line(frame_line(w, true), "groups.jsonl:1");
   EXPECT_EQ(r.frame, 41);
   EXPECT_FALSE(r.complete);
   EXPECT_EQ(r.missing_cameras, std::vector<int>{3});
@@ -120,10 +131,86 @@ TEST(FrameJson, WhatTheHostWritesReadsBack) {
   EXPECT_FALSE(r.rigid_bodies[1].found);
 }
 
+// A JSON text cut into tokens: a string whole (escapes kept), a number or a literal whole, any
+// other character alone.
+std::vector<std::string> tokens(std::string_view text) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < text.size();) {
+    std::size_t end = i + 1;
+    if (text[i] == '"') {
+      while (text[end] != '"') end += text[end] == '\\' ? 2 : 1;
+      ++end;
+    } else if (std::string_view("-0123456789tfn").find(text[i]) != std::string_view::npos) {
+      end = text.find_first_of(",]}", i);
+    }
+    out.emplace_back(text.substr(i, end - i));
+    i = end;
+  }
+  return out;
+}
+
+// The text nlohmann::json wrote, but for numbers whose Grisu2 digits were not the shortest or
+// closest (json_text_test.cpp): those the same double, in no more digits.
+void expect_same_line(const std::string& ours, const std::string& reference) {
+  const std::vector<std::string> a = tokens(ours), b = tokens(reference);
+  EXPECT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    if (a[i] == b[i]) continue;
+    EXPECT_EQ(std::strtod(a[i].c_str(), nullptr), std::strtod(b[i].c_str(), nullptr))
+        << a[i] << " " << b[i];
+    const auto is_number = [](const std::string& t) { return t[0] == '-' || std::isdigit(t[0]); };
+    EXPECT_TRUE(is_number(a[i]) && is_number(b[i]) && a[i].size() <= b[i].size())
+        << a[i] << " " << b[i];
+  }
+}
+
+// Realistic groups and awkward ones (ids beyond 9, numbers not finite or of any size, a name to
+// escape), with and without silhouettes and markers: the text nlohmann::json wrote.
+TEST(FrameJson, TheLineIsTheTextNlohmannJsonWroteOnRandomGroups) {
+  std::mt19937 rng(2026);
+  for (int i = 0; i < 120; ++i) {
+    test::SampleGroupOptions o;
+    o.awkward = i % 2 == 1;
+    o.silhouettes = i % 4 >= 2;
+    o.cameras = 1 + i % 12;
+    o.blobs_per_camera = i % 41;
+    o.markers = i % 34;
+    const pipeline::FrameWork w = test::sample_group(rng, o);
+    const bool with_markers = i % 8 < 6;
+    SCOPED_TRACE("group " + std::to_string(i));
+    expect_same_line(frame_line(w, with_markers),
+                     test::reference_frame_json(w, with_markers).dump());
+  }
+}
+
+TEST(FrameJson, LinesAppendToTheBuffer) {
+  std::mt19937 rng(1);
+  const pipeline::FrameWork a = test::sample_group(rng), b = test::sample_group(rng);
+  std::string out = "x";
+  append_frame_line(out, a, true);
+  append_frame_line(out, b, false);
+  EXPECT_EQ(out, "x" + frame_line(a, true) + frame_line(b, false));
+}
+
+// The stage reuses its buffer: a short line after a long one holds nothing of the long one.
+TEST(FrameJson, TheStageWritesEachGroupAsOneLine) {
+  std::mt19937 rng(3);
+  const pipeline::FrameWork long_group = test::sample_group(rng);
+  const pipeline::FrameWork short_group = sample_work();
+  std::ostringstream out;
+  outputs::JsonLinesStage stage(out, true);
+  for (const auto* w : {&long_group, &short_group}) {
+    pipeline::FrameWork work = *w;
+    stage.process(work);
+  }
+  stage.finish();
+  EXPECT_EQ(out.str(), frame_line(long_group, true) + "\n" + frame_line(short_group, true) + "\n");
+}
+
 TEST(FrameJson, WithoutMarkersTheLineHasNone) {
   pipeline::FrameWork w = sample_work();
   w.rigid_bodies.clear();
-  const FrameRecord r = parse_frame_line(frame_json(w, false).dump(), "g:1");
+  const FrameRecord r = parse_frame_line(frame_line(w, false), "g:1");
   EXPECT_FALSE(r.markers);
   EXPECT_TRUE(r.rigid_bodies.empty());
 }
@@ -141,6 +228,22 @@ TEST(FrameJson, AShortLineTakesTheDefaults) {
   EXPECT_EQ((*r.markers)[0].id, -1);
   EXPECT_EQ((*r.markers)[0].covariance, Eigen::Matrix3d::Zero());
   EXPECT_FALSE((*r.markers)[0].predicted);
+}
+
+TEST(FrameJson, ANumberThatIsNotFiniteIsWrittenAsNullAndReadsBackAsNaN) {
+  pipeline::FrameWork w = sample_work();
+  w.group.blobs.at(0).blobs[0].x = std::numeric_limits<float>::quiet_NaN();
+  w.group.blobs.at(0).blobs[0].area = std::numeric_limits<float>::infinity();
+  w.markers[0].residual_px = std::numeric_limits<double>::quiet_NaN();
+  w.markers[0].covariance(2, 2) = -1;  // its sigma: sqrt(-1)
+  const std::string line = frame_line(w, true);
+  EXPECT_NE(line.find(R"({"area":null,"x":null,"y":2.5})"), std::string::npos) << line;
+  const FrameRecord r = parse_frame_line(line, "g:1");
+  EXPECT_TRUE(std::isnan((*r.cameras.at(0).blobs)[0].x));
+  EXPECT_TRUE(std::isnan((*r.cameras.at(0).blobs)[0].area));
+  EXPECT_TRUE(std::isnan((*r.markers)[0].residual_px));
+  EXPECT_TRUE(std::isnan((*r.markers)[0].covariance(2, 2)));
+  EXPECT_EQ((*r.markers)[0].covariance(1, 1), w.markers[0].covariance(1, 1));
 }
 
 std::string error_of(const std::function<void()>& read) {
