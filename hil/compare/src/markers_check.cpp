@@ -90,13 +90,13 @@ double MarkersCheck::ghost_share() const {
   return markers > 0 ? static_cast<double>(ghosts) / static_cast<double>(markers) : 0.0;
 }
 
-double MarkersCheck::id_switches_per_1000() const {
-  return found > 0 ? 1000.0 * static_cast<double>(id_switches) / static_cast<double>(found) : 0.0;
+double MarkersCheck::per_1000_found(long count) const {
+  return found > 0 ? 1000.0 * static_cast<double>(count) / static_cast<double>(found) : 0.0;
 }
 
-double MarkersCheck::track_breaks_per_1000() const {
-  return found > 0 ? 1000.0 * static_cast<double>(track_breaks) / static_cast<double>(found) : 0.0;
-}
+double MarkersCheck::id_switches_per_1000() const { return per_1000_found(id_switches); }
+
+double MarkersCheck::track_breaks_per_1000() const { return per_1000_found(track_breaks); }
 
 double MarkersCheck::rms_mm() const {
   return found > 0 ? std::sqrt(squared_error_sum / static_cast<double>(found)) : 0.0;

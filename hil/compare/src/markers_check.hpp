@@ -33,6 +33,7 @@ struct MarkersCheck {
   long track_breaks = 0;
   double id_switches_per_1000() const;
   double track_breaks_per_1000() const;
+  double per_1000_found(long count) const;  // count per 1000 targets found (0 when none)
   double found_share() const;
   double ghost_share() const;
   double rms_mm() const;
