@@ -5,11 +5,11 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
-#include <ctime>
 #include <string>
 #include <vector>
 
 #include "aggregator/frame_grouper.hpp"
+#include "syncap/proto/clock.hpp"
 
 namespace syncap::pipeline {
 
@@ -48,9 +48,7 @@ struct FrameWork {
 // The calling thread's CPU time [us] (CLOCK_THREAD_CPUTIME_ID): what a stage cost the host,
 // without the waits for a CPU that the wall time holds on a loaded machine.
 inline double thread_cpu_us() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
+  return static_cast<double>(proto::clock_now_ns(CLOCK_THREAD_CPUTIME_ID)) * 1e-3;
 }
 
 // A step of the host's per-frame work. Stages run in order on the pipeline's worker thread, one

@@ -4,7 +4,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <ctime>
 #include <future>
 #include <thread>
 
@@ -119,18 +118,15 @@ TEST(HostNode, AFullQueueDropsTheOldestAndCountsThem) {
   EXPECT_EQ(n.recorder->frames.back(), 49) << "the newest frames are kept";
 }
 
-// Sleeps (no CPU), then spins until its thread has used `spin` of CPU time.
+// Sleeps 30 ms (no CPU), then spins until its thread has used 10 ms of CPU time.
 class WaitThenSpinStage : public Stage {
  public:
   const char* name() const override { return "wait-then-spin"; }
   void process(FrameWork&) override {
     std::this_thread::sleep_for(std::chrono::milliseconds(30));
-    timespec start{}, now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &start);
-    do {
-      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    } while ((now.tv_sec - start.tv_sec) * 1'000'000'000L + (now.tv_nsec - start.tv_nsec) <
-             10'000'000L);
+    const double start_us = thread_cpu_us();
+    while (thread_cpu_us() - start_us < 10'000) {
+    }
   }
 };
 
