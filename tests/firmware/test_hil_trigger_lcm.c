@@ -3,6 +3,7 @@
 #include "cmocka_main.h"
 
 #include <signal.h>
+#include <stdbool.h>
 #include <sys/wait.h>
 #include <time.h>
 
@@ -49,28 +50,42 @@ static void receive(lcm_t* lcm, const struct received* received, size_t count, i
   }
 }
 
+// At 200 Hz a loaded machine may wake too late for a period: syncap-trigger then skips it (its
+// number stays unsent) and flags the next pulse MISSED. So every pulse sent comes in order, a gap
+// in the numbers is always announced by FLAG_MISSED, the run ends at the last period with
+// FLAG_LAST, and skips stay rare.
+#define MAX_SKIPPED 3
+
 static void assert_pulse_train(const struct received* received) {
-  assert_int_equal(received->count, PULSES);
-  for (size_t i = 0; i < PULSES; ++i) {
+  assert_in_range(received->count, PULSES - MAX_SKIPPED, PULSES);
+  assert_true(received->count <= MAX_MESSAGES);
+  for (size_t i = 0; i < received->count; ++i) {
     const syncap_trigger_t* message = &received->messages[i];
-    assert_int_equal(message->frame_number, i);
+    const syncap_trigger_t* previous = i > 0 ? &received->messages[i - 1] : NULL;
+    const int64_t expected_number = previous ? previous->frame_number + 1 : 0;
+    assert_true(message->frame_number >= expected_number);
+    assert_int_equal(message->flags & SYNCAP_TRIGGER_T_FLAG_MISSED,
+                     message->frame_number > expected_number ? SYNCAP_TRIGGER_T_FLAG_MISSED : 0);
+    const bool last = i == received->count - 1;
     assert_int_equal(message->flags & SYNCAP_TRIGGER_T_FLAG_LAST,
-                     i == PULSES - 1 ? SYNCAP_TRIGGER_T_FLAG_LAST : 0);
+                     last ? SYNCAP_TRIGGER_T_FLAG_LAST : 0);
+    if (last) assert_int_equal(message->frame_number, PULSES - 1);
     assert_true(message->rate_hz == 200.0);
     assert_int_equal(message->pulse_width_us, 1000);
     // A pulse driven within the late tolerance (100 us, not flagged LATE) is on its schedule,
-    // so two such neighbours are one period apart to twice that. A loaded machine makes pulses
-    // late: they are flagged, and their spacing says nothing about the schedule.
-    const syncap_trigger_t* previous = i > 0 ? &received->messages[i - 1] : NULL;
+    // so two such neighbours are a whole number of periods apart to twice that. A loaded machine
+    // makes pulses late: they are flagged, and their spacing says nothing about the schedule.
     if (previous && !(message->flags & SYNCAP_TRIGGER_T_FLAG_LATE) &&
         !(previous->flags & SYNCAP_TRIGGER_T_FLAG_LATE)) {
+      const int64_t periods = message->frame_number - previous->frame_number;
       const int64_t spacing = message->monotonic_ns - previous->monotonic_ns;
-      assert_in_range(spacing, PERIOD_NS - ON_TIME_SPACING_NS, PERIOD_NS + ON_TIME_SPACING_NS);
+      assert_in_range(spacing, periods * PERIOD_NS - ON_TIME_SPACING_NS,
+                      periods * PERIOD_NS + ON_TIME_SPACING_NS);
     }
   }
 }
 
-static void count_run_publishes_every_pulse_in_order(void** state) {
+static void count_run_publishes_its_pulses_in_order(void** state) {
   (void)state;
   lcm_t* lcm = lcm_create(LCM_URL);
   assert_non_null(lcm);
@@ -150,7 +165,7 @@ static void heartbeat_every_second_and_a_final_stopped_status(void** state) {
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(heartbeat_every_second_and_a_final_stopped_status),
-    cmocka_unit_test(count_run_publishes_every_pulse_in_order),
+    cmocka_unit_test(count_run_publishes_its_pulses_in_order),
 };
 
 SYNCAP_CMOCKA_MAIN(tests)
