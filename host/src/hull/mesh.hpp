@@ -1,0 +1,47 @@
+// The hull's triangle mesh (CGAL::Surface_mesh on the inexact-constructions kernel) and its
+// checks with CGAL's Polygon Mesh Processing. Only the Surface_mesh headers are included here;
+// the PMP algorithms stay in mesh.cpp so that few translation units compile them.
+#pragma once
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <filesystem>
+#include <string>
+
+namespace syncap::hull {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point3 = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point3>;
+
+// What PMP says about a mesh. A good hull is closed, without non-manifold vertices and
+// self-intersections, outward oriented (volume > 0).
+struct MeshReport {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;
+  bool triangle_mesh = false;
+  bool closed = false;
+  std::size_t non_manifold_vertices = 0;
+  bool self_intersecting = false;
+  bool outward_oriented = false;
+  std::size_t components = 0;
+  int euler_characteristic = 0;  // V - E + F; 2 per sphere-like component, 0 for a torus
+  double volume = 0.0;           // object units cubed (mm^3 for our cameras)
+  double area = 0.0;
+  bool good() const {
+    return triangle_mesh && closed && non_manifold_vertices == 0 && !self_intersecting &&
+           outward_oriented && faces > 0;
+  }
+  // One line: "closed yes, manifold yes, self-intersecting no, ... volume V, area A".
+  std::string summary() const;
+};
+
+// The full report; self-intersection is the expensive part (an AABB tree of the faces).
+MeshReport check_mesh(const Mesh& mesh);
+
+// Writes PLY (binary little-endian) or OBJ (text) by the file's extension; throws
+// std::runtime_error naming the file on failure.
+void write_mesh(const std::filesystem::path& file, const Mesh& mesh);
+
+}  // namespace syncap::hull

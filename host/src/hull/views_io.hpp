@@ -1,0 +1,35 @@
+// Reading a hull's input from files: cameras (our cameras.json, or a folder of 3x4 projection
+// matrices, `*.pa`) and one mask image per camera.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "hull/visual_hull.hpp"
+
+namespace syncap::hull {
+
+struct ViewFiles {
+  double simplify_px = kDefaultSimplifyPx;
+  // Foreground: grey value > threshold; none: any non-zero pixel.
+  std::optional<int> threshold;
+  // Keep only the largest 8-connected foreground component of each mask: one object in front
+  // of a background that thresholding does not remove everywhere (a turntable's rim, lamps).
+  bool largest_only = false;
+};
+
+// The image files of a folder (png, jpg, jpeg, pgm, ppm, bmp, tif, tiff) in name order.
+std::vector<std::filesystem::path> mask_files(const std::filesystem::path& folder);
+
+// A 3x4 projection matrix file: 12 numbers, row by row (x_pixel ~ P (X, 1)).
+cv::Matx34d read_projection_matrix(const std::filesystem::path& file);
+
+// The views of `cameras` (cameras.json: its cameras in file order; a folder: its *.pa files in
+// name order, cameras without distortion of the masks' size) with the masks of `masks` in name
+// order, one per camera. Throws HullError naming the file: unreadable, a count that differs, a
+// mask of the wrong size, an empty mask.
+std::vector<HullView> read_views(const std::filesystem::path& cameras,
+                                 const std::filesystem::path& masks, const ViewFiles& options);
+
+}  // namespace syncap::hull

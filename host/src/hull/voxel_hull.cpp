@@ -1,0 +1,344 @@
+#include "hull/voxel_hull.hpp"
+
+#include <Eigen/Geometry>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "sensor/opencv_camera.hpp"
+
+namespace syncap::hull {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Pixels around a block's projected corners that still count: the lens bends the block's edges
+// between its corners.
+constexpr double kBlockMarginPx = 2.0;
+
+// One view's mask with its integral image, and a fast projection when the camera has no
+// distortion (a 3x4 matrix; the model's Newton inversion otherwise).
+class ViewSampler {
+ public:
+  explicit ViewSampler(const HullView& view) : camera_(view.camera) {
+    mask_ = view.mask.empty()
+                ? rasterize(view.silhouette, {camera_.sensor.width_px, camera_.sensor.height_px})
+                : view.mask;
+    cv::integral(mask_ != 0, integral_, CV_32S);  // counts 255s: divide by 255 below
+    const sensor::InteriorOrientation& in = camera_.interior;
+    if (in.k1 == 0 && in.k2 == 0 && in.k3 == 0 && in.p1 == 0 && in.p2 == 0) {
+      const sensor::OpenCvCamera cv_camera = sensor::opencv_from_camera(camera_);
+      cv::Matx33d r;
+      cv::Rodrigues(cv_camera.rvec, r);
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) rt_(i, j) = r(i, j);
+        rt_(i, 3) = cv_camera.tvec[i];
+      }
+      rt_ = Eigen::Matrix3d(Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+                cv_camera.camera_matrix.val)) *
+            rt_;
+      linear_ = true;
+    }
+  }
+
+  bool pixel(const Eigen::Vector3d& x, Eigen::Vector2d* out) const {
+    if (linear_) {
+      const Eigen::Vector3d h = rt_ * x.homogeneous();
+      if (h.z() <= 0.0) return false;
+      *out = h.head<2>() / h.z();
+      return true;
+    }
+    const sensor::Projection p = camera_.project(x);
+    *out = p.pixel;
+    return p.ok();
+  }
+
+  bool foreground(const Eigen::Vector3d& x) const {
+    Eigen::Vector2d p;
+    if (!pixel(x, &p)) return false;
+    const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+    return u >= 0 && v >= 0 && u < mask_.cols && v < mask_.rows && mask_.at<uint8_t>(v, u) != 0;
+  }
+
+  // Of the box [lo, hi]: -1 wholly background, 1 wholly foreground, 0 mixed or unknown.
+  int classify(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+    Eigen::Vector2d min = Eigen::Vector2d::Constant(1e300), max = -min;
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d x((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(),
+                              (c & 4) ? hi.z() : lo.z());
+      Eigen::Vector2d p;
+      if (!pixel(x, &p)) return 0;
+      min = min.cwiseMin(p);
+      max = max.cwiseMax(p);
+    }
+    const int x0 = static_cast<int>(std::floor(min.x() - kBlockMarginPx));
+    const int y0 = static_cast<int>(std::floor(min.y() - kBlockMarginPx));
+    const int x1 = static_cast<int>(std::ceil(max.x() + kBlockMarginPx));
+    const int y1 = static_cast<int>(std::ceil(max.y() + kBlockMarginPx));
+    const int cx0 = std::max(x0, 0), cy0 = std::max(y0, 0);
+    const int cx1 = std::min(x1, mask_.cols - 1), cy1 = std::min(y1, mask_.rows - 1);
+    if (cx0 > cx1 || cy0 > cy1) return -1;
+    const long count = static_cast<long>(integral_.at<int>(cy1 + 1, cx1 + 1)) -
+                       integral_.at<int>(cy0, cx1 + 1) - integral_.at<int>(cy1 + 1, cx0) +
+                       integral_.at<int>(cy0, cx0);
+    if (count == 0) return -1;
+    const bool clipped = cx0 != x0 || cy0 != y0 || cx1 != x1 || cy1 != y1;
+    const long area = 255L * (cx1 - cx0 + 1) * (cy1 - cy0 + 1);
+    return !clipped && count == area ? 1 : 0;
+  }
+
+ private:
+  const sensor::CameraModel& camera_;
+  cv::Mat mask_, integral_;
+  Eigen::Matrix<double, 3, 4> rt_ = Eigen::Matrix<double, 3, 4>::Zero();
+  bool linear_ = false;
+};
+
+// Grid points grid.min + cell * (i, j, k), i in [0, cells.x()], ...; 1 = inside every mask.
+struct Grid {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();
+  double cell = 1.0;
+  Eigen::Vector3i cells = Eigen::Vector3i::Zero();
+  std::vector<uint8_t> inside;
+
+  Eigen::Vector3i nodes() const { return cells + Eigen::Vector3i::Ones(); }
+  std::size_t index(int i, int j, int k) const {
+    const Eigen::Vector3i n = nodes();
+    return (static_cast<std::size_t>(k) * n.y() + j) * n.x() + i;
+  }
+  Eigen::Vector3d point(const Eigen::Vector3i& ijk) const {
+    return min + cell * ijk.cast<double>();
+  }
+};
+
+class Carver {
+ public:
+  Carver(const std::vector<ViewSampler>& views, Grid& grid) : views_(views), grid_(grid) {}
+
+  void carve(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+    bool all_inside = true;
+    for (const ViewSampler& v : views_) {
+      const int c = v.classify(grid_.point(lo), grid_.point(hi));
+      if (c < 0) return;  // every point of the block is background in this view
+      all_inside = all_inside && c > 0;
+    }
+    if (all_inside) return fill(lo, hi);
+    const Eigen::Vector3i size = hi - lo;
+    if (size.maxCoeff() <= 1) return test_points(lo, hi);
+    const Eigen::Vector3i mid = lo + size / 2;
+    for (int c = 0; c < 8; ++c) {
+      Eigen::Vector3i a = lo, b = hi;
+      for (int axis = 0; axis < 3; ++axis) {
+        if (size[axis] == 0) {
+          if (c & (1 << axis)) a[axis] = hi[axis] + 1;  // no second half on this axis
+          continue;
+        }
+        if (c & (1 << axis)) {
+          a[axis] = mid[axis] + 1;
+        } else {
+          b[axis] = mid[axis];
+        }
+      }
+      if ((a.array() <= b.array()).all()) carve(a, b);
+    }
+  }
+
+  std::size_t point_tests() const { return point_tests_; }
+
+ private:
+  void fill(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+    for (int k = lo.z(); k <= hi.z(); ++k)
+      for (int j = lo.y(); j <= hi.y(); ++j)
+        for (int i = lo.x(); i <= hi.x(); ++i) grid_.inside[grid_.index(i, j, k)] = 1;
+  }
+
+  void test_points(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+    for (int k = lo.z(); k <= hi.z(); ++k)
+      for (int j = lo.y(); j <= hi.y(); ++j)
+        for (int i = lo.x(); i <= hi.x(); ++i) {
+          ++point_tests_;
+          const Eigen::Vector3d x = grid_.point({i, j, k});
+          const bool in =
+              std::ranges::all_of(views_, [&](const auto& v) { return v.foreground(x); });
+          grid_.inside[grid_.index(i, j, k)] = in ? 1 : 0;
+        }
+  }
+
+  const std::vector<ViewSampler>& views_;
+  Grid& grid_;
+  std::size_t point_tests_ = 0;
+};
+
+// A grid over [min, max] with `resolution` cells along its longest side and one more cell of
+// margin all round, so that the border points stay outside and the surface closes.
+Grid make_grid(const Eigen::Vector3d& min, const Eigen::Vector3d& max, int resolution) {
+  Grid g;
+  g.cell = (max - min).maxCoeff() / resolution;
+  g.min = min - Eigen::Vector3d::Constant(g.cell);
+  for (int a = 0; a < 3; ++a) {
+    g.cells[a] = static_cast<int>(std::ceil((max[a] - min[a]) / g.cell)) + 2;
+  }
+  const Eigen::Vector3i n = g.nodes();
+  g.inside.assign(static_cast<std::size_t>(n.x()) * n.y() * n.z(), 0);
+  return g;
+}
+
+std::size_t carve_grid(const std::vector<ViewSampler>& views, Grid& grid) {
+  Carver carver(views, grid);
+  carver.carve(Eigen::Vector3i::Ones(), grid.cells - Eigen::Vector3i::Ones());
+  return carver.point_tests();
+}
+
+// The bounding box of the inside points, grown by one cell; false when there are none.
+bool inside_bounds(const Grid& g, Eigen::Vector3d* min, Eigen::Vector3d* max) {
+  Eigen::Vector3i lo = g.nodes(), hi = -Eigen::Vector3i::Ones();
+  for (int k = 0; k < g.nodes().z(); ++k)
+    for (int j = 0; j < g.nodes().y(); ++j)
+      for (int i = 0; i < g.nodes().x(); ++i) {
+        if (!g.inside[g.index(i, j, k)]) continue;
+        lo = lo.cwiseMin(Eigen::Vector3i(i, j, k));
+        hi = hi.cwiseMax(Eigen::Vector3i(i, j, k));
+      }
+  if (hi.x() < 0) return false;
+  *min = g.point(lo - Eigen::Vector3i::Ones());
+  *max = g.point(hi + Eigen::Vector3i::Ones());
+  return true;
+}
+
+// Marching tetrahedra: each cell splits into the six tetrahedra around its main diagonal (the
+// same split in every cell, so neighbouring cells' faces match and the surface has no cracks
+// and no ambiguous cases); a tetrahedron with inside and outside corners gets a triangle or a
+// quad through the middles of its crossing edges, facing the outside corners.
+class Mesher {
+ public:
+  explicit Mesher(const Grid& g) : g_(g) {}
+
+  Mesh run() {
+    const Eigen::Vector3i c = g_.cells;
+    for (int k = 0; k < c.z(); ++k)
+      for (int j = 0; j < c.y(); ++j)
+        for (int i = 0; i < c.x(); ++i) cell(i, j, k);
+    return std::move(mesh_);
+  }
+
+ private:
+  static constexpr std::array<std::array<int, 4>, 6> kTets = {
+      {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}}};
+
+  void cell(int i, int j, int k) {
+    std::array<std::size_t, 8> id;
+    int count = 0;
+    for (int c = 0; c < 8; ++c) {
+      id[c] = g_.index(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+      count += g_.inside[id[c]];
+    }
+    if (count == 0 || count == 8) return;
+    for (const auto& t : kTets) tet({id[t[0]], id[t[1]], id[t[2]], id[t[3]]});
+  }
+
+  void tet(const std::array<std::size_t, 4>& v) {
+    std::array<std::size_t, 4> in, out;
+    int n_in = 0, n_out = 0;
+    for (std::size_t x : v) (g_.inside[x] ? in[n_in++] : out[n_out++]) = x;
+    if (n_in == 0 || n_out == 0) return;
+    Eigen::Vector3d in_centre = Eigen::Vector3d::Zero();
+    for (int a = 0; a < n_in; ++a) in_centre += position(in[a]);
+    in_centre /= n_in;
+    if (n_in == 1 || n_out == 1) {
+      const std::size_t lone = n_in == 1 ? in[0] : out[0];
+      const auto& others = n_in == 1 ? out : in;
+      face({vertex(lone, others[0]), vertex(lone, others[1]), vertex(lone, others[2])}, in_centre);
+      return;
+    }
+    const Mesh::Vertex_index a = vertex(in[0], out[0]), b = vertex(in[0], out[1]),
+                             c = vertex(in[1], out[1]), d = vertex(in[1], out[0]);
+    face({a, b, c}, in_centre);
+    face({a, c, d}, in_centre);
+  }
+
+  Eigen::Vector3d position(std::size_t node) const {
+    const Eigen::Vector3i n = g_.nodes();
+    const int i = static_cast<int>(node % n.x());
+    const int j = static_cast<int>((node / n.x()) % n.y());
+    const int k = static_cast<int>(node / (static_cast<std::size_t>(n.x()) * n.y()));
+    return g_.point({i, j, k});
+  }
+
+  Mesh::Vertex_index vertex(std::size_t a, std::size_t b) {
+    const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+    auto [it, added] = edges_.try_emplace(key);
+    if (added) {
+      const Eigen::Vector3d m = 0.5 * (position(a) + position(b));
+      it->second = mesh_.add_vertex(Point3(m.x(), m.y(), m.z()));
+    }
+    return it->second;
+  }
+
+  void face(std::array<Mesh::Vertex_index, 3> f, const Eigen::Vector3d& in_centre) {
+    const auto p = [&](int i) {
+      const Point3& q = mesh_.point(f[i]);
+      return Eigen::Vector3d(q.x(), q.y(), q.z());
+    };
+    if ((p(1) - p(0)).cross(p(2) - p(0)).dot(p(0) - in_centre) < 0) std::swap(f[1], f[2]);
+    if (mesh_.add_face(f[0], f[1], f[2]) == Mesh::null_face())
+      throw std::logic_error("marching tetrahedra: a non-manifold face");
+  }
+
+  const Grid& g_;
+  Mesh mesh_;
+  std::unordered_map<std::uint64_t, Mesh::Vertex_index> edges_;
+};
+
+}  // namespace
+
+Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& voxel,
+                       const HullOptions& options, VoxelStats* stats) {
+  VoxelStats local;
+  VoxelStats& s = stats != nullptr ? *stats : local;
+  if (views.empty()) throw HullError("no views");
+  if (voxel.resolution < 2) throw std::invalid_argument("voxel resolution below 2");
+  s.volume =
+      options.volume ? *options.volume : estimate_working_volume(views, options.volume_margin);
+  check_views(views, s.volume);
+  const Clock::time_point start = Clock::now();
+  std::vector<ViewSampler> samplers;
+  for (const HullView& v : views) samplers.emplace_back(v);
+  const Eigen::Vector3d r = Eigen::Vector3d::Constant(s.volume.radius);
+  Eigen::Vector3d min = s.volume.centre - r, max = s.volume.centre + r;
+  Grid coarse = make_grid(min, max, std::max(16, voxel.resolution / 8));
+  s.point_tests = carve_grid(samplers, coarse);
+  // A hull thinner than a coarse cell may be missed: then the fine grid covers the whole volume.
+  if (!inside_bounds(coarse, &min, &max)) {
+    min = s.volume.centre - r;
+    max = s.volume.centre + r;
+  }
+  Grid grid = make_grid(min, max, voxel.resolution);
+  s.point_tests += carve_grid(samplers, grid);
+  s.grid_min = grid.min;
+  s.cell = grid.cell;
+  s.cells = grid.cells;
+  s.inside_points = static_cast<std::size_t>(std::ranges::count(grid.inside, 1));
+  s.carve_seconds = seconds_since(start);
+  if (s.inside_points == 0) {
+    throw HullError(
+        "no grid point is foreground in every view (empty hull; do the cameras and "
+        "masks agree?)");
+  }
+  const Clock::time_point mesh_start = Clock::now();
+  Mesh mesh = Mesher(grid).run();
+  s.mesh_seconds = seconds_since(mesh_start);
+  return mesh;
+}
+
+}  // namespace syncap::hull
