@@ -1,7 +1,8 @@
 // syncap-host: the aggregator. Receives the trigger and every camera's messages, groups them by
 // frame number (pipeline::HostNode) and runs the stages on each group on a worker thread: with
 // --calibration the markers are matched, triangulated, tracked and published live
-// (docs/reconstruction.md).
+// (docs/reconstruction.md), and with --hull the person's visual hull is built from the
+// silhouettes (docs/visual-hull.md).
 #include <lcm/lcm-cpp.hpp>
 
 #include <atomic>
@@ -12,6 +13,7 @@
 
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
+#include "outputs/hull_message_stage.hpp"
 #include "outputs/json_lines_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
 #include "reconstruction/tracking_stage.hpp"
@@ -33,14 +35,27 @@ struct Stages {
   reconstruction::MarkerStage* markers = nullptr;
   reconstruction::RigidSetStage* rigid_sets = nullptr;
   outputs::MarkerMessageStage* marker_message = nullptr;
+  reconstruction::HullStage* hull = nullptr;
 };
+
+// The hull after the markers: the markers' message leaves before the slower hull is built.
+void add_hull_stages(const host_app::HullArgs& args, std::vector<sensor::CameraModel> cameras,
+                     lcm::LCM& lcm, Stages& s) {
+  auto stage = std::make_unique<reconstruction::HullStage>(std::move(cameras), args.stage);
+  s.hull = stage.get();
+  s.chain.push_back(std::move(stage));
+  if (args.message)
+    s.chain.push_back(std::make_unique<outputs::HullMessageStage>(
+        [&lcm](const hull_frame_t& m) { lcm.publish(proto::kHullChannel, &m); }));
+}
 
 Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& lcm) {
   Stages s;
   const bool markers = !o.calibration.empty();
   if (markers) {
-    auto stage = std::make_unique<reconstruction::MarkerStage>(sensor::read_cameras(o.calibration),
-                                                               o.markers.matching, o.markers.stage);
+    const std::vector<sensor::CameraModel> cameras = sensor::read_cameras(o.calibration);
+    auto stage =
+        std::make_unique<reconstruction::MarkerStage>(cameras, o.markers.matching, o.markers.stage);
     s.markers = stage.get();
     s.chain.push_back(std::move(stage));
     s.chain.push_back(std::make_unique<reconstruction::TrackingStage>(o.tracking.tracker));
@@ -55,6 +70,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
       s.marker_message = message.get();
       s.chain.push_back(std::move(message));
     }
+    if (o.hull.enabled) add_hull_stages(o.hull, cameras, lcm, s);
   }
   if (!o.quiet)
     s.chain.push_back(
@@ -161,7 +177,8 @@ int run(const host_app::HostOptions& o) {
   receive(lcm, node, o, last_pulse);
   node.finish();
   host_app::print_summary(
-      {node, sub, arrivals, stages.markers, stages.marker_message, stages.rigid_sets}, std::cout);
+      {node, sub, arrivals, stages.markers, stages.marker_message, stages.rigid_sets, stages.hull},
+      std::cout);
   return 0;
 }
 

@@ -63,6 +63,38 @@ void add_tracking_options(CLI::App& app, TrackingArgs& args) {
       ->check(CLI::ExistingFile);
 }
 
+void add_hull_options(CLI::App& app, HullArgs& args) {
+  reconstruction::HullStageOptions& stage = args.stage;
+  app.add_flag("--hull", args.enabled,
+               "build the person's visual hull from the cameras' silhouettes (needs "
+               "--calibration): its measures on SYNCAP_HULL and in --out (docs/visual-hull.md)");
+  app.add_option_function<std::string>(
+         "--hull-method",
+         [&stage](const std::string& name) {
+           stage.method = *reconstruction::hull_method_from_name(name);
+         },
+         "voxel (octree carving, tens of ms; default) or exact (the cones' exact intersection, "
+         "seconds a frame)")
+      ->check(CLI::IsMember({"voxel", "exact"}));
+  app.add_option("--hull-resolution", stage.voxel_resolution,
+                 "voxel method: grid cells along the hull's longest side (default " +
+                     std::to_string(stage.voxel_resolution) + ")")
+      ->check(cli::whole_in<int>(8, 1024));
+  app.add_option("--hull-every", stage.every,
+                 "a hull every N frames (frame number divisible by N; default 1)")
+      ->check(cli::whole_in<int>(1, 100000));
+  app.add_flag("--hull-iou", stage.view_iou,
+               "per camera, the IoU of the hull's reprojection against its silhouette (renders "
+               "the mesh in every camera); a camera below --hull-min-iou flags the frame");
+  app.add_option("--hull-min-iou", stage.min_view_iou,
+                 "with --hull-iou: the IoU below which a camera disagrees with the others "
+                 "(default " +
+                     cli::number_text(stage.min_view_iou) + ")")
+      ->check(cli::number_in(0, 1));
+  app.add_option("--hull-meshes", stage.mesh_dir, "write every hull as DIR/hull_<frame>.ply");
+  app.add_flag("!--no-hull-message", args.message, "do not publish hull_frame_t");
+}
+
 void load_rigid_sets(TrackingArgs& args) {
   if (args.rigid_sets_path.empty()) return;
   try {
@@ -108,6 +140,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   add_marker_options(app, o.markers);
   add_tracking_options(app, o.tracking);
   app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
+  add_hull_options(app, o.hull);
 }
 
 }  // namespace
@@ -129,6 +162,8 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
     o.cameras = parse_camera_list(cameras);
     if (!volume.empty()) o.markers.matching.volume = parse_volume(volume);
     load_rigid_sets(o.tracking);
+    if (o.hull.enabled && o.calibration.empty())
+      throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");
   } catch (const CLI::CallForHelp&) {
     out << app.help();
     return {std::nullopt, 0};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "matching/marker_matcher.hpp"
+#include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
 #include "tracking/marker_tracker.hpp"
 #include "tracking/rigid_set.hpp"
@@ -31,6 +32,13 @@ struct MarkerArgs {
   reconstruction::MarkerStageOptions stage;
 };
 
+// The hull stage's options (--hull and --hull-*).
+struct HullArgs {
+  bool enabled = false;  // --hull
+  reconstruction::HullStageOptions stage;
+  bool message = true;  // publish hull_frame_t on SYNCAP_HULL
+};
+
 struct HostOptions {
   std::set<int> cameras{0};
   std::string lcm_url;
@@ -44,6 +52,7 @@ struct HostOptions {
   MarkerArgs markers;
   bool marker_message = true;  // publish marker_frame_t on SYNCAP_MARKERS
   TrackingArgs tracking;
+  HullArgs hull;
 };
 
 // "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and
@@ -55,6 +64,9 @@ void add_tracking_options(CLI::App& app, TrackingArgs& args);
 // --tolerance-px, --sigma-px, --keep-not-round and the partial spots' --partial-spot-ratio and
 // --partial-spot-min-rays on `app`; syncap-host and syncap markers share them.
 void add_marker_options(CLI::App& app, MarkerArgs& args);
+// --hull, --hull-method, --hull-resolution, --hull-every, --hull-iou, --hull-min-iou,
+// --hull-meshes and --no-hull-message on `app`.
+void add_hull_options(CLI::App& app, HullArgs& args);
 // Reads args.rigid_sets_path, if given, into args.rigid_sets; CLI::ValidationError naming
 // --rigid-sets with the file's "path:line: problem" when it cannot be used.
 void load_rigid_sets(TrackingArgs& args);

@@ -84,6 +84,7 @@ void print_summary(const SummaryInputs& in, std::ostream& out) {
   print_grouping(in, out);
   if (in.markers != nullptr) print_reconstruction(in, out);
   if (in.rigid_sets != nullptr) out << in.rigid_sets->summary();
+  if (in.hull != nullptr) out << in.hull->summary();
   out.flush();
 }
 

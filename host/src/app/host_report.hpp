@@ -7,6 +7,7 @@
 #include "aggregator/arrival_tally.hpp"
 #include "outputs/marker_message_stage.hpp"
 #include "pipeline/host_node.hpp"
+#include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
 #include "syncap/proto/subscriber.hpp"
@@ -44,6 +45,7 @@ struct SummaryInputs {
   const reconstruction::MarkerStage* markers = nullptr;         // with --calibration
   const outputs::MarkerMessageStage* marker_message = nullptr;  // with --calibration
   const reconstruction::RigidSetStage* rigid_sets = nullptr;    // with --rigid-sets
+  const reconstruction::HullStage* hull = nullptr;              // with --hull
 };
 
 void print_summary(const SummaryInputs& in, std::ostream& out);

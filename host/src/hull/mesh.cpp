@@ -40,7 +40,7 @@ std::string MeshReport::summary() const {
       vertices, faces, components, euler_characteristic, volume, area);
 }
 
-MeshReport check_mesh(const Mesh& mesh) {
+MeshReport check_mesh(const Mesh& mesh, bool self_intersection) {
   MeshReport r;
   r.vertices = mesh.number_of_vertices();
   r.faces = mesh.number_of_faces();
@@ -55,7 +55,7 @@ MeshReport check_mesh(const Mesh& mesh) {
                            static_cast<int>(mesh.number_of_edges()) +
                            static_cast<int>(mesh.number_of_faces());
   if (!r.triangle_mesh) return r;
-  r.self_intersecting = PMP::does_self_intersect(mesh);
+  r.self_intersecting = self_intersection && PMP::does_self_intersect(mesh);
   r.area = PMP::area(mesh);
   if (r.closed) {
     r.volume = PMP::volume(mesh);
@@ -77,6 +77,22 @@ void write_mesh(const std::filesystem::path& file, const Mesh& mesh) {
     throw std::runtime_error(file.string() + ": unknown mesh format (.ply or .obj)");
   }
   if (!ok) throw std::runtime_error(file.string() + ": cannot write the mesh");
+}
+
+Mesh read_mesh(const std::filesystem::path& file) {
+  Mesh mesh;
+  bool ok = false;
+  if (file.extension() == ".ply") {
+    std::ifstream in(file, std::ios::binary);
+    ok = in && CGAL::IO::read_PLY(in, mesh);
+  } else if (file.extension() == ".obj") {
+    std::ifstream in(file);
+    ok = in && CGAL::IO::read_OBJ(in, mesh);
+  } else {
+    throw std::runtime_error(file.string() + ": unknown mesh format (.ply or .obj)");
+  }
+  if (!ok || mesh.is_empty()) throw std::runtime_error(file.string() + ": no polygon mesh read");
+  return mesh;
 }
 
 }  // namespace syncap::hull

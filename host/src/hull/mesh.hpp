@@ -37,11 +37,16 @@ struct MeshReport {
   std::string summary() const;
 };
 
-// The full report; self-intersection is the expensive part (an AABB tree of the faces).
-MeshReport check_mesh(const Mesh& mesh);
+// The full report; self-intersection is the expensive part (an AABB tree of the faces, several
+// ms for a person's hull): without `self_intersection` it is not looked for (reported false).
+MeshReport check_mesh(const Mesh& mesh, bool self_intersection = true);
 
 // Writes PLY (binary little-endian) or OBJ (text) by the file's extension; throws
 // std::runtime_error naming the file on failure.
 void write_mesh(const std::filesystem::path& file, const Mesh& mesh);
+
+// Reads a PLY or OBJ file (by its extension) as written by write_mesh; throws std::runtime_error
+// naming the file when it cannot be read or holds no polygon mesh.
+Mesh read_mesh(const std::filesystem::path& file);
 
 }  // namespace syncap::hull

@@ -201,14 +201,22 @@ std::size_t carve_grid(const std::vector<ViewSampler>& views, Grid& grid) {
 }
 
 // The bounding box of the inside points, grown by one cell; false when there are none.
-bool inside_bounds(const Grid& g, Eigen::Vector3d* min, Eigen::Vector3d* max) {
+// The box of the coarse grid's cells that no view sees wholly as background (classify() is
+// conservative: a block touching a foreground pixel, or not seen whole, counts), grown by a cell:
+// a bound of the hull however thin its parts are. Sampling the coarse grid's points instead
+// missed a person's legs between them, and the fine grid then cut them off.
+bool occupied_bounds(const std::vector<ViewSampler>& views, const Grid& g, Eigen::Vector3d* min,
+                     Eigen::Vector3d* max) {
   Eigen::Vector3i lo = g.nodes(), hi = -Eigen::Vector3i::Ones();
-  for (int k = 0; k < g.nodes().z(); ++k)
-    for (int j = 0; j < g.nodes().y(); ++j)
-      for (int i = 0; i < g.nodes().x(); ++i) {
-        if (!g.inside[g.index(i, j, k)]) continue;
-        lo = lo.cwiseMin(Eigen::Vector3i(i, j, k));
-        hi = hi.cwiseMax(Eigen::Vector3i(i, j, k));
+  for (int k = 0; k < g.cells.z(); ++k)
+    for (int j = 0; j < g.cells.y(); ++j)
+      for (int i = 0; i < g.cells.x(); ++i) {
+        const Eigen::Vector3i ijk(i, j, k);
+        const Eigen::Vector3d a = g.point(ijk), b = g.point(ijk + Eigen::Vector3i::Ones());
+        if (std::ranges::any_of(views, [&](const ViewSampler& v) { return v.classify(a, b) < 0; }))
+          continue;
+        lo = lo.cwiseMin(ijk);
+        hi = hi.cwiseMax(ijk + Eigen::Vector3i::Ones());
       }
   if (hi.x() < 0) return false;
   *min = g.point(lo - Eigen::Vector3i::Ones());
@@ -219,10 +227,12 @@ bool inside_bounds(const Grid& g, Eigen::Vector3d* min, Eigen::Vector3d* max) {
 // Marching tetrahedra: each cell splits into the six tetrahedra around its main diagonal (the
 // same split in every cell, so neighbouring cells' faces match and the surface has no cracks
 // and no ambiguous cases); a tetrahedron with inside and outside corners gets a triangle or a
-// quad through the middles of its crossing edges, facing the outside corners.
+// quad through its crossing edges, facing the outside corners. Each vertex is where its edge
+// leaves the hull, found by bisection against the masks (kRefineSteps halvings): the middle of
+// the edge was up to half a cell off, which cost 0.05-0.1 of the reprojection IoU at 64 cells.
 class Mesher {
  public:
-  explicit Mesher(const Grid& g) : g_(g) {}
+  Mesher(const Grid& g, const std::vector<ViewSampler>& views) : g_(g), views_(views) {}
 
   Mesh run() {
     const Eigen::Vector3i c = g_.cells;
@@ -275,11 +285,30 @@ class Mesher {
     return g_.point({i, j, k});
   }
 
+  static constexpr int kRefineSteps = 5;
+  // Kept off the grid points, so that no triangle collapses onto one.
+  static constexpr double kMinFraction = 0.02;
+
+  // The crossing of the edge from an inside point to an outside one.
+  Eigen::Vector3d crossing(const Eigen::Vector3d& in, const Eigen::Vector3d& out) const {
+    double lo = 0.0, hi = 1.0;  // fractions from `in`: lo inside, hi outside
+    for (int step = 0; step < kRefineSteps; ++step) {
+      const double mid = 0.5 * (lo + hi);
+      const Eigen::Vector3d x = in + mid * (out - in);
+      const bool inside =
+          std::ranges::all_of(views_, [&](const ViewSampler& v) { return v.foreground(x); });
+      (inside ? lo : hi) = mid;
+    }
+    const double t = std::clamp(0.5 * (lo + hi), kMinFraction, 1.0 - kMinFraction);
+    return in + t * (out - in);
+  }
+
   Mesh::Vertex_index vertex(std::size_t a, std::size_t b) {
     const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
     auto [it, added] = edges_.try_emplace(key);
     if (added) {
-      const Eigen::Vector3d m = 0.5 * (position(a) + position(b));
+      const Eigen::Vector3d m =
+          g_.inside[a] ? crossing(position(a), position(b)) : crossing(position(b), position(a));
       it->second = mesh_.add_vertex(Point3(m.x(), m.y(), m.z()));
     }
     return it->second;
@@ -296,6 +325,7 @@ class Mesher {
   }
 
   const Grid& g_;
+  const std::vector<ViewSampler>& views_;
   Mesh mesh_;
   std::unordered_map<std::uint64_t, Mesh::Vertex_index> edges_;
 };
@@ -316,15 +346,14 @@ Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& v
   for (const HullView& v : views) samplers.emplace_back(v);
   const Eigen::Vector3d r = Eigen::Vector3d::Constant(s.volume.radius);
   Eigen::Vector3d min = s.volume.centre - r, max = s.volume.centre + r;
-  Grid coarse = make_grid(min, max, std::max(16, voxel.resolution / 8));
-  s.point_tests = carve_grid(samplers, coarse);
-  // A hull thinner than a coarse cell may be missed: then the fine grid covers the whole volume.
-  if (!inside_bounds(coarse, &min, &max)) {
-    min = s.volume.centre - r;
-    max = s.volume.centre + r;
+  const Grid coarse = make_grid(min, max, std::max(16, voxel.resolution / 8));
+  if (!occupied_bounds(samplers, coarse, &min, &max)) {
+    throw HullError(
+        "no part of the working volume is foreground in every view (empty hull; do the cameras "
+        "and masks agree?)");
   }
   Grid grid = make_grid(min, max, voxel.resolution);
-  s.point_tests += carve_grid(samplers, grid);
+  s.point_tests = carve_grid(samplers, grid);
   s.grid_min = grid.min;
   s.cell = grid.cell;
   s.cells = grid.cells;
@@ -336,7 +365,7 @@ Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& v
         "masks agree?)");
   }
   const Clock::time_point mesh_start = Clock::now();
-  Mesh mesh = Mesher(grid).run();
+  Mesh mesh = Mesher(grid, samplers).run();
   s.mesh_seconds = seconds_since(mesh_start);
   return mesh;
 }

@@ -26,8 +26,10 @@ struct VoxelStats {
 
 // The marching-tetrahedra surface of the grid points whose pixel is foreground in every view's
 // mask (the silhouette rasterized when a view has no mask). The grid covers the hull's bounding
-// box, found by a first pass at 1/8 of the resolution over the working volume. Surface vertices
-// sit at the middle of the grid edges they cross. Throws HullError as exact_visual_hull() does.
+// box, found by a first grid at 1/8 of the resolution over the working volume: the box of its
+// cells that no view sees wholly as background (thin parts are not missed). Surface vertices
+// sit where the grid edges they cross leave the hull (bisection against the masks). Throws
+// HullError as exact_visual_hull() does.
 Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& voxel = {},
                        const HullOptions& options = {}, VoxelStats* stats = nullptr);
 

@@ -99,6 +99,27 @@ void write_rigid_body(JsonText& j, const pipeline::RigidBody& b) {
   j.end_array().end_object();
 }
 
+// {"area_mm2", "cameras", "error"?, "faces", "flags", "hull_us", "max" [x, y, z], "min" [x, y,
+// z] (mm), "vertices", "view_iou"? {"<camera id>": IoU}, "volume_mm3"}
+void write_hull(JsonText& j, const pipeline::HullSummary& h) {
+  j.begin_object().key("area_mm2").number(std::round(h.area_mm2));
+  j.key("cameras").integer(h.cameras);
+  if (!h.error.empty()) j.key("error").string(h.error);
+  j.key("faces").integer(static_cast<std::int64_t>(h.faces)).key("flags").integer(h.flags);
+  j.key("hull_us").integer(std::llround(h.hull_us)).key("max").begin_array();
+  for (int i = 0; i < 3; ++i) j.number(micrometres(h.max_mm[i]));
+  j.end_array().key("min").begin_array();
+  for (int i = 0; i < 3; ++i) j.number(micrometres(h.min_mm[i]));
+  j.end_array().key("vertices").integer(static_cast<std::int64_t>(h.vertices));
+  if (!h.view_iou.empty()) {
+    j.key("view_iou").begin_object();
+    for (const auto& [camera, iou] : h.view_iou)
+      j.key(std::to_string(camera)).number(std::round(iou * 1e5) / 1e5);
+    j.end_object();
+  }
+  j.key("volume_mm3").number(std::round(h.volume_mm3)).end_object();
+}
+
 }  // namespace
 
 void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool with_markers) {
@@ -107,6 +128,7 @@ void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool w
   j.begin_object();
   write_cameras(j, g);
   j.key("complete").flag(g.complete()).key("frame").integer(g.frame_number);
+  if (work.hull) write_hull(j.key("hull"), *work.hull);
   if (!g.incomplete_silhouettes.empty()) {
     j.key("incomplete_silhouettes").integers(g.incomplete_silhouettes);
   }

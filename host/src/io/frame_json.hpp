@@ -18,13 +18,16 @@
 namespace syncap::io {
 
 // One frame group as its line, without the newline: {"cameras": {"3": {"blobs": [{"area", "x",
-// "y"}], "processing_us", "silhouette"?}}, "complete", "frame", "incomplete_silhouettes"?,
+// "y"}], "processing_us", "silhouette"?}}, "complete", "frame", "hull"?, "incomplete_silhouettes"?,
 // "markers"?: [...], "missing_cameras", "rigid_sets"?: [...], "trigger_monotonic_ns"?}, keys in
 // this (sorted) order ("markers" only once a reconstruction stage ran, "rigid_sets" with the
-// rigid set stage). A marker: {"cameras" [ids], "id", "predicted"?, "residual_px", "sigma" [sx,
-// sy, sz] (mm), "two_cameras"?, "x", "y", "z" (mm)}. A rigid set: {"collinear"?, "found",
-// "name", and when found: "marker_ids" [the set's markers' trajectory ids], "rms_mm", "rotation"
-// [9, row-major: world = R * set + t], "translation" [x, y, z] (mm)}. A number that is not
+// rigid set stage, "hull" when the hull stage worked on the group). A marker: {"cameras" [ids],
+// "id", "predicted"?, "residual_px", "sigma" [sx, sy, sz] (mm), "two_cameras"?, "x", "y", "z"
+// (mm)}. A rigid set: {"collinear"?, "found", "name", and when found: "marker_ids" [the set's
+// markers' trajectory ids], "rms_mm", "rotation" [9, row-major: world = R * set + t],
+// "translation" [x, y, z] (mm)}. The hull: {"area_mm2", "cameras", "error"? (why none was
+// built), "faces", "flags" (hull_frame_t's), "hull_us", "max", "min" [x, y, z] (mm, its box),
+// "vertices", "view_iou"? {"<camera id>": reprojection IoU}, "volume_mm3"}. A number that is not
 // finite is written as null. Appends to `out`, so that a writer reuses one buffer for every line.
 void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool with_markers);
 std::string frame_line(const pipeline::FrameWork& work, bool with_markers);
@@ -63,11 +66,13 @@ struct FrameRecord {
   // When a reconstruction stage ran; covariances diagonal (the line holds the sigmas only).
   std::optional<std::vector<pipeline::Marker3d>> markers;
   std::vector<pipeline::RigidBody> rigid_bodies;
+  std::optional<pipeline::HullSummary> hull;
 };
 
 // One line. Required: what identifies a frame and its measurements ("frame", "complete",
 // "cameras", a camera's "blobs" or "silhouette", a blob's "x" and "y", a contour's "points", a
-// marker's "x", "y", "z" and "cameras", a rigid set's "name" and "found"); any other field, when
+// marker's "x", "y", "z" and "cameras", a rigid set's "name" and "found", the hull's "flags" and
+// "volume_mm3"); any other field, when
 // absent, takes its default, so hand-written lines in tests stay short. A number written as null
 // (not finite when written) reads as NaN. Throws FrameLineError
 // naming `where` and the field ("cameras.2.blobs[0].y is not a number").

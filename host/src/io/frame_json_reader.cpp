@@ -201,6 +201,38 @@ pipeline::RigidBody rigid_body_at(const json& value, const At& at) {
   return b;
 }
 
+pipeline::HullSummary hull_at(const json& value, const At& at) {
+  const json& object = object_at(value, at);
+  pipeline::HullSummary h;
+  h.flags = whole_at<int>(member(object, "flags", at), at / "flags");
+  h.volume_mm3 = number_at(member(object, "volume_mm3", at), at / "volume_mm3");
+  h.area_mm2 = optional_field(object, "area_mm2", at, number_at, 0.0);
+  h.cameras = optional_field(object, "cameras", at, whole_at<int>, 0);
+  h.vertices = static_cast<std::size_t>(
+      optional_field(object, "vertices", at, whole_at<std::int32_t>, std::int32_t{0}));
+  h.faces = static_cast<std::size_t>(
+      optional_field(object, "faces", at, whole_at<std::int32_t>, std::int32_t{0}));
+  h.hull_us = optional_field(object, "hull_us", at, number_at, 0.0);
+  if (object.contains("min")) {
+    const std::vector<double> v = numbers_at(object["min"], 3, at / "min");
+    h.min_mm = {v[0], v[1], v[2]};
+  }
+  if (object.contains("max")) {
+    const std::vector<double> v = numbers_at(object["max"], 3, at / "max");
+    h.max_mm = {v[0], v[1], v[2]};
+  }
+  if (object.contains("view_iou")) {
+    const At views = at / "view_iou";
+    for (const auto& [key, iou] : object_at(object["view_iou"], views).items())
+      h.view_iou[camera_id(key, views)] = number_at(iou, views / key);
+  }
+  if (object.contains("error")) {
+    if (!object["error"].is_string()) (at / "error").fail("is not a string");
+    h.error = object["error"].get<std::string>();
+  }
+  return h;
+}
+
 template <class Read>
 auto list_at(const json& value, const At& at, Read read) {
   std::vector<decltype(read(value, at))> items;
@@ -242,6 +274,7 @@ FrameRecord parse_frame_line(std::string_view line, const std::string& where) {
   if (object.contains("markers")) r.markers = list_at(object["markers"], at / "markers", marker_at);
   if (object.contains("rigid_sets"))
     r.rigid_bodies = list_at(object["rigid_sets"], at / "rigid_sets", rigid_body_at);
+  if (object.contains("hull")) r.hull = hull_at(object["hull"], at / "hull");
   return r;
 }
 

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,23 @@ struct RigidBody {
   std::vector<int> marker_ids;  // the trajectory id of each of its markers (-1: not found)
 };
 
+// The visual hull of one frame (reconstruction::HullStage): what it measures. The mesh itself goes
+// to files (--hull-meshes), not down the pipeline.
+struct HullSummary {
+  int flags = 0;    // hull_frame_t::FLAG_*, ORed
+  int cameras = 0;  // silhouettes that made the hull
+  std::size_t vertices = 0;
+  std::size_t faces = 0;
+  double volume_mm3 = 0;
+  double area_mm2 = 0;
+  Eigen::Vector3d min_mm = Eigen::Vector3d::Zero();  // bounding box, the calibration's frame
+  Eigen::Vector3d max_mm = Eigen::Vector3d::Zero();
+  double hull_us = 0;  // building it (wall time)
+  // Camera id -> IoU of the hull's reprojection against that camera's silhouette, when asked.
+  std::map<int, double> view_iou;
+  std::string error;  // why there is no hull (FLAG_FAILED)
+};
+
 struct FrameWork {
   host::FrameGroup group;
   // When the grouper handed the group out: the host's time for it starts here.
@@ -43,6 +62,7 @@ struct FrameWork {
   double cpu_start_us = 0;
   std::vector<Marker3d> markers;
   std::vector<RigidBody> rigid_bodies;  // one per set of the rigid set stage, found or not
+  std::optional<HullSummary> hull;      // the hull stage ran on a group with silhouettes
 };
 
 // The calling thread's CPU time [us] (CLOCK_THREAD_CPUTIME_ID): what a stage cost the host,

@@ -4,26 +4,45 @@
 #include <chrono>
 #include <limits>
 
+#include "hull/reprojection.hpp"
+#include "hull/voxel_hull.hpp"
+#include "syncap/hull_frame_t.hpp"
+#include "util/printf_string.hpp"
+
 namespace syncap::reconstruction {
 namespace {
 
-// A mesh's bounding box into the message [mm].
-void put_box(const hull::Mesh& mesh, hull_frame_t& message) {
-  float low[3], high[3];
-  std::fill(low, low + 3, std::numeric_limits<float>::max());
-  std::fill(high, high + 3, std::numeric_limits<float>::lowest());
+void put_box(const hull::Mesh& mesh, pipeline::HullSummary& summary) {
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector3d high = -low;
   for (const hull::Mesh::Vertex_index v : mesh.vertices()) {
     const hull::Point3& p = mesh.point(v);
-    for (int i = 0; i < 3; ++i) {
-      low[i] = std::min(low[i], static_cast<float>(p[i]));
-      high[i] = std::max(high[i], static_cast<float>(p[i]));
-    }
+    const Eigen::Vector3d q(p.x(), p.y(), p.z());
+    low = low.cwiseMin(q);
+    high = high.cwiseMax(q);
   }
-  std::copy(low, low + 3, message.min_mm);
-  std::copy(high, high + 3, message.max_mm);
+  summary.min_mm = low;
+  summary.max_mm = high;
+}
+
+// A camera's silhouette is usable when it arrived whole: a contour with a lost part would cut
+// the hull.
+bool whole(const host::FrameGroup& group, int camera_id) {
+  return std::find(group.incomplete_silhouettes.begin(), group.incomplete_silhouettes.end(),
+                   camera_id) == group.incomplete_silhouettes.end();
 }
 
 }  // namespace
+
+std::optional<HullMethod> hull_method_from_name(const std::string& name) {
+  if (name == "voxel") return HullMethod::kVoxel;
+  if (name == "exact") return HullMethod::kExact;
+  return std::nullopt;
+}
+
+const char* hull_method_name(HullMethod method) {
+  return method == HullMethod::kExact ? "exact" : "voxel";
+}
 
 hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette) {
   hull::Silhouette out;
@@ -36,45 +55,38 @@ hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette) {
   return out;
 }
 
-HullStage::HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options,
-                     Publish publish)
-    : cameras_(std::move(cameras)), options_(std::move(options)), publish_(std::move(publish)) {
+HullStage::HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options)
+    : cameras_(std::move(cameras)), options_(std::move(options)) {
+  options_.every = std::max(1, options_.every);
   if (!options_.mesh_dir.empty()) std::filesystem::create_directories(options_.mesh_dir);
 }
 
 void HullStage::process(pipeline::FrameWork& work) {
-  if (work.group.silhouettes.empty()) return;
+  const host::FrameGroup& group = work.group;
+  if (group.silhouettes.empty() || group.frame_number % options_.every != 0) return;
   ++stats_.frames;
-  hull_frame_t message{};
-  message.frame_number = work.group.frame_number;
-  if (work.group.trigger) {
-    message.trigger_monotonic_ns = work.group.trigger->monotonic_ns;
-    message.trigger_realtime_ns = work.group.trigger->realtime_ns;
-  } else {
-    message.flags |= hull_frame_t::FLAG_NO_TRIGGER;
-  }
-  std::vector<hull::HullView> views = views_of(work.group, message);
-  message.cameras = static_cast<int16_t>(views.size());
+  pipeline::HullSummary summary;
+  if (!group.trigger) summary.flags |= hull_frame_t::FLAG_NO_TRIGGER;
+  const std::vector<hull::HullView> views = views_of(group, summary);
+  summary.cameras = static_cast<int>(views.size());
   if (views.size() < 3) {
-    message.flags |= hull_frame_t::FLAG_FEW_CAMERAS;
+    summary.flags |= hull_frame_t::FLAG_FEW_CAMERAS;
     ++stats_.few_cameras;
   }
-  build(work, std::move(views), message);
-  message.host_us = static_cast<int32_t>(std::chrono::duration_cast<std::chrono::microseconds>(
-                                             std::chrono::steady_clock::now() - work.ready)
-                                             .count());
-  if (publish_) publish_(message);
+  build(group.frame_number, views, summary);
+  work.hull = std::move(summary);
 }
 
 std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
-                                                hull_frame_t& message) {
+                                                pipeline::HullSummary& summary) {
   std::vector<hull::HullView> views;
   for (const sensor::CameraModel& camera : cameras_) {
     const auto found = group.silhouettes.find(camera.id);
     hull::Silhouette silhouette;
-    if (found != group.silhouettes.end()) silhouette = hull_silhouette(found->second);
+    if (found != group.silhouettes.end() && whole(group, camera.id))
+      silhouette = hull_silhouette(found->second);
     if (silhouette.empty()) {
-      message.flags |= hull_frame_t::FLAG_CAMERAS_MISSING;
+      summary.flags |= hull_frame_t::FLAG_CAMERAS_MISSING;
       ++stats_.cameras_missing;
       continue;
     }
@@ -83,50 +95,76 @@ std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
   return views;
 }
 
-void HullStage::build(const pipeline::FrameWork& work, std::vector<hull::HullView> views,
-                      hull_frame_t& message) {
+void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& views,
+                      pipeline::HullSummary& summary) {
   const auto start = std::chrono::steady_clock::now();
   try {
     if (views.size() < 2) throw hull::HullError("fewer than two silhouettes");
     hull::HullOptions hull_options;
     hull_options.volume = options_.volume;
-    const hull::Mesh mesh = hull::exact_visual_hull(views, hull_options);
-    const hull::MeshReport report = hull::check_mesh(mesh, options_.check_self_intersection);
-    message.vertices = static_cast<int32_t>(report.vertices);
-    message.faces = static_cast<int32_t>(report.faces);
-    message.volume_mm3 = report.volume;
-    message.area_mm2 = report.area;
-    put_box(mesh, message);
-    if (!report.good()) {
-      message.flags |= hull_frame_t::FLAG_NOT_CLOSED;
-      ++stats_.not_closed;
-    }
+    const hull::Mesh mesh =
+        options_.method == HullMethod::kExact
+            ? hull::exact_visual_hull(views, hull_options)
+            : hull::voxel_visual_hull(views, {options_.voxel_resolution}, hull_options);
+    summary.hull_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    measure(mesh, views, summary);
     ++stats_.hulls;
-    if (!options_.mesh_dir.empty() && work.group.frame_number % options_.mesh_every == 0)
-      hull::write_mesh(
-          options_.mesh_dir / ("hull_" + std::to_string(work.group.frame_number) + ".ply"), mesh);
+    if (!options_.mesh_dir.empty())
+      hull::write_mesh(options_.mesh_dir / ("hull_" + std::to_string(frame_number) + ".ply"), mesh);
   } catch (const std::exception& e) {  // hull::HullError, CGAL's, a mesh file not written
-    message.flags |= hull_frame_t::FLAG_FAILED;
+    summary.flags |= hull_frame_t::FLAG_FAILED;
+    summary.error = e.what();
     ++stats_.failed;
-    stats_.last_error = "frame " + std::to_string(work.group.frame_number) + ": " + e.what();
+    stats_.last_error = "frame " + std::to_string(frame_number) + ": " + e.what();
   }
-  const auto us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() -
-                                                           start)
-                      .count();
-  message.hull_us = static_cast<int32_t>(us);
-  stats_.hull_us.add(us);
+  if (summary.hull_us == 0)
+    summary.hull_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  stats_.hull_us.add(summary.hull_us);
+}
+
+void HullStage::measure(const hull::Mesh& mesh, const std::vector<hull::HullView>& views,
+                        pipeline::HullSummary& summary) {
+  const hull::MeshReport report = hull::check_mesh(mesh, options_.check_self_intersection);
+  summary.vertices = report.vertices;
+  summary.faces = report.faces;
+  summary.volume_mm3 = report.volume;
+  summary.area_mm2 = report.area;
+  put_box(mesh, summary);
+  if (!report.good()) {
+    summary.flags |= hull_frame_t::FLAG_NOT_CLOSED;
+    ++stats_.not_closed;
+  }
+  if (!options_.view_iou) return;
+  bool disagree = false;
+  for (const hull::HullView& view : views) {
+    const cv::Size size(view.camera.sensor.width_px, view.camera.sensor.height_px);
+    const double iou = hull::mask_iou(hull::render_mask(mesh, view.camera),
+                                      hull::rasterize(view.silhouette, size));
+    summary.view_iou[view.camera.id] = iou;
+    stats_.min_view_iou = std::min(stats_.min_view_iou, iou);
+    disagree = disagree || iou < options_.min_view_iou;
+  }
+  if (disagree) {
+    summary.flags |= hull_frame_t::FLAG_VIEWS_DISAGREE;
+    ++stats_.views_disagree;
+  }
 }
 
 std::string HullStage::summary() const {
   const HullStageStats& s = stats_;
-  std::string line = "host hull: " + std::to_string(s.frames) + " frames with silhouettes, " +
-                     std::to_string(s.hulls) + " hulls (" + std::to_string(s.not_closed) +
-                     " failed a mesh check), " + std::to_string(s.failed) + " failed, " +
-                     std::to_string(s.few_cameras) + " from fewer than 3 cameras, " +
-                     std::to_string(s.cameras_missing) + " silhouettes missing; hull time p50 " +
-                     std::to_string(pipeline::quantile(s.hull_us.values(), 0.5) * 1e-3) +
-                     " ms, p99 " +
-                     std::to_string(pipeline::quantile(s.hull_us.values(), 0.99) * 1e-3) + " ms\n";
+  const std::vector<double>& us = s.hull_us.values();
+  std::string line = util::printf_string(
+      "host hull: %s, %ld frames with silhouettes, %ld hulls (%ld failed a mesh check), %ld "
+      "failed, %ld from fewer than 3 cameras, %ld silhouettes missing; hull time p50 %.1f ms, "
+      "p99 %.1f ms\n",
+      hull_method_name(options_.method), s.frames, s.hulls, s.not_closed, s.failed, s.few_cameras,
+      s.cameras_missing, pipeline::quantile(us, 0.5) * 1e-3, pipeline::quantile(us, 0.99) * 1e-3);
+  if (options_.view_iou)
+    line += util::printf_string(
+        "host hull: reprojection IoU min %.4f; %ld frames with a view below %.2f\n",
+        s.hulls > 0 ? s.min_view_iou : 0.0, s.views_disagree, options_.min_view_iou);
   if (!s.last_error.empty()) line += "host hull: last failure: " + s.last_error + "\n";
   return line;
 }

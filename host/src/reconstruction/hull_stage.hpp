@@ -1,15 +1,14 @@
 // The visual hull of every frame group with silhouettes (docs/visual-hull.md): the edges'
-// silhouette contours, with the calibrated cameras, intersected exactly (hull::exact_visual_hull).
-// Each group gives a hull_frame_t (volume, area, box, size, time, flags) through a callback, and,
-// when asked, the mesh as a PLY file. A camera of the calibration without a silhouette in the
-// group is left out and the frame flagged; fewer than 3 silhouettes are flagged (the hull is
-// loose); a hull that cannot be built (views that disagree, a bad silhouette) is flagged FAILED,
-// counted, and its reason kept: the stage never stops the pipeline.
+// silhouette contours, with the calibrated cameras, intersected by the method of the options.
+// Each group gets a pipeline::HullSummary (volume, area, box, size, time, flags, and per view
+// the reprojection IoU when asked) and, when asked, the mesh as a PLY file. A camera of the
+// calibration without a silhouette in the group is left out and the frame flagged; fewer than 3
+// silhouettes are flagged (the hull is loose); a hull that cannot be built (views that disagree,
+// a bad silhouette) is flagged FAILED, counted, and its reason kept: the stage never stops the
+// pipeline.
 #pragma once
 
 #include <filesystem>
-#include <functional>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,49 +17,68 @@
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
 #include "sensor/camera_model.hpp"
-#include "syncap/hull_frame_t.hpp"
 
 namespace syncap::reconstruction {
 
+enum class HullMethod {
+  kVoxel,  // octree carving + marching tetrahedra (hull/voxel_hull.hpp): tens of ms at 96
+  kExact,  // the cones' exact intersection by corefinement (hull/visual_hull.hpp): seconds
+};
+
+// "voxel" or "exact"; std::nullopt otherwise.
+std::optional<HullMethod> hull_method_from_name(const std::string& name);
+const char* hull_method_name(HullMethod method);
+
 struct HullStageOptions {
+  HullMethod method = HullMethod::kVoxel;
+  int voxel_resolution = 96;  // cells along the hull's longest side (kVoxel)
   // Where the working volume is; default: estimated per frame from the silhouettes.
   std::optional<hull::WorkingVolume> volume;
-  // Writes DIR/hull_<frame>.ply every `mesh_every` frames; empty: no meshes.
-  std::filesystem::path mesh_dir;
-  int mesh_every = 1;
+  // A hull every `every` frames (frame_number % every == 0): the others pass untouched.
+  int every = 1;
+  // Per view, the IoU of the hull's reprojection against the silhouette (rendering the mesh in
+  // every camera: milliseconds); a view below `min_view_iou` flags FLAG_VIEWS_DISAGREE.
+  bool view_iou = false;
+  double min_view_iou = 0.9;
   // The full mesh check (self-intersections: an AABB tree of the faces, several ms); otherwise
   // closedness, orientation and manifoldness only.
   bool check_self_intersection = false;
+  // Writes DIR/hull_<frame>.ply for every hull built; empty: no meshes.
+  std::filesystem::path mesh_dir;
 };
 
 struct HullStageStats {
-  long frames = 0;  // groups with at least one silhouette
+  long frames = 0;  // groups with at least one silhouette, on the --every grid
   long hulls = 0;   // built
   long failed = 0;
   long few_cameras = 0;
-  long cameras_missing = 0;
-  long not_closed = 0;  // built, but failed a mesh check
+  long cameras_missing = 0;  // silhouettes missing, over all frames
+  long not_closed = 0;       // built, but failed a mesh check
+  long views_disagree = 0;   // frames with a view below min_view_iou
+  double min_view_iou = 1.0;
   std::string last_error;
   pipeline::RecentValues hull_us;  // building one hull
 };
 
 class HullStage : public pipeline::Stage {
  public:
-  using Publish = std::function<void(const hull_frame_t&)>;
-  HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options, Publish publish);
+  HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options);
   const char* name() const override { return "hull"; }
   void process(pipeline::FrameWork& work) override;
   const HullStageStats& stats() const { return stats_; }
+  // "host hull: ..." lines: frames, hulls, failures, time p50/p99, the last failure.
   std::string summary() const;
 
  private:
-  std::vector<hull::HullView> views_of(const host::FrameGroup& group, hull_frame_t& message);
-  void build(const pipeline::FrameWork& work, std::vector<hull::HullView> views,
-             hull_frame_t& message);
+  std::vector<hull::HullView> views_of(const host::FrameGroup& group,
+                                       pipeline::HullSummary& summary);
+  void build(int64_t frame_number, const std::vector<hull::HullView>& views,
+             pipeline::HullSummary& summary);
+  void measure(const hull::Mesh& mesh, const std::vector<hull::HullView>& views,
+               pipeline::HullSummary& summary);
 
   std::vector<sensor::CameraModel> cameras_;
   HullStageOptions options_;
-  Publish publish_;
   HullStageStats stats_;
 };
 

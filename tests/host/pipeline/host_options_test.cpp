@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <sstream>
 
 namespace syncap::host_app {
@@ -33,6 +34,31 @@ TEST(HostOptions, MarkersOptionsAreParsed) {
   EXPECT_EQ(parse({"--partial-spot-ratio", "1.5"}).exit_status, 2);
   EXPECT_EQ(parse({"--partial-spot-min-rays", "1"}).exit_status, 2);
   EXPECT_DOUBLE_EQ(p.options->tracking.tracker.acceleration_mm_s2, 25000);
+}
+
+TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
+  std::string err;
+  EXPECT_EQ(parse({"--hull"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("--hull: needs --calibration"), std::string::npos) << err;
+  const std::string calibration = ::testing::TempDir() + "/hull_options_cameras.json";
+  std::ofstream(calibration) << "{}";
+  const ParsedHostOptions p =
+      parse({"--calibration", calibration, "--hull", "--hull-method", "exact", "--hull-resolution",
+             "48", "--hull-every", "3", "--hull-iou", "--hull-min-iou", "0.8", "--hull-meshes",
+             "out/meshes", "--no-hull-message"});
+  ASSERT_TRUE(p.options.has_value());
+  const HullArgs& h = p.options->hull;
+  EXPECT_TRUE(h.enabled);
+  EXPECT_EQ(h.stage.method, reconstruction::HullMethod::kExact);
+  EXPECT_EQ(h.stage.voxel_resolution, 48);
+  EXPECT_EQ(h.stage.every, 3);
+  EXPECT_TRUE(h.stage.view_iou);
+  EXPECT_DOUBLE_EQ(h.stage.min_view_iou, 0.8);
+  EXPECT_EQ(h.stage.mesh_dir, "out/meshes");
+  EXPECT_FALSE(h.message);
+  EXPECT_EQ(parse({"--hull-method", "octree"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("--hull-method"), std::string::npos) << err;
+  EXPECT_FALSE(parse({}).options->hull.enabled);
 }
 
 TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
