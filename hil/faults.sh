@@ -25,11 +25,13 @@ impairment_of() {
 }
 
 # start_host GROUPS LOG
-# The host reconstructs the markers live with the scene's true cameras (render/cameras.json);
+# The host reconstructs the markers (and, with a person, its hull) live with the scene's true
+# cameras (render/cameras.json);
 # syncap-hil-compare scores them against the true targets.
 start_host() {
   "$bin/syncap-host" --cameras "$ids" --until-last --idle-timeout 15 --max-lag 30 \
-    --calibration "$render/cameras.json" --lcm-url "$host_url" --out "$1" > "$2" 2>&1 &
+    --calibration "$render/cameras.json" --lcm-url "$host_url" --out "$1" "${host_hull_args[@]}" \
+    > "$2" 2>&1 &
   host_pid=$!
   host_log=$2
   pids+=("$host_pid")

@@ -9,6 +9,7 @@
 #include "calibration_check.hpp"
 #include "comparison.hpp"
 #include "groups.hpp"
+#include "hull_check.hpp"
 #include "input_error.hpp"
 #include "markers_check.hpp"
 #include "sensor/camera_file.hpp"
@@ -28,8 +29,17 @@ struct MarkerLimits {
   double max_rms_mm = 0.5;
 };
 
+// The host's visual hulls, when --hull-meshes names their folder.
+struct HullLimits {
+  std::string meshes;
+  double tolerance_mm = 5;
+  double min_coverage = 0.99;
+  double min_view_iou = 0.9;
+};
+
 struct Options {
   std::string truth, groups, json, cameras;
+  HullLimits hull;
   syncap::compare::Thresholds thresholds;
   MarkerLimits markers;
   double max_reprojection_px = 0.5;
@@ -87,6 +97,23 @@ void add_marker_options(CLI::App& app, MarkerLimits& m) {
       ->group(group);
 }
 
+void add_hull_options(CLI::App& app, HullLimits& h) {
+  const std::string group =
+      "The host's visual hulls (syncap-host --hull), against truth/body.jsonl";
+  app.add_option("--hull-meshes", h.meshes, "the hulls' meshes (syncap-host --hull-meshes DIR)")
+      ->option_text("DIR")
+      ->group(group);
+  cli::add_checked(app, "--hull-tolerance-mm", h.tolerance_mm, "MM", cli::non_negative(),
+                   "a body point outside a hull counts as covered within MM of it (5)")
+      ->group(group);
+  cli::add_checked(app, "--min-hull-coverage", h.min_coverage, "SHARE", cli::number_in(0, 1),
+                   "covered / body surface points (0.99)")
+      ->group(group);
+  cli::add_checked(app, "--min-hull-iou", h.min_view_iou, "SHARE", cli::number_in(0, 1),
+                   "the worst view's reprojection IoU against its silhouette (0.9)")
+      ->group(group);
+}
+
 void add_calibration_options(CLI::App& app, Options& o) {
   const std::string group = "A calibration against the truth";
   app.add_option("--cameras", o.cameras,
@@ -105,6 +132,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
   add_group_options(app, o);
   add_marker_options(app, o.markers);
   add_calibration_options(app, o);
+  add_hull_options(app, o.hull);
   return cli::parse_main(app, argc, argv, [&o] {
     if (o.groups.empty() && o.cameras.empty())
       throw CLI::ValidationError("--groups FILE (or --cameras FILE) is required");
@@ -146,6 +174,23 @@ bool check_markers(const Options& o, const syncap::compare::Truth& truth,
   std::cout << (pass ? "PASS" : "FAIL") << ": markers (found >= " << o.markers.min_found
             << ", ghosts <= " << o.markers.max_ghosts << ", 3D RMS <= " << o.markers.max_rms_mm
             << " mm)\n";
+  return pass;
+}
+
+// The hulls against the true body, when asked; true when within the limits.
+bool check_hulls(const Options& o) {
+  if (o.hull.meshes.empty()) return true;
+  const auto check =
+      syncap::compare::check_hulls(o.truth, o.groups, o.hull.meshes, o.hull.tolerance_mm);
+  std::cout << syncap::compare::format_hull_check(check, o.hull.tolerance_mm);
+  const double min_iou = check.view_ious.empty()
+                             ? 1.0
+                             : *std::min_element(check.view_ious.begin(), check.view_ious.end());
+  const bool pass = check.meshes > 0 && check.failed == 0 &&
+                    check.coverage() >= o.hull.min_coverage && min_iou >= o.hull.min_view_iou;
+  std::cout << (pass ? "PASS" : "FAIL")
+            << ": hull (meshes > 0, none failed, coverage >= " << o.hull.min_coverage
+            << ", reprojection IoU >= " << o.hull.min_view_iou << ")\n";
   return pass;
 }
 
@@ -195,7 +240,8 @@ int main(int argc, char** argv) {
     std::cout << syncap::compare::format_summary(report, heading) << std::flush;
     if (!o.json.empty()) write_json(o.json, report);
     const bool markers_pass = check_markers(o, truth, groups);
-    return report.pass() && markers_pass && cameras_status == 0 ? 0 : 1;
+    const bool hull_pass = check_hulls(o);
+    return report.pass() && markers_pass && hull_pass && cameras_status == 0 ? 0 : 1;
   } catch (const syncap::compare::InputError& e) {
     std::cerr << "syncap-hil-compare: " << e.what() << "\n";
     return 2;

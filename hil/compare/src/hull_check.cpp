@@ -1,0 +1,187 @@
+#include "hull_check.hpp"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "hull/mesh.hpp"
+#include "input_error.hpp"
+#include "io/frame_json.hpp"
+#include "util/printf_string.hpp"
+
+namespace syncap::compare {
+namespace {
+
+namespace fs = std::filesystem;
+using hull::Mesh;
+using hull::Point3;
+
+constexpr int kPointsPerEllipsoid = 400;
+constexpr double kVolumeStepMm = 10.0;  // the true volume's sampling grid
+
+struct Ellipsoid {
+  Eigen::Vector3d centre;
+  Eigen::Matrix3d axes;  // columns: unit axes
+  Eigen::Vector3d radii;
+  bool contains(const Eigen::Vector3d& x) const {
+    return (axes.transpose() * (x - centre)).cwiseQuotient(radii).squaredNorm() < 1.0;
+  }
+};
+using Body = std::vector<Ellipsoid>;
+
+Eigen::Vector3d vector_at(const nlohmann::json& v) {
+  return {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()};
+}
+
+std::map<long, Body> read_bodies(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot read");
+  std::map<long, Body> bodies;
+  std::string line;
+  for (long number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    try {
+      const nlohmann::json j = nlohmann::json::parse(line);
+      Body& body = bodies[j.at("frame").get<long>()];
+      for (const nlohmann::json& e : j.at("ellipsoids")) {
+        Ellipsoid el{vector_at(e.at("centre_mm")), Eigen::Matrix3d::Zero(),
+                     vector_at(e.at("radii_mm"))};
+        for (int c = 0; c < 3; ++c) el.axes.col(c) = vector_at(e.at("axes").at(c));
+        body.push_back(el);
+      }
+    } catch (const nlohmann::json::exception& e) {
+      fail_at(file.string(), number, e.what());
+    }
+  }
+  return bodies;
+}
+
+// Points spread evenly over each ellipsoid (a Fibonacci sphere, stretched), kept where they are
+// on the body's outer surface: not inside another ellipsoid, not below the floor (z = 0).
+std::vector<Eigen::Vector3d> surface_points(const Body& body) {
+  std::vector<Eigen::Vector3d> points;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (std::size_t e = 0; e < body.size(); ++e) {
+    for (int i = 0; i < kPointsPerEllipsoid; ++i) {
+      const double z = 1.0 - 2.0 * (i + 0.5) / kPointsPerEllipsoid, r = std::sqrt(1.0 - z * z);
+      const Eigen::Vector3d unit(r * std::cos(golden * i), r * std::sin(golden * i), z);
+      const Eigen::Vector3d x = body[e].centre + body[e].axes * unit.cwiseProduct(body[e].radii);
+      bool covered = x.z() < 0.0;
+      for (std::size_t o = 0; o < body.size() && !covered; ++o)
+        covered = o != e && body[o].contains(x);
+      if (!covered) points.push_back(x);
+    }
+  }
+  return points;
+}
+
+// The union's volume above the floor, by a grid of kVolumeStepMm [mm^3].
+double body_volume(const Body& body) {
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+  for (const Ellipsoid& e : body) {
+    const double r = e.radii.maxCoeff();
+    low = low.cwiseMin(e.centre - Eigen::Vector3d::Constant(r));
+    high = high.cwiseMax(e.centre + Eigen::Vector3d::Constant(r));
+  }
+  low.z() = std::max(low.z(), 0.0);
+  long inside = 0;
+  const double h = kVolumeStepMm;
+  for (double z = low.z() + h / 2; z < high.z(); z += h)
+    for (double y = low.y() + h / 2; y < high.y(); y += h)
+      for (double x = low.x() + h / 2; x < high.x(); x += h) {
+        const Eigen::Vector3d p(x, y, z);
+        if (std::ranges::any_of(body, [&](const Ellipsoid& e) { return e.contains(p); })) ++inside;
+      }
+  return static_cast<double>(inside) * h * h * h;
+}
+
+void check_mesh_against_body(const Mesh& mesh, const Body& body, double tolerance_mm,
+                             HullCheck& check) {
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<hull::Kernel, Primitive>>;
+  Tree tree(faces(mesh).first, faces(mesh).second, mesh);
+  tree.accelerate_distance_queries();
+  const CGAL::Side_of_triangle_mesh<Mesh, hull::Kernel> side(tree);
+  for (const Eigen::Vector3d& x : surface_points(body)) {
+    const Point3 p(x.x(), x.y(), x.z());
+    ++check.surface_points;
+    if (side(p) != CGAL::ON_UNBOUNDED_SIDE) {
+      ++check.covered_points;
+      continue;
+    }
+    const double miss = std::sqrt(tree.squared_distance(p));
+    check.worst_miss_mm = std::max(check.worst_miss_mm, miss);
+    if (miss <= tolerance_mm) ++check.covered_points;
+  }
+  const double volume = CGAL::Polygon_mesh_processing::volume(mesh);
+  check.volume_ratios.push_back(volume / body_volume(body));
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+double HullCheck::coverage() const {
+  return surface_points > 0 ? static_cast<double>(covered_points) / surface_points : 0.0;
+}
+
+HullCheck check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
+                      const fs::path& mesh_dir, double tolerance_mm) {
+  const std::map<long, Body> bodies = read_bodies(truth_dir / "truth" / "body.jsonl");
+  std::vector<io::FrameRecord> records;
+  try {
+    records = io::read_frame_lines(groups_file);
+  } catch (const io::FrameLineError& e) {
+    throw InputError(e.what());
+  }
+  HullCheck check;
+  for (const io::FrameRecord& r : records) {
+    const auto body = bodies.find(static_cast<long>(r.frame));
+    if (!r.hull || body == bodies.end() || body->second.empty()) continue;
+    ++check.frames;
+    for (const auto& [camera, iou] : r.hull->view_iou) check.view_ious.push_back(iou);
+    if (r.hull->flags & 4) {  // hull_frame_t::FLAG_FAILED: no mesh
+      ++check.failed;
+      continue;
+    }
+    const fs::path file = mesh_dir / ("hull_" + std::to_string(r.frame) + ".ply");
+    if (!fs::exists(file)) continue;  // meshes every N frames only
+    try {
+      check_mesh_against_body(hull::read_mesh(file), body->second, tolerance_mm, check);
+    } catch (const std::runtime_error& e) {
+      throw InputError(e.what());
+    }
+    ++check.meshes;
+  }
+  return check;
+}
+
+std::string format_hull_check(const HullCheck& c, double tolerance_mm) {
+  const auto [iou_min, iou_max] = std::ranges::minmax_element(c.view_ious);
+  const auto [v_min, v_max] = std::ranges::minmax_element(c.volume_ratios);
+  return util::printf_string(
+      "hull: %ld frames with a true body, %ld hulls checked, %ld failed; body surface inside or "
+      "within %.1f mm: %.2f %% of %ld points (worst %.1f mm out); volume hull/body median %.3f "
+      "(%.3f..%.3f); reprojection IoU against the edges' silhouettes median %.4f, min %.4f over "
+      "%zu views\n",
+      c.frames, c.meshes, c.failed, tolerance_mm, 100.0 * c.coverage(), c.surface_points,
+      c.worst_miss_mm, median(c.volume_ratios), c.volume_ratios.empty() ? 0.0 : *v_min,
+      c.volume_ratios.empty() ? 0.0 : *v_max, median(c.view_ious),
+      c.view_ious.empty() ? 0.0 : *iou_min, c.view_ious.size());
+}
+
+}  // namespace syncap::compare
