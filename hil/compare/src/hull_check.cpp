@@ -15,8 +15,11 @@
 #include <numbers>
 
 #include "hull/mesh.hpp"
+#include "hull/voxel_hull.hpp"
 #include "input_error.hpp"
 #include "io/frame_json.hpp"
+#include "sensor/camera_file.hpp"
+#include "silhouettes.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::compare {
@@ -85,28 +88,36 @@ std::vector<Eigen::Vector3d> surface_points(const Body& body) {
   return points;
 }
 
-// The union's volume above the floor, by a grid of kVolumeStepMm [mm^3].
+// The union's volume above the floor, by a grid of kVolumeStepMm [mm^3]: each ellipsoid marks
+// the grid points inside it (within its own bounding box), the marks are counted.
 double body_volume(const Body& body) {
+  const double h = kVolumeStepMm;
   Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
   for (const Ellipsoid& e : body) {
-    const double r = e.radii.maxCoeff();
-    low = low.cwiseMin(e.centre - Eigen::Vector3d::Constant(r));
-    high = high.cwiseMax(e.centre + Eigen::Vector3d::Constant(r));
+    low = low.cwiseMin(e.centre - Eigen::Vector3d::Constant(e.radii.maxCoeff()));
+    high = high.cwiseMax(e.centre + Eigen::Vector3d::Constant(e.radii.maxCoeff()));
   }
   low.z() = std::max(low.z(), 0.0);
-  long inside = 0;
-  const double h = kVolumeStepMm;
-  for (double z = low.z() + h / 2; z < high.z(); z += h)
-    for (double y = low.y() + h / 2; y < high.y(); y += h)
-      for (double x = low.x() + h / 2; x < high.x(); x += h) {
-        const Eigen::Vector3d p(x, y, z);
-        if (std::ranges::any_of(body, [&](const Ellipsoid& e) { return e.contains(p); })) ++inside;
-      }
-  return static_cast<double>(inside) * h * h * h;
+  const Eigen::Vector3i n = ((high - low) / h).array().ceil().cast<int>().max(1).matrix();
+  std::vector<uint8_t> inside(static_cast<std::size_t>(n.x()) * n.y() * n.z(), 0);
+  for (const Ellipsoid& e : body) {
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(e.radii.maxCoeff());
+    const Eigen::Vector3i a =
+        ((e.centre - r - low) / h).array().floor().cast<int>().max(0).matrix();
+    const Eigen::Vector3i b =
+        ((e.centre + r - low) / h).array().ceil().cast<int>().min(n.array()).matrix();
+    for (int k = a.z(); k < b.z(); ++k)
+      for (int j = a.y(); j < b.y(); ++j)
+        for (int i = a.x(); i < b.x(); ++i) {
+          const Eigen::Vector3d p = low + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+          if (e.contains(p)) inside[(static_cast<std::size_t>(k) * n.y() + j) * n.x() + i] = 1;
+        }
+  }
+  return static_cast<double>(std::ranges::count(inside, 1)) * h * h * h;
 }
 
-void check_mesh_against_body(const Mesh& mesh, const Body& body, double tolerance_mm,
-                             HullCheck& check) {
+void check_mesh_against_body(const Mesh& mesh, const Body& body, double body_volume_mm3,
+                             double tolerance_mm, HullCheck& check) {
   using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<hull::Kernel, Primitive>>;
   Tree tree(faces(mesh).first, faces(mesh).second, mesh);
@@ -124,7 +135,26 @@ void check_mesh_against_body(const Mesh& mesh, const Body& body, double toleranc
     if (miss <= tolerance_mm) ++check.covered_points;
   }
   const double volume = CGAL::Polygon_mesh_processing::volume(mesh);
-  check.volume_ratios.push_back(volume / body_volume(body));
+  check.volume_ratios.push_back(volume / body_volume_mm3);
+}
+
+// The frame's hull from the true masks through the true cameras, as the host builds it (the
+// edges' contour tolerance, the stage's voxel resolution).
+constexpr double kReferenceSimplifyPx = 0.5;  // syncap-edge --contour-tolerance's default
+constexpr int kReferenceResolution = 128;     // syncap-host --hull-resolution's default
+
+Mesh reference_hull(const fs::path& truth_dir, long frame,
+                    const std::vector<sensor::CameraModel>& cameras) {
+  std::vector<hull::HullView> views;
+  for (const sensor::CameraModel& camera : cameras) {
+    const auto mask = read_truth_mask(truth_dir, frame, camera.id,
+                                      {camera.sensor.width_px, camera.sensor.height_px});
+    if (!mask) continue;
+    views.push_back({"camera " + std::to_string(camera.id) + " (true mask of frame " +
+                         std::to_string(frame) + ")",
+                     camera, hull::silhouette_from_mask(*mask, kReferenceSimplifyPx), *mask});
+  }
+  return hull::voxel_visual_hull(views, {kReferenceResolution});
 }
 
 double median(std::vector<double> v) {
@@ -139,16 +169,18 @@ double HullCheck::coverage() const {
   return surface_points > 0 ? static_cast<double>(covered_points) / surface_points : 0.0;
 }
 
-HullCheck check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
-                      const fs::path& mesh_dir, double tolerance_mm) {
+HullChecks check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
+                       const fs::path& mesh_dir, double tolerance_mm) {
   const std::map<long, Body> bodies = read_bodies(truth_dir / "truth" / "body.jsonl");
+  const std::vector<sensor::CameraModel> cameras = sensor::read_cameras(truth_dir / "cameras.json");
   std::vector<io::FrameRecord> records;
   try {
     records = io::read_frame_lines(groups_file);
   } catch (const io::FrameLineError& e) {
     throw InputError(e.what());
   }
-  HullCheck check;
+  HullChecks checks;
+  HullCheck& check = checks.live;
   for (const io::FrameRecord& r : records) {
     const auto body = bodies.find(static_cast<long>(r.frame));
     if (!r.hull || body == bodies.end() || body->second.empty()) continue;
@@ -161,27 +193,40 @@ HullCheck check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
     const fs::path file = mesh_dir / ("hull_" + std::to_string(r.frame) + ".ply");
     if (!fs::exists(file)) continue;  // meshes every N frames only
     try {
-      check_mesh_against_body(hull::read_mesh(file), body->second, tolerance_mm, check);
-    } catch (const std::runtime_error& e) {
+      const double volume = body_volume(body->second);
+      check_mesh_against_body(hull::read_mesh(file), body->second, volume, tolerance_mm, check);
+      ++checks.reference.frames;
+      check_mesh_against_body(reference_hull(truth_dir, static_cast<long>(r.frame), cameras),
+                              body->second, volume, tolerance_mm, checks.reference);
+      ++checks.reference.meshes;
+    } catch (const std::runtime_error& e) {  // a mesh or mask file, a hull::HullError
       throw InputError(e.what());
     }
     ++check.meshes;
   }
-  return check;
+  return checks;
 }
 
-std::string format_hull_check(const HullCheck& c, double tolerance_mm) {
+std::string format_hull_checks(const HullChecks& checks, double tolerance_mm) {
+  const HullCheck& c = checks.live;
+  const HullCheck& r = checks.reference;
   const auto [iou_min, iou_max] = std::ranges::minmax_element(c.view_ious);
   const auto [v_min, v_max] = std::ranges::minmax_element(c.volume_ratios);
   return util::printf_string(
-      "hull: %ld frames with a true body, %ld hulls checked, %ld failed; body surface inside or "
-      "within %.1f mm: %.2f %% of %ld points (worst %.1f mm out); volume hull/body median %.3f "
-      "(%.3f..%.3f); reprojection IoU against the edges' silhouettes median %.4f, min %.4f over "
-      "%zu views\n",
-      c.frames, c.meshes, c.failed, tolerance_mm, 100.0 * c.coverage(), c.surface_points,
-      c.worst_miss_mm, median(c.volume_ratios), c.volume_ratios.empty() ? 0.0 : *v_min,
-      c.volume_ratios.empty() ? 0.0 : *v_max, median(c.view_ious),
-      c.view_ious.empty() ? 0.0 : *iou_min, c.view_ious.size());
+             "hull: %ld frames with a true body, %ld hulls checked, %ld failed; body surface "
+             "inside or within %.1f mm: %.2f %% of %ld points (worst %.1f mm out); volume "
+             "hull/body median %.3f (%.3f..%.3f); reprojection IoU against the edges' "
+             "silhouettes median %.4f, min %.4f over %zu views\n",
+             c.frames, c.meshes, c.failed, tolerance_mm, 100.0 * c.coverage(), c.surface_points,
+             c.worst_miss_mm, median(c.volume_ratios), c.volume_ratios.empty() ? 0.0 : *v_min,
+             c.volume_ratios.empty() ? 0.0 : *v_max, median(c.view_ious),
+             c.view_ious.empty() ? 0.0 : *iou_min, c.view_ious.size()) +
+         util::printf_string(
+             "hull reference (the same frames from the true masks, voxel %d, contours %.1f px): "
+             "body surface inside or within %.1f mm: %.2f %% (worst %.1f mm out); volume "
+             "hull/body median %.3f\n",
+             kReferenceResolution, kReferenceSimplifyPx, tolerance_mm, 100.0 * r.coverage(),
+             r.worst_miss_mm, median(r.volume_ratios));
 }
 
 }  // namespace syncap::compare

@@ -5,6 +5,9 @@
 // point is inside the hull or within the tolerance of its surface. The hull's volume is compared
 // with the body's (the union of the ellipsoids, sampled on a grid), and the hull's reprojection
 // IoU per view (what the host measured against the edges' silhouettes, --hull-iou) is gathered.
+// The same frames' hulls built from the true masks (voxel method, the host's defaults) give the
+// reference: what the method holds when the silhouettes are right, so that a shortfall of the
+// live hull is told apart from one of the segmentation.
 #pragma once
 
 #include <filesystem>
@@ -25,12 +28,18 @@ struct HullCheck {
   double coverage() const;
 };
 
-// Throws InputError naming the file (and line) that cannot be read.
-HullCheck check_hulls(const std::filesystem::path& truth_dir,
-                      const std::filesystem::path& groups_file,
-                      const std::filesystem::path& mesh_dir, double tolerance_mm);
+struct HullChecks {
+  HullCheck live;       // the host's hulls (the edges' silhouettes)
+  HullCheck reference;  // the same frames' hulls from the true masks
+};
 
-// "hull: N frames, M meshes, coverage ..., volume ratio ..., reprojection IoU ...\n"
-std::string format_hull_check(const HullCheck& check, double tolerance_mm);
+// Throws InputError naming the file (and line) that cannot be read.
+HullChecks check_hulls(const std::filesystem::path& truth_dir,
+                       const std::filesystem::path& groups_file,
+                       const std::filesystem::path& mesh_dir, double tolerance_mm);
+
+// "hull: N frames, M meshes, coverage ..., volume ratio ..., reprojection IoU ...\n" and the
+// reference's line.
+std::string format_hull_checks(const HullChecks& checks, double tolerance_mm);
 
 }  // namespace syncap::compare

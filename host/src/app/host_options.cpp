@@ -73,7 +73,8 @@ void add_hull_options(CLI::App& app, HullArgs& args) {
          [&stage](const std::string& name) {
            stage.method = *reconstruction::hull_method_from_name(name);
          },
-         "voxel (octree carving, tens of ms; default) or exact (the cones' exact intersection, "
+         "voxel (octree carving, about 0.1 s a frame; default) or exact (the cones' exact "
+         "intersection, "
          "seconds a frame)")
       ->check(CLI::IsMember({"voxel", "exact"}));
   app.add_option("--hull-resolution", stage.voxel_resolution,

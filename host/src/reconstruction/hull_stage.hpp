@@ -21,7 +21,7 @@
 namespace syncap::reconstruction {
 
 enum class HullMethod {
-  kVoxel,  // octree carving + marching tetrahedra (hull/voxel_hull.hpp): tens of ms at 96
+  kVoxel,  // octree carving + marching tetrahedra (hull/voxel_hull.hpp): ~0.1 s at 128
   kExact,  // the cones' exact intersection by corefinement (hull/visual_hull.hpp): seconds
 };
 
@@ -31,7 +31,7 @@ const char* hull_method_name(HullMethod method);
 
 struct HullStageOptions {
   HullMethod method = HullMethod::kVoxel;
-  int voxel_resolution = 96;  // cells along the hull's longest side (kVoxel)
+  int voxel_resolution = 128;  // cells along the hull's longest side (kVoxel)
   // Where the working volume is; default: estimated per frame from the silhouettes.
   std::optional<hull::WorkingVolume> volume;
   // A hull every `every` frames (frame_number % every == 0): the others pass untouched.
