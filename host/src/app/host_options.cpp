@@ -84,6 +84,11 @@ void add_hull_options(CLI::App& app, HullArgs& args) {
   app.add_option("--hull-every", stage.every,
                  "a hull every N frames (frame number divisible by N; default 1)")
       ->check(cli::whole_in<int>(1, 100000));
+  app.add_option("--hull-max-wait-ms", stage.max_wait_ms,
+                 "no hull for a group that waited longer than MS in the host, so that the hull "
+                 "never holds back later frames' markers; 0: every group (default " +
+                     cli::number_text(stage.max_wait_ms) + ")")
+      ->check(cli::number_in(0, 1e6));
   app.add_flag("--hull-iou", stage.view_iou,
                "per camera, the IoU of the hull's reprojection against its silhouette (renders "
                "the mesh in every camera); a camera below --hull-min-iou flags the frame");

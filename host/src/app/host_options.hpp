@@ -64,7 +64,8 @@ void add_tracking_options(CLI::App& app, TrackingArgs& args);
 // --tolerance-px, --sigma-px, --keep-not-round and the partial spots' --partial-spot-ratio and
 // --partial-spot-min-rays on `app`; syncap-host and syncap markers share them.
 void add_marker_options(CLI::App& app, MarkerArgs& args);
-// --hull, --hull-method, --hull-resolution, --hull-every, --hull-iou, --hull-min-iou,
+// --hull, --hull-method, --hull-resolution, --hull-every, --hull-max-wait-ms, --hull-iou,
+// --hull-min-iou,
 // --hull-meshes and --no-hull-message on `app`.
 void add_hull_options(CLI::App& app, HullArgs& args);
 // Reads args.rigid_sets_path, if given, into args.rigid_sets; CLI::ValidationError naming

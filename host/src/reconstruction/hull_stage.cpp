@@ -65,6 +65,13 @@ void HullStage::process(pipeline::FrameWork& work) {
   const host::FrameGroup& group = work.group;
   if (group.silhouettes.empty() || group.frame_number % options_.every != 0) return;
   ++stats_.frames;
+  const double waited_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - work.ready)
+          .count();
+  if (options_.max_wait_ms > 0 && waited_ms > options_.max_wait_ms) {
+    ++stats_.skipped_late;
+    return;
+  }
   pipeline::HullSummary summary;
   if (!group.trigger) summary.flags |= hull_frame_t::FLAG_NO_TRIGGER;
   const std::vector<hull::HullView> views = views_of(group, summary);
@@ -157,10 +164,11 @@ std::string HullStage::summary() const {
   const std::vector<double>& us = s.hull_us.values();
   std::string line = util::printf_string(
       "host hull: %s, %ld frames with silhouettes, %ld hulls (%ld failed a mesh check), %ld "
-      "failed, %ld from fewer than 3 cameras, %ld silhouettes missing; hull time p50 %.1f ms, "
-      "p99 %.1f ms\n",
-      hull_method_name(options_.method), s.frames, s.hulls, s.not_closed, s.failed, s.few_cameras,
-      s.cameras_missing, pipeline::quantile(us, 0.5) * 1e-3, pipeline::quantile(us, 0.99) * 1e-3);
+      "failed, %ld skipped (waited over %.0f ms), %ld from fewer than 3 cameras, %ld silhouettes "
+      "missing; hull time p50 %.1f ms, p99 %.1f ms\n",
+      hull_method_name(options_.method), s.frames, s.hulls, s.not_closed, s.failed, s.skipped_late,
+      options_.max_wait_ms, s.few_cameras, s.cameras_missing, pipeline::quantile(us, 0.5) * 1e-3,
+      pipeline::quantile(us, 0.99) * 1e-3);
   if (options_.view_iou)
     line += util::printf_string(
         "host hull: reprojection IoU min %.4f; %ld frames with a view below %.2f\n",

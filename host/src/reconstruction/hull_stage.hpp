@@ -36,6 +36,10 @@ struct HullStageOptions {
   std::optional<hull::WorkingVolume> volume;
   // A hull every `every` frames (frame_number % every == 0): the others pass untouched.
   int every = 1;
+  // A group that waited longer than this in the host [ms] gets no hull (counted): the hull, far
+  // slower than the markers, then keeps the worker's queue short instead of holding back every
+  // later frame's markers. 0: a hull for every group however late.
+  double max_wait_ms = 100.0;
   // Per view, the IoU of the hull's reprojection against the silhouette (rendering the mesh in
   // every camera: milliseconds); a view below `min_view_iou` flags FLAG_VIEWS_DISAGREE.
   bool view_iou = false;
@@ -48,8 +52,9 @@ struct HullStageOptions {
 };
 
 struct HullStageStats {
-  long frames = 0;  // groups with at least one silhouette, on the --every grid
-  long hulls = 0;   // built
+  long frames = 0;        // groups with at least one silhouette, on the --every grid
+  long skipped_late = 0;  // of those, no hull: they waited longer than max_wait_ms
+  long hulls = 0;         // built
   long failed = 0;
   long few_cameras = 0;
   long cameras_missing = 0;  // silhouettes missing, over all frames

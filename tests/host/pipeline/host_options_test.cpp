@@ -44,14 +44,15 @@ TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
   std::ofstream(calibration) << "{}";
   const ParsedHostOptions p =
       parse({"--calibration", calibration, "--hull", "--hull-method", "exact", "--hull-resolution",
-             "48", "--hull-every", "3", "--hull-iou", "--hull-min-iou", "0.8", "--hull-meshes",
-             "out/meshes", "--no-hull-message"});
+             "48", "--hull-every", "3", "--hull-max-wait-ms", "0", "--hull-iou", "--hull-min-iou",
+             "0.8", "--hull-meshes", "out/meshes", "--no-hull-message"});
   ASSERT_TRUE(p.options.has_value());
   const HullArgs& h = p.options->hull;
   EXPECT_TRUE(h.enabled);
   EXPECT_EQ(h.stage.method, reconstruction::HullMethod::kExact);
   EXPECT_EQ(h.stage.voxel_resolution, 48);
   EXPECT_EQ(h.stage.every, 3);
+  EXPECT_EQ(h.stage.max_wait_ms, 0.0);
   EXPECT_TRUE(h.stage.view_iou);
   EXPECT_DOUBLE_EQ(h.stage.min_view_iou, 0.8);
   EXPECT_EQ(h.stage.mesh_dir, "out/meshes");

@@ -59,6 +59,7 @@ HullStageOptions fast_options() {
   HullStageOptions o;
   o.voxel_resolution = 64;
   o.view_iou = true;
+  o.max_wait_ms = 0;  // a loaded test machine must not skip
   return o;
 }
 
@@ -153,6 +154,22 @@ TEST(HullStage, EveryNthFrameOnlyAndFramesWithoutSilhouettesPassUntouched) {
   stage.process(empty);
   EXPECT_FALSE(empty.hull.has_value());
   EXPECT_EQ(stage.stats().frames, 0);
+}
+
+TEST(HullStage, AGroupThatWaitedTooLongGetsNoHullSoThatLaterFramesAreNotHeldBack) {
+  HullStageOptions o = fast_options();
+  o.max_wait_ms = 50;
+  HullStage stage(scene().cameras, o);
+  pipeline::FrameWork late = scene().work(4);
+  late.ready -= std::chrono::milliseconds(80);
+  stage.process(late);
+  EXPECT_FALSE(late.hull.has_value());
+  pipeline::FrameWork fresh = scene().work(5);
+  stage.process(fresh);
+  EXPECT_TRUE(fresh.hull.has_value());
+  EXPECT_EQ(stage.stats().skipped_late, 1);
+  EXPECT_NE(stage.summary().find("1 skipped (waited over 50 ms)"), std::string::npos)
+      << stage.summary();
 }
 
 TEST(HullStage, TheMessageTheJsonLineAndTheMeshFileCarryTheHull) {
