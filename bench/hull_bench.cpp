@@ -66,6 +66,7 @@ void polyhedral_hull(benchmark::State& state) {
   const Mesh hull = polyhedral_visual_hull(views);
   state.counters["faces"] = static_cast<double>(stats.triangles);
   state.counters["candidates"] = static_cast<double>(stats.candidates);
+  state.counters["failed_attempts"] = stats.failed_attempts;
   state.counters["min_iou_vs_voxel256"] =
       min_iou_between(hull, voxel_visual_hull(views, {256}), views);
   state.counters["min_iou_vs_masks"] = test::min_reprojection_iou(hull, views);

@@ -12,11 +12,13 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
 #include <list>
+#include <optional>
 #include <random>
 #include <unordered_map>
 
@@ -73,7 +75,8 @@ struct ViewData {
   std::vector<Vec3> rays;    // object space, depth 1 along the viewing axis
   std::vector<Edge> edges;
   Bands bands;
-  int first_plane = 0;  // the plane id of edges[0]
+  Eigen::AlignedBox2d box;  // of the points
+  int first_plane = 0;      // the plane id of edges[0]
 };
 
 int band_of(const Bands& b, double y) {
@@ -167,7 +170,10 @@ ViewData prepare_view(const HullView& view, const WorkingVolume& volume, unsigne
   build_bands(v);
   for (const auto& [first, end] : contours) orient_contour(v, first, end);
   for (Edge& e : v.edges) e.line = homogeneous(v.points[e.a]).cross(homogeneous(v.points[e.b]));
-  for (const Vec2& p : v.points) v.rays.push_back(r * Vec3(p.x(), p.y(), -1.0));
+  for (const Vec2& p : v.points) {
+    v.rays.push_back(r * Vec3(p.x(), p.y(), -1.0));
+    v.box.extend(p);
+  }
   return v;
 }
 
@@ -252,7 +258,57 @@ struct Face {
 
 const std::array<Vec2, 4> kCorners = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
 
-Face make_face(const Assembly& as, int i, int k) {
+// How view j sees the domain with the face's current depth range.
+Mat3 domain_map(const ViewData& vi, const ViewData& vj, const Face& f) {
+  const Vec3 base = vi.centre - vj.centre;
+  Mat3 g;
+  g.col(0) = vj.to_camera * (f.dk1 - f.dk);
+  g.col(1) = vj.to_camera * (f.du * base);
+  g.col(2) = vj.to_camera * (f.dk + f.u0 * base);
+  return g;
+}
+
+// The part of a convex polygon where h . (s, v, 1) >= 0 (Sutherland-Hodgman, one plane).
+std::vector<Vec2> clip_polygon(const std::vector<Vec2>& poly, const Vec3& h) {
+  std::vector<Vec2> out;
+  for (std::size_t n = 0; n < poly.size(); ++n) {
+    const Vec2& a = poly[n];
+    const Vec2& b = poly[(n + 1) % poly.size()];
+    const double ha = h.dot(homogeneous(a)), hb = h.dot(homogeneous(b));
+    if (ha >= 0.0) out.push_back(a);
+    if ((ha >= 0.0) != (hb >= 0.0)) out.push_back(a + ha / (ha - hb) * (b - a));
+  }
+  return out;
+}
+
+// The depths (v) of the domain whose image lies in front of every other view and inside its
+// silhouette's bounding box: the hull's part of the face lies there. Empty when none.
+std::optional<std::pair<double, double>> depth_range_in_boxes(const Assembly& as, const Face& f) {
+  std::vector<Vec2> poly(kCorners.begin(), kCorners.end());
+  for (std::size_t j = 0; j < as.views.size() && !poly.empty(); ++j) {
+    if (static_cast<int>(j) == f.view) continue;
+    const Eigen::AlignedBox2d& box = as.views[j].box;
+    const Mat3 g = domain_map(as.views[f.view], as.views[j], f);
+    const Vec3 x = g.row(0).transpose(), y = g.row(1).transpose(), w = g.row(2).transpose();
+    for (const Vec3& h : {w, Vec3(x - box.min().x() * w), Vec3(box.max().x() * w - x),
+                          Vec3(y - box.min().y() * w), Vec3(box.max().y() * w - y)}) {
+      poly = clip_polygon(poly, h);
+      if (poly.empty()) break;
+    }
+  }
+  if (poly.empty()) return std::nullopt;
+  double lo = 1.0, hi = 0.0;
+  for (const Vec2& p : poly) {
+    lo = std::min(lo, p.y());
+    hi = std::max(hi, p.y());
+  }
+  return std::pair{lo, hi};
+}
+
+// The face with its domain's depth range narrowed to the other silhouettes' boxes (a margin of
+// 1e-3 of the range keeps the narrowed sides strictly outside some cone, so they never bound
+// the hull); nullopt when the face has no part of the hull.
+std::optional<Face> make_face(const Assembly& as, int i, int k) {
   const ViewData& vi = as.views[i];
   const Edge& e = vi.edges[k];
   Face f;
@@ -264,22 +320,21 @@ Face make_face(const Assembly& as, int i, int k) {
   f.u0 = 1.0 / vi.far;
   f.du = 1.0 / vi.near - f.u0;
   f.side_plane = {as.far_cap(i), vi.first_plane + e.next, as.near_cap(i), vi.first_plane + e.prev};
+  const auto range = depth_range_in_boxes(as, f);
+  if (!range) return std::nullopt;
+  const double lo = std::max(0.0, range->first - 1e-3), hi = std::min(1.0, range->second + 1e-3);
+  f.u0 += lo * f.du;
+  f.du *= hi - lo;
   f.g.resize(as.views.size());
   for (std::size_t j = 0; j < as.views.size(); ++j) {
     if (static_cast<int>(j) == i) continue;
-    const ViewData& vj = as.views[j];
-    const Vec3 base = vi.centre - vj.centre;
-    Mat3 g;
-    g.col(0) = vj.to_camera * (f.dk1 - f.dk);
-    g.col(1) = vj.to_camera * (f.du * base);
-    g.col(2) = vj.to_camera * (f.dk + f.u0 * base);
+    f.g[j] = domain_map(vi, as.views[j], f);
     for (const Vec2& c : kCorners) {
-      if ((g * homogeneous(c)).z() <= 0.0) {
+      if ((f.g[j] * homogeneous(c)).z() <= 0.0) {
         throw HullError(util::printf_string(
             "the working volume reaches behind camera %zu: give a smaller HullOptions::volume", j));
       }
     }
-    f.g[j] = g;
   }
   return f;
 }
@@ -630,7 +685,9 @@ bool flips_orientation(const Assembly& as, const Face& f) {
 }
 
 void build_face(Assembly& as, int i, int k) {
-  const Face f = make_face(as, i, k);
+  const std::optional<Face> narrowed = make_face(as, i, k);
+  if (!narrowed) return;
+  const Face& f = *narrowed;
   std::array<Segment, 4> sides = domain_sides(f);
   std::vector<Segment> candidates = find_candidates(as, f, sides);
   split_at_crossings(f, candidates);
