@@ -67,6 +67,16 @@ struct Bands {
   std::vector<std::vector<int>> edges;
 };
 
+// The edges by the cells of a uniform grid over the silhouette's box that they pass through
+// (their bounding boxes' cells): the candidates for a face are looked up by the cells under the
+// face's image instead of testing every edge.
+struct EdgeGrid {
+  Vec2 origin = Vec2::Zero();
+  Vec2 scale = Vec2::Zero();  // cells per unit
+  int n = 1;
+  std::vector<std::vector<int>> cells;  // row-major, n x n
+};
+
 struct ViewData {
   Vec3 centre;
   Mat3 to_camera;  // object -> (x', y', depth): ideal image coordinates times depth
@@ -75,6 +85,9 @@ struct ViewData {
   std::vector<Vec3> rays;    // object space, depth 1 along the viewing axis
   std::vector<Edge> edges;
   Bands bands;
+  EdgeGrid grid;
+  mutable std::vector<unsigned> seen;  // per edge: the lookup that last returned it
+  mutable unsigned lookup = 0;
   Eigen::AlignedBox2d box;  // of the points
   int first_plane = 0;      // the plane id of edges[0]
 };
@@ -103,7 +116,7 @@ void build_bands(ViewData& v) {
 
 bool inside_silhouette(const ViewData& v, const Vec2& p) {
   const Bands& b = v.bands;
-  if (p.y() < b.y0 || p.y() > b.y1) return false;
+  if (!v.box.contains(p)) return false;
   bool in = false;
   for (int e : b.edges[band_of(b, p.y())]) {
     const Vec2& a = v.points[v.edges[e].a];
@@ -113,6 +126,46 @@ bool inside_silhouette(const ViewData& v, const Vec2& p) {
     if (x > p.x()) in = !in;
   }
   return in;
+}
+
+int cell_of(const EdgeGrid& g, double x, int axis) {
+  return std::clamp(static_cast<int>((x - g.origin[axis]) * g.scale[axis]), 0, g.n - 1);
+}
+
+void build_grid(ViewData& v) {
+  EdgeGrid& g = v.grid;
+  g.n = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(v.edges.size()))), 1, 64);
+  g.origin = v.box.min();
+  g.scale =
+      Vec2(g.n / std::max(v.box.sizes().x(), 1e-12), g.n / std::max(v.box.sizes().y(), 1e-12));
+  g.cells.assign(static_cast<std::size_t>(g.n * g.n), {});
+  for (std::size_t e = 0; e < v.edges.size(); ++e) {
+    const Vec2 &a = v.points[v.edges[e].a], &b = v.points[v.edges[e].b];
+    for (int y = cell_of(g, std::min(a.y(), b.y()), 1); y <= cell_of(g, std::max(a.y(), b.y()), 1);
+         ++y) {
+      for (int x = cell_of(g, std::min(a.x(), b.x()), 0);
+           x <= cell_of(g, std::max(a.x(), b.x()), 0); ++x)
+        g.cells[static_cast<std::size_t>(y * g.n + x)].push_back(static_cast<int>(e));
+    }
+  }
+  v.seen.assign(v.edges.size(), 0);
+}
+
+// The edges in the grid cells under `box` (each once).
+template <typename Visit>
+void edges_near(const ViewData& v, const Eigen::AlignedBox2d& box, Visit visit) {
+  if (!box.intersects(v.box)) return;
+  const EdgeGrid& g = v.grid;
+  ++v.lookup;
+  for (int y = cell_of(g, box.min().y(), 1); y <= cell_of(g, box.max().y(), 1); ++y) {
+    for (int x = cell_of(g, box.min().x(), 0); x <= cell_of(g, box.max().x(), 0); ++x) {
+      for (int e : g.cells[static_cast<std::size_t>(y * g.n + x)]) {
+        if (v.seen[e] == v.lookup) continue;
+        v.seen[e] = v.lookup;
+        visit(e);
+      }
+    }
+  }
 }
 
 // Whether the silhouette's interior lies left of the edge (just beside its middle).
@@ -167,13 +220,12 @@ ViewData prepare_view(const HullView& view, const WorkingVolume& volume, unsigne
     contours.emplace_back(e0, v.edges.size());
   }
   if (v.edges.empty()) throw HullError(view.name + ": the silhouette has no area");
+  for (const Vec2& p : v.points) v.box.extend(p);
   build_bands(v);
   for (const auto& [first, end] : contours) orient_contour(v, first, end);
   for (Edge& e : v.edges) e.line = homogeneous(v.points[e.a]).cross(homogeneous(v.points[e.b]));
-  for (const Vec2& p : v.points) {
-    v.rays.push_back(r * Vec3(p.x(), p.y(), -1.0));
-    v.box.extend(p);
-  }
+  for (const Vec2& p : v.points) v.rays.push_back(r * Vec3(p.x(), p.y(), -1.0));
+  build_grid(v);
   return v;
 }
 
@@ -192,6 +244,7 @@ struct Assembly {
   std::vector<std::array<int, 3>> triangles;
   std::vector<std::vector<char>> meets;  // meets[i][j]: a face of cone i meets cone j
   std::size_t candidates = 0;
+  mutable std::size_t last_rejecting = 0;  // inside_other_cones' first guess
   int near_cap(std::size_t view) const { return first_cap + 2 * static_cast<int>(view); }
   int far_cap(std::size_t view) const { return near_cap(view) + 1; }
 };
@@ -348,16 +401,31 @@ std::optional<Face> make_face(const Assembly& as, int i, int k) {
 // Whether a domain point projects inside every other view's silhouette. A point inside them all
 // but beyond a cone's truncation means the working volume cuts the hull: an error, since the
 // caps of one view are no boundary candidates in the other views' faces.
+// Whether a domain point projects inside every other view's silhouette. A point inside them all
+// but beyond a cone's truncation means the working volume cuts the hull: an error, since the
+// caps of one view are no boundary candidates in the other views' faces. The view that rejected
+// the last point is tried first (neighbouring pieces tend to leave by the same cone).
 bool inside_other_cones(const Assembly& as, const Face& f, const Vec2& p, int except) {
   const double u = f.u0 + p.y() * f.du;
   bool beyond_volume = false;
-  for (std::size_t j = 0; j < as.views.size(); ++j) {
-    if (static_cast<int>(j) == f.view || static_cast<int>(j) == except) continue;
+  const auto inside = [&](std::size_t j) {
     const ViewData& vj = as.views[j];
     const Vec3 x = f.g[j] * homogeneous(p);
     const double depth = x.z() / u;
     beyond_volume = beyond_volume || depth < vj.near || depth > vj.far;
-    if (!inside_silhouette(vj, x.head<2>() / x.z())) return false;
+    return inside_silhouette(vj, x.head<2>() / x.z());
+  };
+  const std::size_t first = as.last_rejecting;
+  const auto tested = [&](std::size_t j) {
+    return static_cast<int>(j) == f.view || static_cast<int>(j) == except;
+  };
+  if (!tested(first) && !inside(first)) return false;
+  for (std::size_t j = 0; j < as.views.size(); ++j) {
+    if (j == first || tested(j)) continue;
+    if (!inside(j)) {
+      as.last_rejecting = j;
+      return false;
+    }
   }
   if (beyond_volume) throw_cut_by_volume();
   return true;
@@ -466,10 +534,11 @@ std::vector<Segment> find_candidates(Assembly& as, const Face& f, std::array<Seg
         cross2(q[1] - q[0], q[2] - q[0]) + cross2(q[2] - q[0], q[3] - q[0]) > 0.0 ? 1.0 : -1.0;
     const Mat3 g_inverse = g.inverse();
     const std::size_t before = candidates.size();
-    for (std::size_t e = 0; e < vj.edges.size(); ++e) {
-      add_candidate(as, f, static_cast<int>(j), static_cast<int>(e), q, orientation, g_inverse,
-                    candidates, sides);
-    }
+    Eigen::AlignedBox2d image_box;
+    for (const Vec2& c : q) image_box.extend(c);
+    edges_near(vj, image_box, [&](int e) {
+      add_candidate(as, f, static_cast<int>(j), e, q, orientation, g_inverse, candidates, sides);
+    });
     if (candidates.size() > before) as.meets[f.view][j] = 1;
   }
   as.candidates += candidates.size();
