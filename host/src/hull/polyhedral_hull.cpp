@@ -307,7 +307,27 @@ struct Face {
   double u0 = 0.0, du = 0.0;
   std::array<int, 4> side_plane{};  // v = 0 (far), s = 1, v = 1 (near), s = 0
   std::vector<Mat3> g;              // per view: (s, v, 1) -> homogeneous ideal image
+  // Where the hull can be: in front of the other views and inside their silhouettes' boxes
+  // (convex, counter-clockwise). A candidate that misses it bounds nothing.
+  std::vector<Vec2> region;
 };
+
+// Whether the segment a-b meets the convex counter-clockwise polygon (Cyrus-Beck).
+bool meets_convex(const std::vector<Vec2>& poly, const Vec2& a, const Vec2& b) {
+  double t0 = 0.0, t1 = 1.0;
+  for (std::size_t n = 0; n < poly.size(); ++n) {
+    const Vec2 side = poly[(n + 1) % poly.size()] - poly[n];
+    const double ha = cross2(side, a - poly[n]), hb = cross2(side, b - poly[n]);
+    if (ha < 0.0 && hb < 0.0) return false;
+    if (ha >= 0.0 && hb >= 0.0) continue;
+    const double t = ha / (ha - hb);
+    if (ha < 0.0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
+  }
+  return t0 <= t1;
+}
 
 const std::array<Vec2, 4> kCorners = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
 
@@ -334,9 +354,9 @@ std::vector<Vec2> clip_polygon(const std::vector<Vec2>& poly, const Vec3& h) {
   return out;
 }
 
-// The depths (v) of the domain whose image lies in front of every other view and inside its
-// silhouette's bounding box: the hull's part of the face lies there. Empty when none.
-std::optional<std::pair<double, double>> depth_range_in_boxes(const Assembly& as, const Face& f) {
+// The part of the domain whose image lies in front of every other view and inside its
+// silhouette's bounding box (convex): the hull's part of the face lies there. Empty when none.
+std::vector<Vec2> region_in_boxes(const Assembly& as, const Face& f) {
   std::vector<Vec2> poly(kCorners.begin(), kCorners.end());
   for (std::size_t j = 0; j < as.views.size() && !poly.empty(); ++j) {
     if (static_cast<int>(j) == f.view) continue;
@@ -349,13 +369,7 @@ std::optional<std::pair<double, double>> depth_range_in_boxes(const Assembly& as
       if (poly.empty()) break;
     }
   }
-  if (poly.empty()) return std::nullopt;
-  double lo = 1.0, hi = 0.0;
-  for (const Vec2& p : poly) {
-    lo = std::min(lo, p.y());
-    hi = std::max(hi, p.y());
-  }
-  return std::pair{lo, hi};
+  return poly;
 }
 
 // The face with its domain's depth range narrowed to the other silhouettes' boxes (a margin of
@@ -373,11 +387,18 @@ std::optional<Face> make_face(const Assembly& as, int i, int k) {
   f.u0 = 1.0 / vi.far;
   f.du = 1.0 / vi.near - f.u0;
   f.side_plane = {as.far_cap(i), vi.first_plane + e.next, as.near_cap(i), vi.first_plane + e.prev};
-  const auto range = depth_range_in_boxes(as, f);
-  if (!range) return std::nullopt;
-  const double lo = std::max(0.0, range->first - 1e-3), hi = std::min(1.0, range->second + 1e-3);
+  f.region = region_in_boxes(as, f);
+  if (f.region.size() < 3) return std::nullopt;
+  double lo = 1.0, hi = 0.0;
+  for (const Vec2& p : f.region) {
+    lo = std::min(lo, p.y());
+    hi = std::max(hi, p.y());
+  }
+  lo = std::max(0.0, lo - 1e-3);
+  hi = std::min(1.0, hi + 1e-3);
   f.u0 += lo * f.du;
   f.du *= hi - lo;
+  for (Vec2& p : f.region) p.y() = (p.y() - lo) / (hi - lo);  // in the narrowed domain
   f.g.resize(as.views.size());
   for (std::size_t j = 0; j < as.views.size(); ++j) {
     if (static_cast<int>(j) == i) continue;
@@ -511,6 +532,7 @@ void add_candidate(const Assembly& as, const Face& f, int j, int e, const std::a
   s.plane = plane;
   s.view = j;
   s.line = f.g[j].transpose() * edge.line;
+  if (!meets_convex(f.region, s.p0, s.p1)) return;  // outside some cone all along
   if (m0 >= 0) sides[m0].splits.emplace_back(side_parameter(m0, s.p0), s.k0);
   if (m1 >= 0) sides[m1].splits.emplace_back(side_parameter(m1, s.p1), s.k1);
   candidates.push_back(std::move(s));
