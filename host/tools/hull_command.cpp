@@ -97,6 +97,7 @@ hull::Mesh build(const std::vector<hull::HullView>& views, const HullArgs& a, st
         "polyhedral: %zu cone faces, %zu boundary candidates, %zu vertices, %zu triangles, "
         "%u retries, %.3f s\n",
         s.cone_faces, s.candidates, s.vertices, s.triangles, s.failed_attempts, s.seconds);
+    if (s.failed_attempts > 0) out << "polyhedral: retried after: " << s.last_failure << '\n';
     return mesh;
   }
   hull::HullStats s;

@@ -875,6 +875,7 @@ Mesh polyhedral_visual_hull(const std::vector<HullView>& views, const HullOption
       return mesh;
     } catch (const Degenerate& d) {
       s.failed_attempts = attempt + 1;
+      s.last_failure = d.what;
       if (attempt + 1 == kAttempts) {
         throw HullError(util::printf_string(
             "the polyhedral hull's faces did not assemble into a closed mesh on %u "

@@ -4,6 +4,7 @@
 // that meet there (docs/visual-hull.md). The same solid as exact_visual_hull, far faster.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "hull/mesh.hpp"
@@ -18,6 +19,7 @@ struct PolyhedralStats {
   std::size_t vertices = 0;      // of the hull
   std::size_t triangles = 0;     // of the hull
   unsigned failed_attempts = 0;  // degenerate assemblies retried with another perturbation
+  std::string last_failure;      // what the last degenerate attempt failed on
   double seconds = 0.0;
 };
 
