@@ -341,23 +341,26 @@ Mat3 domain_map(const ViewData& vi, const ViewData& vj, const Face& f) {
   return g;
 }
 
-// The part of a convex polygon where h . (s, v, 1) >= 0 (Sutherland-Hodgman, one plane).
-std::vector<Vec2> clip_polygon(const std::vector<Vec2>& poly, const Vec3& h) {
-  std::vector<Vec2> out;
+// Replaces a convex polygon by its part where h . (s, v, 1) >= 0 (Sutherland-Hodgman, one
+// plane); `scratch` is reused between calls (the clipping runs 5 times per view and face).
+void clip_polygon(std::vector<Vec2>& poly, std::vector<Vec2>& scratch, const Vec3& h) {
+  scratch.clear();
   for (std::size_t n = 0; n < poly.size(); ++n) {
     const Vec2& a = poly[n];
     const Vec2& b = poly[(n + 1) % poly.size()];
     const double ha = h.dot(homogeneous(a)), hb = h.dot(homogeneous(b));
-    if (ha >= 0.0) out.push_back(a);
-    if ((ha >= 0.0) != (hb >= 0.0)) out.push_back(a + ha / (ha - hb) * (b - a));
+    if (ha >= 0.0) scratch.push_back(a);
+    if ((ha >= 0.0) != (hb >= 0.0)) scratch.push_back(a + ha / (ha - hb) * (b - a));
   }
-  return out;
+  poly.swap(scratch);
 }
 
 // The part of the domain whose image lies in front of every other view and inside its
 // silhouette's bounding box (convex): the hull's part of the face lies there. Empty when none.
 std::vector<Vec2> region_in_boxes(const Assembly& as, const Face& f) {
-  std::vector<Vec2> poly(kCorners.begin(), kCorners.end());
+  std::vector<Vec2> poly(kCorners.begin(), kCorners.end()), scratch;
+  poly.reserve(4 + 5 * as.views.size());
+  scratch.reserve(poly.capacity());
   for (std::size_t j = 0; j < as.views.size() && !poly.empty(); ++j) {
     if (static_cast<int>(j) == f.view) continue;
     const Eigen::AlignedBox2d& box = as.views[j].box;
@@ -365,7 +368,7 @@ std::vector<Vec2> region_in_boxes(const Assembly& as, const Face& f) {
     const Vec3 x = g.row(0).transpose(), y = g.row(1).transpose(), w = g.row(2).transpose();
     for (const Vec3& h : {w, Vec3(x - box.min().x() * w), Vec3(box.max().x() * w - x),
                           Vec3(y - box.min().y() * w), Vec3(box.max().y() * w - y)}) {
-      poly = clip_polygon(poly, h);
+      clip_polygon(poly, scratch, h);
       if (poly.empty()) break;
     }
   }
