@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "hull/polyhedral_hull.hpp"
 #include "hull/reprojection.hpp"
 #include "hull/views_io.hpp"
 #include "hull/visual_hull.hpp"
@@ -32,7 +33,8 @@ struct HullArgs {
 constexpr const char* kDescription =
     "usage: syncap hull --cameras FILE|DIR --masks DIR --out DIR [options]\n"
     "The visual hull of one mask per camera: the exact intersection of the silhouettes' viewing\n"
-    "cones (CGAL corefinement) or the voxel baseline. Cameras: cameras.json (its cameras in file\n"
+    "cones (CGAL corefinement, or the polyhedral method: the same solid face by face, fast) or\n"
+    "the voxel baseline. Cameras: cameras.json (its cameras in file\n"
     "order) or a folder of 3x4 projection matrices (*.pa, name order, no distortion). Masks: the\n"
     "image files of DIR in name order, one per camera; foreground is any non-zero pixel, or grey\n"
     "> N with --threshold N. Writes DIR/hull.ply and DIR/hull.obj; prints each view's IoU of the\n"
@@ -52,8 +54,10 @@ void add_hull_options(CLI::App& app, HullArgs& a) {
   app.add_option("--out", a.out, "the folder for hull.ply and hull.obj (created)")
       ->option_text("DIR")
       ->required();
-  cli::add_checked(app, "--method", a.method, "exact|voxel", cli::one_of({"exact", "voxel"}),
-                   "exact (default): intersect the viewing cones; voxel: octree carving and\n"
+  cli::add_checked(app, "--method", a.method, "exact|polyhedral|voxel",
+                   cli::one_of({"exact", "polyhedral", "voxel"}),
+                   "exact (default): intersect the viewing cones by corefinement; polyhedral:\n"
+                   "the same intersection cone face by cone face; voxel: octree carving and\n"
                    "marching tetrahedra");
   cli::add_checked(app, "--simplify", a.simplify_px, "PX", cli::number_in(0, 100),
                    "contour simplification, cv::approxPolyDP's epsilon in pixels (default " +
@@ -84,6 +88,16 @@ hull::Mesh build(const std::vector<hull::HullView>& views, const HullArgs& a, st
         "carving %.3f s, marching tetrahedra %.3f s\n",
         s.cells.x(), s.cells.y(), s.cells.z(), s.cell, s.point_tests, s.carve_seconds,
         s.mesh_seconds);
+    return mesh;
+  }
+  if (a.method == "polyhedral") {
+    hull::PolyhedralStats s;
+    hull::Mesh mesh = hull::polyhedral_visual_hull(views, {}, &s);
+    out << util::printf_string(
+        "polyhedral: %zu cone faces, %zu boundary candidates, %zu vertices, %zu triangles, "
+        "%u retries, %.3f s\n",
+        s.cone_faces, s.candidates, s.vertices, s.triangles, s.failed_attempts, s.seconds);
+    if (s.failed_attempts > 0) out << "polyhedral: retried after: " << s.last_failure << '\n';
     return mesh;
   }
   hull::HullStats s;

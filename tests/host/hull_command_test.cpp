@@ -59,7 +59,7 @@ class HullCommand : public ::testing::Test {
 };
 
 TEST_F(HullCommand, WritesTheMeshesAndPrintsEachViewsIou) {
-  for (const std::string method : {"exact", "voxel"}) {
+  for (const std::string method : {"exact", "polyhedral", "voxel"}) {
     const HullRun r = run(args(method));
     ASSERT_EQ(r.status, kExitOk) << r.err;
     EXPECT_TRUE(fs::file_size(dir_ / "out" / "hull.ply") > 0);

@@ -2,12 +2,14 @@
 // masks by thresholding the dark background and keeping the largest component. Issue 17's goal:
 // the hull reprojects onto every mask with IoU >= 0.97. Measured (docs/visual-hull.md): the voxel
 // hull at 256 reaches 0.940-0.956, so this test holds that floor (0.93) and records the figures;
-// the exact hull of 18 views had not finished after 11 minutes of CPU, so its test is disabled
-// until the exact method is fast enough (run it with --gtest_also_run_disabled_tests).
+// the exact hull by corefinement of 18 views had not finished after 11 minutes of CPU, so its
+// test is disabled (run it with --gtest_also_run_disabled_tests); the polyhedral method (the same
+// intersection, cone face by cone face) finishes in about half a second and is tested instead.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
+#include "hull/polyhedral_hull.hpp"
 #include "hull/reprojection.hpp"
 #include "hull/views_io.hpp"
 #include "hull/voxel_hull.hpp"
@@ -47,6 +49,18 @@ TEST(DavidData, VoxelHullReprojectsOntoEveryMask) {
   const std::vector<HullView> views = david_views(folder);
   ASSERT_EQ(views.size(), 18u);
   expect_reprojection(voxel_visual_hull(views, {256}), views, 0.93);
+}
+
+// The polyhedral hull (about 0.5 s): measured min 0.944, median 0.960 when this
+// was written; the floor holds what it reaches, the goal (0.97) is not met yet (the masks
+// disagree at the statue's edges; docs/visual-hull.md).
+TEST(DavidData, PolyhedralHullReprojectsOntoEveryMask) {
+  SYNCAP_REQUIRE_DATA(folder, "silhouettes/david");
+  const std::vector<HullView> views = david_views(folder);
+  ASSERT_EQ(views.size(), 18u);
+  const Mesh hull = polyhedral_visual_hull(views);
+  EXPECT_TRUE(check_mesh(hull).good()) << check_mesh(hull).summary();
+  expect_reprojection(hull, views, 0.94);
 }
 
 TEST(DavidData, DISABLED_ExactHullReprojectsOntoEveryMask) {
