@@ -15,6 +15,7 @@
 #include <numbers>
 
 #include "hull/mesh.hpp"
+#include "hull/polyhedral_hull.hpp"
 #include "hull/voxel_hull.hpp"
 #include "input_error.hpp"
 #include "io/frame_json.hpp"
@@ -139,7 +140,7 @@ void check_mesh_against_body(const Mesh& mesh, const Body& body, double body_vol
 }
 
 // The frame's hull from the true masks through the true cameras, as the host builds it (the
-// edges' contour tolerance, the stage's voxel resolution).
+// edges' contour tolerance, the stage's default method, its voxel fallback).
 constexpr double kReferenceSimplifyPx = 0.5;  // syncap-edge --contour-tolerance's default
 constexpr int kReferenceResolution = 128;     // syncap-host --hull-resolution's default
 
@@ -154,7 +155,11 @@ Mesh reference_hull(const fs::path& truth_dir, long frame,
                          std::to_string(frame) + ")",
                      camera, hull::silhouette_from_mask(*mask, kReferenceSimplifyPx), *mask});
   }
-  return hull::voxel_visual_hull(views, {kReferenceResolution});
+  try {
+    return hull::polyhedral_visual_hull(views);
+  } catch (const hull::HullError&) {
+    return hull::voxel_visual_hull(views, {kReferenceResolution});
+  }
 }
 
 double median(std::vector<double> v) {
@@ -222,11 +227,11 @@ std::string format_hull_checks(const HullChecks& checks, double tolerance_mm) {
              c.volume_ratios.empty() ? 0.0 : *v_max, median(c.view_ious),
              c.view_ious.empty() ? 0.0 : *iou_min, c.view_ious.size()) +
          util::printf_string(
-             "hull reference (the same frames from the true masks, voxel %d, contours %.1f px): "
+             "hull reference (the same frames from the true masks, polyhedral, contours %.1f px): "
              "body surface inside or within %.1f mm: %.2f %% (worst %.1f mm out); volume "
              "hull/body median %.3f\n",
-             kReferenceResolution, kReferenceSimplifyPx, tolerance_mm, 100.0 * r.coverage(),
-             r.worst_miss_mm, median(r.volume_ratios));
+             kReferenceSimplifyPx, tolerance_mm, 100.0 * r.coverage(), r.worst_miss_mm,
+             median(r.volume_ratios));
 }
 
 }  // namespace syncap::compare

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <limits>
 
+#include "hull/polyhedral_hull.hpp"
 #include "hull/reprojection.hpp"
 #include "hull/voxel_hull.hpp"
 #include "syncap/hull_frame_t.hpp"
@@ -35,13 +36,22 @@ bool whole(const host::FrameGroup& group, int camera_id) {
 }  // namespace
 
 std::optional<HullMethod> hull_method_from_name(const std::string& name) {
+  if (name == "polyhedral") return HullMethod::kPolyhedral;
   if (name == "voxel") return HullMethod::kVoxel;
   if (name == "exact") return HullMethod::kExact;
   return std::nullopt;
 }
 
 const char* hull_method_name(HullMethod method) {
-  return method == HullMethod::kExact ? "exact" : "voxel";
+  switch (method) {
+    case HullMethod::kPolyhedral:
+      return "polyhedral";
+    case HullMethod::kExact:
+      return "exact";
+    case HullMethod::kVoxel:
+      break;
+  }
+  return "voxel";
 }
 
 hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette) {
@@ -107,12 +117,7 @@ void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& v
   const auto start = std::chrono::steady_clock::now();
   try {
     if (views.size() < 2) throw hull::HullError("fewer than two silhouettes");
-    hull::HullOptions hull_options;
-    hull_options.volume = options_.volume;
-    const hull::Mesh mesh =
-        options_.method == HullMethod::kExact
-            ? hull::exact_visual_hull(views, hull_options)
-            : hull::voxel_visual_hull(views, {options_.voxel_resolution}, hull_options);
+    const hull::Mesh mesh = hull_of(views, summary);
     summary.hull_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     measure(mesh, views, summary);
@@ -129,6 +134,27 @@ void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& v
     summary.hull_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   stats_.hull_us.add(summary.hull_us);
+}
+
+hull::Mesh HullStage::hull_of(const std::vector<hull::HullView>& views,
+                              pipeline::HullSummary& summary) {
+  hull::HullOptions hull_options;
+  hull_options.volume = options_.volume;
+  if (options_.method == HullMethod::kExact) return hull::exact_visual_hull(views, hull_options);
+  if (options_.method == HullMethod::kPolyhedral) {
+    // An empty intersection is the input's fault: the voxel hull would be empty too. Bad views
+    // (check_views, inside both) fail the voxel hull again and end as FLAG_FAILED.
+    try {
+      return hull::polyhedral_visual_hull(views, hull_options);
+    } catch (const hull::HullError& e) {
+      const std::string what = e.what();
+      if (what.find("empty hull") != std::string::npos) throw;
+      summary.flags |= hull_frame_t::FLAG_FALLBACK;
+      summary.error = "polyhedral: " + what + "; voxel hull instead";
+      ++stats_.fallbacks;
+    }
+  }
+  return hull::voxel_visual_hull(views, {options_.voxel_resolution}, hull_options);
 }
 
 void HullStage::measure(const hull::Mesh& mesh, const std::vector<hull::HullView>& views,
@@ -163,12 +189,12 @@ std::string HullStage::summary() const {
   const HullStageStats& s = stats_;
   const std::vector<double>& us = s.hull_us.values();
   std::string line = util::printf_string(
-      "host hull: %s, %ld frames with silhouettes, %ld hulls (%ld failed a mesh check), %ld "
-      "failed, %ld skipped (waited over %.0f ms), %ld from fewer than 3 cameras, %ld silhouettes "
-      "missing; hull time p50 %.1f ms, p99 %.1f ms\n",
-      hull_method_name(options_.method), s.frames, s.hulls, s.not_closed, s.failed, s.skipped_late,
-      options_.max_wait_ms, s.few_cameras, s.cameras_missing, pipeline::quantile(us, 0.5) * 1e-3,
-      pipeline::quantile(us, 0.99) * 1e-3);
+      "host hull: %s, %ld frames with silhouettes, %ld hulls (%ld failed a mesh check, %ld by "
+      "the voxel fallback), %ld failed, %ld skipped (waited over %.0f ms), %ld from fewer than 3 "
+      "cameras, %ld silhouettes missing; hull time p50 %.1f ms, p99 %.1f ms\n",
+      hull_method_name(options_.method), s.frames, s.hulls, s.not_closed, s.fallbacks, s.failed,
+      s.skipped_late, options_.max_wait_ms, s.few_cameras, s.cameras_missing,
+      pipeline::quantile(us, 0.5) * 1e-3, pipeline::quantile(us, 0.99) * 1e-3);
   if (options_.view_iou)
     line += util::printf_string(
         "host hull: reprojection IoU min %.4f; %ld frames with a view below %.2f\n",

@@ -60,6 +60,7 @@ TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
   EXPECT_EQ(parse({"--hull-method", "octree"}, &err).exit_status, 2);
   EXPECT_NE(err.find("--hull-method"), std::string::npos) << err;
   EXPECT_FALSE(parse({}).options->hull.enabled);
+  EXPECT_EQ(parse({}).options->hull.stage.method, reconstruction::HullMethod::kPolyhedral);
 }
 
 TEST(HostOptions, BadValuesExitTwoNamingTheOption) {

@@ -55,8 +55,20 @@ const PersonScene& scene() {
   return s;
 }
 
+// The person's lowest and highest point [mm].
+std::pair<double, double> person_heights() {
+  double low = 1e300, high = -1e300;
+  const hull::Mesh person = hull::test::person_mesh();
+  for (const hull::Mesh::Vertex_index v : person.vertices()) {
+    low = std::min(low, person.point(v).z());
+    high = std::max(high, person.point(v).z());
+  }
+  return {low, high};
+}
+
 HullStageOptions fast_options() {
   HullStageOptions o;
+  o.method = HullMethod::kVoxel;
   o.voxel_resolution = 64;
   o.view_iou = true;
   o.max_wait_ms = 0;  // a loaded test machine must not skip
@@ -73,10 +85,11 @@ TEST(HullStage, APersonGroupGivesAClosedHullThatReprojectsOntoEverySilhouette) {
   EXPECT_EQ(h.cameras, 8);
   EXPECT_GT(h.vertices, 100u);
   EXPECT_GT(h.faces, h.vertices);
-  // The person: 1.8 m tall standing on z = 0, about 0.5 m wide; its hull a little larger, to
-  // two cells of the grid (about 30 mm at 64 cells) where it is round (feet, head).
-  EXPECT_NEAR(h.min_mm.z(), 0.0, 60.0);
-  EXPECT_NEAR(h.max_mm.z(), 1800.0, 60.0);
+  // The person: 1.8 m tall, about 0.5 m wide; its hull's ends within two cells of the grid
+  // (about 30 mm at 64 cells) of the person's, where it is round (feet, head).
+  const auto [low, high] = person_heights();
+  EXPECT_NEAR(h.min_mm.z(), low, 60.0);
+  EXPECT_NEAR(h.max_mm.z(), high, 60.0);
   EXPECT_GT(h.max_mm.x() - h.min_mm.x(), 300.0);
   EXPECT_LT(h.max_mm.x() - h.min_mm.x(), 1200.0);
   EXPECT_GT(h.volume_mm3, 0.03e9);  // tens of litres
@@ -85,6 +98,44 @@ TEST(HullStage, APersonGroupGivesAClosedHullThatReprojectsOntoEverySilhouette) {
   for (const auto& [camera, iou] : h.view_iou) EXPECT_GT(iou, 0.93) << "camera " << camera;
   EXPECT_GT(h.hull_us, 0.0);
   EXPECT_EQ(stage.stats().hulls, 1);
+}
+
+// The default, exact method: the same person, a closed mesh on the cones' planes, every view's
+// reprojection within a pixel's outline of its silhouette.
+TEST(HullStage, ThePolyhedralHullIsTheDefaultAndReprojectsOntoEverySilhouette) {
+  HullStageOptions o = fast_options();
+  o.method = HullStageOptions{}.method;
+  ASSERT_EQ(o.method, HullMethod::kPolyhedral);
+  HullStage stage(scene().cameras, o);
+  pipeline::FrameWork w = scene().work(12);
+  stage.process(w);
+  ASSERT_TRUE(w.hull.has_value());
+  const pipeline::HullSummary& h = *w.hull;
+  EXPECT_EQ(h.flags, 0) << h.error;
+  EXPECT_EQ(h.cameras, 8);
+  // Its ends where the person's are, to the silhouettes' pixel (about 6 mm there).
+  const auto [low, high] = person_heights();
+  EXPECT_NEAR(h.min_mm.z(), low, 10.0);
+  EXPECT_NEAR(h.max_mm.z(), high, 10.0);
+  for (const auto& [camera, iou] : h.view_iou) EXPECT_GT(iou, 0.96) << "camera " << camera;
+  EXPECT_NE(stage.summary().find("host hull: polyhedral"), std::string::npos);
+}
+
+// A working volume that cuts the person: the polyhedral method refuses (its hull would be open),
+// the voxel hull of the volume stands in, flagged.
+TEST(HullStage, WhereThePolyhedralMethodFailsTheVoxelHullStandsInFlagged) {
+  HullStageOptions o = fast_options();
+  o.method = HullMethod::kPolyhedral;
+  o.volume = hull::WorkingVolume{{0, 0, 900}, 400};
+  HullStage stage(scene().cameras, o);
+  pipeline::FrameWork w = scene().work(9);
+  stage.process(w);
+  ASSERT_TRUE(w.hull.has_value());
+  EXPECT_TRUE(w.hull->flags & hull_frame_t::FLAG_FALLBACK) << w.hull->error;
+  EXPECT_FALSE(w.hull->flags & hull_frame_t::FLAG_FAILED) << w.hull->error;
+  EXPECT_NE(w.hull->error.find("polyhedral: "), std::string::npos) << w.hull->error;
+  EXPECT_GT(w.hull->volume_mm3, 0.0);
+  EXPECT_EQ(stage.stats().fallbacks, 1);
 }
 
 TEST(HullStage, AMissingOrIncompleteSilhouetteLeavesItsCameraOutAndFlagsTheFrame) {
