@@ -9,10 +9,11 @@
 
 namespace syncap::hull {
 
-// 255 where some triangle of the mesh covers the pixel (cv::fillConvexPoly per triangle, at 1/16
-// px). Triangles with a vertex behind the camera or without a pixel are left out. Each
-// triangle's edges are projected as straight lines; the mesh's triangles are small enough for
-// the lens' curvature between their vertices not to matter.
+// 255 where some triangle of the mesh covers the pixel's centre (fill_pixel_centres per
+// triangle: the same rule as rasterize(), so that a hull and a mask compare fairly). Triangles with
+// a vertex behind the camera or without a pixel are left out. Each triangle's edges are projected
+// as straight lines; the mesh's triangles are small enough for the lens' curvature between their
+// vertices not to matter.
 cv::Mat render_mask(const Mesh& mesh, const sensor::CameraModel& camera);
 
 }  // namespace syncap::hull

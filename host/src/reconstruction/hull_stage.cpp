@@ -101,7 +101,7 @@ std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
     const auto found = group.silhouettes.find(camera.id);
     hull::Silhouette silhouette;
     if (found != group.silhouettes.end() && whole(group, camera.id))
-      silhouette = hull_silhouette(found->second);
+      silhouette = hull::on_pixel_edges(hull_silhouette(found->second));
     if (silhouette.empty()) {
       summary.flags |= hull_frame_t::FLAG_CAMERAS_MISSING;
       ++stats_.cameras_missing;

@@ -93,7 +93,8 @@ class HullStage : public pipeline::Stage {
   HullStageStats stats_;
 };
 
-// A silhouette as the edges send it (proto), as the hull takes it.
+// A silhouette as the edges send it (proto: contours through the boundary pixels' centres), as
+// the hull takes it; the stage moves it onto the pixels' edges (hull::on_pixel_edges).
 hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette);
 
 }  // namespace syncap::reconstruction

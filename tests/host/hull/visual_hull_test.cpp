@@ -75,7 +75,10 @@ TEST(VisualHull, SphereFromEightViewsIsAGoodMeshThatReprojectsOntoItsSilhouettes
   EXPECT_EQ(report.components, 1u);
   EXPECT_EQ(report.euler_characteristic, 2);
   EXPECT_GE(min_reprojection_iou(hull, views), 0.99);
-  EXPECT_LT(farthest_outside(sphere, hull), kPixelMm);
+  // A mask holds the pixels whose centres the sphere covers: its outline on the pixels' edges is
+  // within half a pixel of the sphere's, either way; the 1 px simplification cuts up to a pixel
+  // more inside.
+  EXPECT_LT(farthest_outside(sphere, hull), 1.5 * kPixelMm);
   const double truth = CGAL::Polygon_mesh_processing::volume(sphere);
   // Contour pixels are foreground centres: the hull may be half a pixel (0.5 % of the radius,
   // 1.5 % of the volume) inside the rendered outline; eight views leave corners out of it.

@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 #include <filesystem>
+#include <opencv2/imgproc.hpp>
 
 #include "hull/mesh.hpp"
 #include "hull_scenes.hpp"
@@ -17,7 +18,8 @@
 namespace syncap::reconstruction {
 namespace {
 
-// The person's silhouettes from 8 cameras, as integer contour points (what the edges send).
+// The person's silhouettes from 8 cameras as the edges send them: each mask's contours through
+// the boundary pixels' centres (cv::findContours), simplified to 0.5 px (syncap-edge's default).
 struct PersonScene {
   std::vector<sensor::CameraModel> cameras = hull::test::person_cameras();
   std::map<int, proto::Silhouette> silhouettes;
@@ -27,12 +29,16 @@ struct PersonScene {
       s.camera_id = view.camera.id;
       s.image_width = view.camera.sensor.width_px;
       s.image_height = view.camera.sensor.height_px;
-      for (const hull::Contour& c : view.silhouette.contours) {
+      std::vector<std::vector<cv::Point>> traced;
+      std::vector<cv::Vec4i> hierarchy;
+      cv::findContours(view.mask.clone(), traced, hierarchy, cv::RETR_CCOMP,
+                       cv::CHAIN_APPROX_SIMPLE);
+      for (std::size_t i = 0; i < traced.size(); ++i) {
+        std::vector<cv::Point> simplified;
+        cv::approxPolyDP(traced[i], simplified, 0.5, true);
         proto::Contour contour;
-        contour.hole = c.hole;
-        for (const Eigen::Vector2d& p : c.points)
-          contour.points.push_back(
-              {static_cast<int32_t>(std::lround(p.x())), static_cast<int32_t>(std::lround(p.y()))});
+        contour.hole = hierarchy[i][3] >= 0;
+        for (const cv::Point& p : simplified) contour.points.push_back({p.x, p.y});
         s.contours.push_back(contour);
       }
       silhouettes[view.camera.id] = s;
