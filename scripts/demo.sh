@@ -26,11 +26,21 @@ status=0
 hil/netns-run hil/run-slice --build "$build" --out "$out" --frames "$frames" || status=$?
 
 echo "demo: [3/5] replay bench: hil/run ring-6cam-person --short (six fake GigE cameras"
-echo "      triggered through the simulated GPIO chip, six edges, the host; compared with the truth)"
+echo "      triggered through the simulated GPIO chip, six edges segmenting the person, the host"
+echo "      building the person's visual hull live; compared with the truth)"
 bench_status=0
-hil/run ring-6cam-person --short --build "$build" --out "$out/ring-6cam-person" || bench_status=$?
+ring_out=$out/ring-6cam-person
+hil/run ring-6cam-person --short --build "$build" --out "$ring_out" || bench_status=$?
 [ "$bench_status" -eq 77 ] && bench_status=0  # skipped: motion data absent (said above)
 [ "$bench_status" -eq 0 ] || status=$bench_status
+if [ -s "$ring_out/traffic.lcmlog" ]; then
+  echo "      the hulls on SYNCAP_HULL as lcm-logger received them (meshes in $ring_out/hull/):"
+  "$build/bin/syncap" log "$ring_out/traffic.lcmlog" --channel SYNCAP_HULL 2>/dev/null |
+    jq -r 'select(.fields.frame_number % 10 == 5) | .fields as $f
+      | "      frame \($f.frame_number): hull of \($f.cameras) silhouettes, "
+        + "\($f.volume_mm3 / 1e6 | floor) litres, \($f.faces) triangles, built in "
+        + "\($f.hull_us / 1000 | floor) ms, flags \($f.flags)"'
+fi
 
 echo "demo: [4/5] live 3D markers: hil/run markers-8cam-body (eight fake cameras, a wand phase,"
 echo "      then a person wearing 33 markers); the host reconstructs and tracks them live and"
@@ -58,7 +68,8 @@ echo "demo: [5/5] outputs in $out/:"
 echo "      groups.jsonl      one JSON line per frame group the host formed (thin slice)"
 echo "      traffic.lcmlog    all LCM traffic (decode: $build/bin/syncap log $out/traffic.lcmlog)"
 echo "      render/           the slice's rendered frames and truth"
-echo "      ring-6cam-person/ the bench run: render/ (images, truth), groups.jsonl, compare.json, logs"
+echo "      ring-6cam-person/ the bench run: render/ (images, truth), groups.jsonl, compare.json,"
+echo "                        hull/ (the person's hull of every frame, PLY), logs"
 echo "      markers-8cam-body/ the mocap run: offline/ and calibrated/ markers (.jsonl, .c3d, .trc),"
 echo "                        calibration/ (from the run's wand phase), traffic.lcmlog"
 echo "      *.log             each process' own output"
