@@ -7,10 +7,6 @@
 // coordinates, homogeneous, the third row positive in front of it).
 #include "hull/polyhedral_hull.hpp"
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-
 #include <boost/container/small_vector.hpp>
 
 #include <Eigen/Dense>
@@ -24,6 +20,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "hull/nesting_triangulation.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::hull {
@@ -694,34 +691,7 @@ bool clip_ears(const std::vector<Vec2>& pts, std::size_t first, std::size_t coun
   return true;
 }
 
-struct FaceInfo {
-  int nesting = -1;  // loops crossed from the outside; odd = the face's region
-};
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::size_t, Kernel>;
-using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>;
-using Fb = CGAL::Constrained_triangulation_face_base_2<Kernel, Fbi>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-// Exact_predicates_tag: crossing loops (which a consistent face never has) become an extra
-// vertex, detected below, instead of an exception.
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
-
-void mark_level(Cdt& cdt, Cdt::Face_handle start, int level, std::list<Cdt::Edge>& border) {
-  std::list<Cdt::Face_handle> queue{start};
-  while (!queue.empty()) {
-    Cdt::Face_handle f = queue.front();
-    queue.pop_front();
-    if (f->info().nesting != -1) continue;
-    f->info().nesting = level;
-    for (int n = 0; n < 3; ++n) {
-      if (f->neighbor(n)->info().nesting != -1) continue;
-      if (cdt.is_constrained(Cdt::Edge(f, n))) {
-        border.emplace_back(f, n);
-      } else {
-        queue.push_back(f->neighbor(n));
-      }
-    }
-  }
-}
+using nesting::Cdt;
 
 // Loops with holes: CGAL's constrained Delaunay triangulation and nesting levels.
 std::vector<Triangle> triangulate_with_holes(const std::vector<Vec2>& pts,
@@ -739,17 +709,10 @@ std::vector<Triangle> triangulate_with_holes(const std::vector<Vec2>& pts,
       cdt.insert_constraint(handles[n], handles[n + 1 == end ? first : n + 1]);
   }
   if (cdt.number_of_vertices() != pts.size()) throw Degenerate{"a face's loops cross"};
-  std::list<Cdt::Edge> border;
-  mark_level(cdt, cdt.infinite_face(), 0, border);
-  while (!border.empty()) {
-    const Cdt::Edge e = border.front();
-    border.pop_front();
-    Cdt::Face_handle n = e.first->neighbor(e.second);
-    if (n->info().nesting == -1) mark_level(cdt, n, e.first->info().nesting + 1, border);
-  }
+  nesting::mark_nesting(cdt);
   std::vector<Triangle> out;
   for (Cdt::Face_handle f : cdt.finite_face_handles()) {
-    if (f->info().nesting % 2 == 1)
+    if (f->info().inside())
       out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
   }
   return out;

@@ -1,17 +1,16 @@
 #include "hull/viewing_cone.hpp"
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <array>
 #include <list>
 #include <map>
 #include <vector>
+
+#include "hull/nesting_triangulation.hpp"
 
 namespace syncap::hull {
 
@@ -19,50 +18,8 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 namespace {
 
-struct FaceInfo {
-  int nesting = -1;  // contours crossed from the outside; odd = inside the silhouette
-  bool inside() const { return nesting % 2 == 1; }
-};
-
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::size_t, Kernel>;
-using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>;
-using Fb = CGAL::Constrained_triangulation_face_base_2<Kernel, Fbi>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-// Exact_predicates_tag: a simplified contour may cross another or itself; the crossing becomes
-// a vertex instead of an error.
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
-
-// Flood fill from `start` to the constrained edges: the faces of one nesting level (CGAL's
-// polygon-with-holes example).
-void mark_level(Cdt& cdt, Cdt::Face_handle start, int level, std::list<Cdt::Edge>& border) {
-  std::list<Cdt::Face_handle> queue{start};
-  while (!queue.empty()) {
-    Cdt::Face_handle f = queue.front();
-    queue.pop_front();
-    if (f->info().nesting != -1) continue;
-    f->info().nesting = level;
-    for (int i = 0; i < 3; ++i) {
-      Cdt::Face_handle n = f->neighbor(i);
-      if (n->info().nesting != -1) continue;
-      if (cdt.is_constrained(Cdt::Edge(f, i))) {
-        border.emplace_back(f, i);
-      } else {
-        queue.push_back(n);
-      }
-    }
-  }
-}
-
-void mark_nesting(Cdt& cdt) {
-  std::list<Cdt::Edge> border;
-  mark_level(cdt, cdt.infinite_face(), 0, border);
-  while (!border.empty()) {
-    const Cdt::Edge e = border.front();
-    border.pop_front();
-    Cdt::Face_handle n = e.first->neighbor(e.second);
-    if (n->info().nesting == -1) mark_level(cdt, n, e.first->info().nesting + 1, border);
-  }
-}
+using nesting::Cdt;
+using nesting::mark_nesting;
 
 // Ideal image coordinates: the ray's direction in the camera frame, scaled to z' = -1.
 Kernel::Point_2 ideal_point(const sensor::CameraModel& camera, const Eigen::Matrix3d& r_t,
