@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include <string>
 #include "hull/mesh.hpp"
 #include "hull/reprojection.hpp"
 #include "hull/visual_hull.hpp"
@@ -170,6 +171,18 @@ inline std::vector<HullView> views_of(const Mesh& shape,
 }  // namespace syncap::hull::test
 
 namespace syncap::hull::test {
+
+// Whether an error message holds `part`.
+inline bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Hull options with a working volume: the ball of `radius` around the origin.
+inline HullOptions ball_of(double radius) {
+  HullOptions options;
+  options.volume = WorkingVolume{Eigen::Vector3d::Zero(), radius};
+  return options;
+}
 
 // The worst IoU of the hull's reprojection against a view's mask.
 inline double min_reprojection_iou(const Mesh& hull, const std::vector<HullView>& views) {

@@ -12,14 +12,12 @@
 namespace syncap::hull {
 namespace {
 
+using test::ball_of;
+using test::contains;
 using test::min_reprojection_iou;
 using test::ring_cameras;
 using test::sphere_mesh;
 using test::views_of;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 std::string polyhedral_error(const std::vector<HullView>& views, const HullOptions& options = {}) {
   try {
@@ -28,12 +26,6 @@ std::string polyhedral_error(const std::vector<HullView>& views, const HullOptio
     return e.what();
   }
   return "no error";
-}
-
-HullOptions ball_of(double radius) {
-  HullOptions options;
-  options.volume = WorkingVolume{Eigen::Vector3d::Zero(), radius};
-  return options;
 }
 
 // The polyhedral hull of the views is a good mesh of the given topology, the same solid as the

@@ -20,6 +20,8 @@
 namespace syncap::hull {
 namespace {
 
+using test::ball_of;
+using test::contains;
 using test::min_reprojection_iou;
 using test::ring_cameras;
 using test::sphere_mesh;
@@ -42,10 +44,6 @@ double farthest_outside(const Mesh& shape, const Mesh& hull) {
   return worst;
 }
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
 // The message of the HullError the views give, or "no error".
 std::string hull_error(const std::vector<HullView>& views, const HullOptions& options = {}) {
   try {
@@ -54,12 +52,6 @@ std::string hull_error(const std::vector<HullView>& views, const HullOptions& op
     return e.what();
   }
   return "no error";
-}
-
-HullOptions ball_of(double radius) {
-  HullOptions options;
-  options.volume = WorkingVolume{Eigen::Vector3d::Zero(), radius};
-  return options;
 }
 
 // One pixel at the shapes' distance (3 m, 600 px focal length).
