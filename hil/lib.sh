@@ -28,7 +28,7 @@ faketime_library() {
 }
 
 # "FIRST LAST": the frames of the render's first phase when it is a wand phase (the frames a
-# mocap scenario calibrates from); nothing otherwise. hil/run and hil/calibrated-markers.
+# mocap scenario calibrates from); nothing otherwise. hil/run and hil/calibrated.
 wand_phase_frames() {
   awk -F, 'NR > 1 && $3 == 0 && $4 == "wand" { if (first == "") first = $1; last = $1 }
     END { if (first != "") print first, last }' "$1/truth/frames.csv"

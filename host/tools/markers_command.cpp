@@ -12,6 +12,7 @@
 #include "io/trc_writer.hpp"
 #include "outputs/json_lines_stage.hpp"
 #include "pipeline/host_node.hpp"
+#include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
 #include "reconstruction/tracking_stage.hpp"
@@ -36,10 +37,11 @@ struct MarkersArgs {
   std::vector<double> volume;
   int max_lag = 30;
   host_app::TrackingArgs tracking;
+  host_app::HullArgs hull;
 };
 
 // Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
-bool feed(pipeline::HostNode& node, const io::LogEvent& e, long& rejected) {
+bool feed(pipeline::HostNode& node, const io::LogEvent& e, bool silhouettes, long& rejected) {
   const auto decode_into = [&](auto& msg) {
     return proto::try_decode(e.data.data(), e.data.size(), msg).ok();
   };
@@ -51,8 +53,12 @@ bool feed(pipeline::HostNode& node, const io::LogEvent& e, long& rejected) {
              e.channel.starts_with(proto::kBlobChannelPrefix)) {
     blob_frame_t f;
     ok = decode_into(f) && node.on_blob_part(f, e.channel);
+  } else if (silhouettes && proto::camera_of_channel(e.channel) &&
+             e.channel.starts_with(proto::kSilhouetteChannelPrefix)) {
+    silhouette_part_t p;
+    ok = decode_into(p) && node.on_silhouette_part(p, e.channel);
   } else {
-    return true;  // statuses, silhouettes, commands: not needed for markers
+    return true;  // statuses, commands (and silhouettes without --hull): not needed
   }
   if (!ok) ++rejected;
   return ok;
@@ -63,7 +69,9 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   CLI::App app(
       "Reconstructs and tracks the 3D markers of every frame of a recorded LCM log, as "
       "syncap-host --calibration does live, into DIR/markers.jsonl, and exports the "
-      "trajectories to DIR/markers.c3d and DIR/markers.trc (docs/reconstruction.md).",
+      "trajectories to DIR/markers.c3d and DIR/markers.trc (docs/reconstruction.md); with "
+      "--hull, the person's visual hull of every frame from the recorded silhouettes too "
+      "(docs/visual-hull.md).",
       kName);
   app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
   app.add_option("--calibration", a.calibration, "cameras.json")
@@ -76,6 +84,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
       ->expected(6);
   host_app::add_marker_options(app, a.markers);
   host_app::add_tracking_options(app, a.tracking);
+  a.hull.stage.max_wait_ms = 0;  // offline: every frame gets its hull, however long it took
+  host_app::add_hull_options(app, a.hull);
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
@@ -161,13 +171,19 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
     rigid = stage.get();
     stages.push_back(std::move(stage));
   }
+  const reconstruction::HullStage* hull = nullptr;
+  if (a.hull.enabled) {
+    auto stage = std::make_unique<reconstruction::HullStage>(cameras, a.hull.stage);
+    hull = stage.get();
+    stages.push_back(std::move(stage));
+  }
   stages.push_back(std::make_unique<outputs::JsonLinesStage>(jsonl, true));
   pipeline::HostNode node({expected_cameras(a, cameras), a.max_lag, 1'000'000}, std::move(stages));
   io::LcmLogReader reader(log);
   long rejected = 0;
   bool damaged = false;
   while (const auto event = reader.next()) {
-    feed(node, *event, rejected);
+    feed(node, *event, a.hull.enabled, rejected);
     node.poll();
     for (const io::LogError& e : reader.take_errors()) {
       err << kName << ": " << e.message << '\n';
@@ -186,6 +202,7 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
       << "markers.trc)\n";
   out << kName << ": " << host_app::host_time_line(s);
   if (rigid != nullptr) out << rigid->summary();
+  if (hull != nullptr) out << hull->summary();
   return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;
 }
 

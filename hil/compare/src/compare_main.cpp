@@ -186,8 +186,16 @@ bool check_markers(const Options& o, const syncap::compare::Truth& truth,
 // true masks' hulls) checks the method: it must cover the body to --min-hull-coverage too.
 bool check_hulls(const Options& o) {
   if (o.hull.meshes.empty()) return true;
+  std::optional<syncap::compare::Similarity> to_truth;
+  if (!o.cameras.empty()) {
+    to_truth = syncap::compare::fit_to_truth(
+        syncap::sensor::read_cameras(std::filesystem::path(o.truth) / "cameras.json"),
+        syncap::sensor::read_cameras(o.cameras), false);
+    std::cout << "hulls moved into the truth's frame by the rigid motion of " << o.cameras
+              << "'s projection centres onto the true ones\n";
+  }
   const auto checks =
-      syncap::compare::check_hulls(o.truth, o.groups, o.hull.meshes, o.hull.tolerance_mm);
+      syncap::compare::check_hulls(o.truth, o.groups, o.hull.meshes, o.hull.tolerance_mm, to_truth);
   std::cout << syncap::compare::format_hull_checks(checks, o.hull.tolerance_mm);
   const auto& live = checks.live;
   const double min_iou = live.view_ious.empty()

@@ -162,6 +162,14 @@ Mesh reference_hull(const fs::path& truth_dir, long frame,
   }
 }
 
+void move_mesh(Mesh& mesh, const Similarity& motion) {
+  for (const auto v : vertices(mesh)) {
+    const Point3& p = mesh.point(v);
+    const Eigen::Vector3d moved = motion.apply({p.x(), p.y(), p.z()});
+    mesh.point(v) = Point3(moved.x(), moved.y(), moved.z());
+  }
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
@@ -175,7 +183,8 @@ double HullCheck::coverage() const {
 }
 
 HullChecks check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
-                       const fs::path& mesh_dir, double tolerance_mm) {
+                       const fs::path& mesh_dir, double tolerance_mm,
+                       const std::optional<Similarity>& to_truth) {
   const std::map<long, Body> bodies = read_bodies(truth_dir / "truth" / "body.jsonl");
   const std::vector<sensor::CameraModel> cameras = sensor::read_cameras(truth_dir / "cameras.json");
   std::vector<io::FrameRecord> records;
@@ -199,7 +208,9 @@ HullChecks check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
     if (!fs::exists(file)) continue;  // meshes every N frames only
     try {
       const double volume = body_volume(body->second);
-      check_mesh_against_body(hull::read_mesh(file), body->second, volume, tolerance_mm, check);
+      Mesh mesh = hull::read_mesh(file);
+      if (to_truth) move_mesh(mesh, *to_truth);
+      check_mesh_against_body(mesh, body->second, volume, tolerance_mm, check);
       ++checks.reference.frames;
       check_mesh_against_body(reference_hull(truth_dir, static_cast<long>(r.frame), cameras),
                               body->second, volume, tolerance_mm, checks.reference);

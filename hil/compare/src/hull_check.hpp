@@ -5,14 +5,17 @@
 // point is inside the hull or within the tolerance of its surface. The hull's volume is compared
 // with the body's (the union of the ellipsoids, sampled on a grid), and the hull's reprojection
 // IoU per view (what the host measured against the edges' silhouettes, --hull-iou) is gathered.
-// The same frames' hulls built from the true masks (voxel method, the host's defaults) give the
-// reference: what the method holds when the silhouettes are right, so that a shortfall of the
-// live hull is told apart from one of the segmentation.
+// The same frames' hulls built from the true masks (polyhedral, the voxel hull where it fails,
+// as the host builds them) give the reference: what the method holds when the silhouettes are
+// right, so that a shortfall of the live hull is told apart from one of the segmentation.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "calibration_check.hpp"
 
 namespace syncap::compare {
 
@@ -33,10 +36,14 @@ struct HullChecks {
   HullCheck reference;  // the same frames' hulls from the true masks
 };
 
-// Throws InputError naming the file (and line) that cannot be read.
+// `to_truth`: for hulls measured through a calibration (syncap markers --hull --calibration),
+// the motion of that calibration's frame onto the truth's (fit_to_truth), applied to every
+// mesh before it is scored; the reference hulls use the true cameras. Throws InputError naming
+// the file (and line) that cannot be read.
 HullChecks check_hulls(const std::filesystem::path& truth_dir,
                        const std::filesystem::path& groups_file,
-                       const std::filesystem::path& mesh_dir, double tolerance_mm);
+                       const std::filesystem::path& mesh_dir, double tolerance_mm,
+                       const std::optional<Similarity>& to_truth = std::nullopt);
 
 // "hull: N frames, M meshes, coverage ..., volume ratio ..., reprojection IoU ...\n" and the
 // reference's line.

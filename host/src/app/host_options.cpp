@@ -97,7 +97,6 @@ void add_hull_options(CLI::App& app, HullArgs& args) {
                      cli::number_text(stage.min_view_iou) + ")")
       ->check(cli::number_in(0, 1));
   app.add_option("--hull-meshes", stage.mesh_dir, "write every hull as DIR/hull_<frame>.ply");
-  app.add_flag("!--no-hull-message", args.message, "do not publish hull_frame_t");
 }
 
 void load_rigid_sets(TrackingArgs& args) {
@@ -146,6 +145,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   add_tracking_options(app, o.tracking);
   app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
   add_hull_options(app, o.hull);
+  app.add_flag("!--no-hull-message", o.hull.message, "do not publish hull_frame_t");
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ struct MarkerArgs {
 struct HullArgs {
   bool enabled = false;  // --hull
   reconstruction::HullStageOptions stage;
-  bool message = true;  // publish hull_frame_t on SYNCAP_HULL
+  bool message = true;  // publish hull_frame_t on SYNCAP_HULL (syncap-host's --no-hull-message)
 };
 
 struct HostOptions {
@@ -65,8 +65,7 @@ void add_tracking_options(CLI::App& app, TrackingArgs& args);
 // --partial-spot-min-rays on `app`; syncap-host and syncap markers share them.
 void add_marker_options(CLI::App& app, MarkerArgs& args);
 // --hull, --hull-method, --hull-resolution, --hull-every, --hull-max-wait-ms, --hull-iou,
-// --hull-min-iou,
-// --hull-meshes and --no-hull-message on `app`.
+// --hull-min-iou and --hull-meshes on `app`; syncap-host and syncap markers share them.
 void add_hull_options(CLI::App& app, HullArgs& args);
 // Reads args.rigid_sets_path, if given, into args.rigid_sets; CLI::ValidationError naming
 // --rigid-sets with the file's "path:line: problem" when it cannot be used.
