@@ -53,6 +53,8 @@ SilhouetteTally compare_silhouette(const Truth& truth, long frame, int camera,
   ++tally.received;
   const cv::Mat mask = silhouette_mask(*received.silhouette, image->second);
   if (const auto iou = intersection_over_union(mask, *true_mask)) tally.iou.add(*iou);
+  if (const int true_area = cv::countNonZero(*true_mask); true_area > 0)
+    tally.area_ratio.add(static_cast<double>(cv::countNonZero(mask)) / true_area);
   return tally;
 }
 

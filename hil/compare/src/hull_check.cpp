@@ -34,6 +34,7 @@ constexpr int kPointsPerEllipsoid = 400;
 constexpr double kVolumeStepMm = 10.0;  // the true volume's sampling grid
 
 struct Ellipsoid {
+  std::string segment;  // the body segment's name ("" in renders from before it was written)
   Eigen::Vector3d centre;
   Eigen::Matrix3d axes;  // columns: unit axes
   Eigen::Vector3d radii;
@@ -58,7 +59,7 @@ std::map<long, Body> read_bodies(const fs::path& file) {
       const nlohmann::json j = nlohmann::json::parse(line);
       Body& body = bodies[j.at("frame").get<long>()];
       for (const nlohmann::json& e : j.at("ellipsoids")) {
-        Ellipsoid el{vector_at(e.at("centre_mm")), Eigen::Matrix3d::Zero(),
+        Ellipsoid el{e.value("segment", ""), vector_at(e.at("centre_mm")), Eigen::Matrix3d::Zero(),
                      vector_at(e.at("radii_mm"))};
         for (int c = 0; c < 3; ++c) el.axes.col(c) = vector_at(e.at("axes").at(c));
         body.push_back(el);
@@ -70,10 +71,15 @@ std::map<long, Body> read_bodies(const fs::path& file) {
   return bodies;
 }
 
+struct SurfacePoint {
+  Eigen::Vector3d x;
+  std::size_t ellipsoid;
+};
+
 // Points spread evenly over each ellipsoid (a Fibonacci sphere, stretched), kept where they are
 // on the body's outer surface: not inside another ellipsoid, not below the floor (z = 0).
-std::vector<Eigen::Vector3d> surface_points(const Body& body) {
-  std::vector<Eigen::Vector3d> points;
+std::vector<SurfacePoint> surface_points(const Body& body) {
+  std::vector<SurfacePoint> points;
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   for (std::size_t e = 0; e < body.size(); ++e) {
     for (int i = 0; i < kPointsPerEllipsoid; ++i) {
@@ -83,7 +89,7 @@ std::vector<Eigen::Vector3d> surface_points(const Body& body) {
       bool covered = x.z() < 0.0;
       for (std::size_t o = 0; o < body.size() && !covered; ++o)
         covered = o != e && body[o].contains(x);
-      if (!covered) points.push_back(x);
+      if (!covered) points.push_back({x, e});
     }
   }
   return points;
@@ -124,7 +130,7 @@ void check_mesh_against_body(const Mesh& mesh, const Body& body, double body_vol
   Tree tree(faces(mesh).first, faces(mesh).second, mesh);
   tree.accelerate_distance_queries();
   const CGAL::Side_of_triangle_mesh<Mesh, hull::Kernel> side(tree);
-  for (const Eigen::Vector3d& x : surface_points(body)) {
+  for (const auto& [x, e] : surface_points(body)) {
     const Point3 p(x.x(), x.y(), x.z());
     ++check.surface_points;
     if (side(p) != CGAL::ON_UNBOUNDED_SIDE) {
@@ -133,7 +139,11 @@ void check_mesh_against_body(const Mesh& mesh, const Body& body, double body_vol
     }
     const double miss = std::sqrt(tree.squared_distance(p));
     check.worst_miss_mm = std::max(check.worst_miss_mm, miss);
-    if (miss <= tolerance_mm) ++check.covered_points;
+    if (miss <= tolerance_mm)
+      ++check.covered_points;
+    else
+      ++check
+            .missed_by_segment[body[e].segment.empty() ? "#" + std::to_string(e) : body[e].segment];
   }
   const double volume = CGAL::Polygon_mesh_processing::volume(mesh);
   check.volume_ratios.push_back(volume / body_volume_mm3);
@@ -223,6 +233,27 @@ HullChecks check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
   return checks;
 }
 
+namespace {
+
+// "; missed most on NAME (share of the misses), ..." for the three segments with most misses.
+std::string worst_segments(const HullCheck& c) {
+  std::vector<std::pair<long, std::string>> ranked;
+  long total = 0;
+  for (const auto& [segment, n] : c.missed_by_segment) {
+    ranked.emplace_back(n, segment);
+    total += n;
+  }
+  if (total == 0) return "";
+  std::ranges::sort(ranked, std::greater{});
+  std::string text = "; missed most on";
+  for (std::size_t i = 0; i < ranked.size() && i < 3; ++i)
+    text += util::printf_string("%s %s (%.0f %%)", i == 0 ? "" : ",", ranked[i].second.c_str(),
+                                100.0 * ranked[i].first / total);
+  return text;
+}
+
+}  // namespace
+
 std::string format_hull_checks(const HullChecks& checks, double tolerance_mm) {
   const HullCheck& c = checks.live;
   const HullCheck& r = checks.reference;
@@ -232,17 +263,17 @@ std::string format_hull_checks(const HullChecks& checks, double tolerance_mm) {
              "hull: %ld frames with a true body, %ld hulls checked, %ld failed; body surface "
              "inside or within %.1f mm: %.2f %% of %ld points (worst %.1f mm out); volume "
              "hull/body median %.3f (%.3f..%.3f); reprojection IoU against the edges' "
-             "silhouettes median %.4f, min %.4f over %zu views\n",
+             "silhouettes median %.4f, min %.4f over %zu views%s\n",
              c.frames, c.meshes, c.failed, tolerance_mm, 100.0 * c.coverage(), c.surface_points,
              c.worst_miss_mm, median(c.volume_ratios), c.volume_ratios.empty() ? 0.0 : *v_min,
              c.volume_ratios.empty() ? 0.0 : *v_max, median(c.view_ious),
-             c.view_ious.empty() ? 0.0 : *iou_min, c.view_ious.size()) +
+             c.view_ious.empty() ? 0.0 : *iou_min, c.view_ious.size(), worst_segments(c).c_str()) +
          util::printf_string(
              "hull reference (the same frames from the true masks, polyhedral, contours %.1f px): "
              "body surface inside or within %.1f mm: %.2f %% (worst %.1f mm out); volume "
-             "hull/body median %.3f\n",
+             "hull/body median %.3f%s\n",
              kReferenceSimplifyPx, tolerance_mm, 100.0 * r.coverage(), r.worst_miss_mm,
-             median(r.volume_ratios));
+             median(r.volume_ratios), worst_segments(r).c_str());
 }
 
 }  // namespace syncap::compare

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,9 +26,10 @@ struct HullCheck {
   long failed = 0;  // hull records flagged FAILED
   long surface_points = 0;
   long covered_points = 0;
-  double worst_miss_mm = 0;           // the farthest body point outside a hull
-  std::vector<double> volume_ratios;  // hull / true body, per mesh
-  std::vector<double> view_ious;      // every view of every hull record with IoUs
+  double worst_miss_mm = 0;                       // the farthest body point outside a hull
+  std::map<std::string, long> missed_by_segment;  // points beyond the tolerance, by segment
+  std::vector<double> volume_ratios;              // hull / true body, per mesh
+  std::vector<double> view_ious;                  // every view of every hull record with IoUs
   double coverage() const;
 };
 

@@ -91,6 +91,7 @@ SilhouetteTally& SilhouetteTally::operator+=(const SilhouetteTally& other) {
   expected += other.expected;
   received += other.received;
   iou += other.iou;
+  area_ratio += other.area_ratio;
   return *this;
 }
 

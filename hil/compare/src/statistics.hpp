@@ -68,6 +68,9 @@ struct SilhouetteTally {
   long expected = 0;  // (frame, camera) with a true mask whose group holds the camera
   long received = 0;  // of those, with a silhouette from the camera
   Samples iou;        // IoU of each received silhouette whose mask or truth is not empty
+  // Its area over the true mask's (when that is not empty): below 1, the edge's silhouettes
+  // lose the person's outline (too thin), above 1 they take in background (shadow).
+  Samples area_ratio;
 
   SilhouetteTally& operator+=(const SilhouetteTally& other);
 };

@@ -71,12 +71,15 @@ std::string phase_table(const Report& r) {
 // Only when the truth has masks (person phases).
 std::string silhouette_table(const Report& r) {
   if (r.overall.silhouettes.expected == 0) return "";
-  std::string out = "silhouettes (frames with a true mask; IoU against it):\n";
-  out += printf_string("  %-6s %8s %8s %8s %8s %8s\n", "camera", "masks", "received", "iou_mean",
-                       "iou_min", "iou_max");
+  std::string out =
+      "silhouettes (frames with a true mask; IoU against it; area: the silhouette's over the "
+      "true mask's, mean):\n";
+  out += printf_string("  %-6s %8s %8s %8s %8s %8s %8s\n", "camera", "masks", "received",
+                       "iou_mean", "iou_min", "iou_max", "area");
   auto row = [](const std::string& name, const SilhouetteTally& s) {
     return printf_string("  %-6s %8ld %8ld", name.c_str(), s.expected, s.received) +
-           cell(s.iou.mean(), 8, 4) + cell(s.iou.min(), 8, 4) + cell(s.iou.max(), 8, 4) + "\n";
+           cell(s.iou.mean(), 8, 4) + cell(s.iou.min(), 8, 4) + cell(s.iou.max(), 8, 4) +
+           cell(s.area_ratio.mean(), 8, 4) + "\n";
   };
   for (const auto& [id, c] : r.cameras) out += row(std::to_string(id), c.silhouettes);
   return out + row("all", r.overall.silhouettes);
@@ -132,7 +135,8 @@ ordered_json silhouettes_json(const SilhouetteTally& s) {
           {"received", s.received},
           {"iou_mean", optional_json(s.iou.mean())},
           {"iou_min", optional_json(s.iou.min())},
-          {"iou_max", optional_json(s.iou.max())}};
+          {"iou_max", optional_json(s.iou.max())},
+          {"area_ratio_mean", optional_json(s.area_ratio.mean())}};
 }
 
 ordered_json camera_json(int id, const CameraReport& c) {

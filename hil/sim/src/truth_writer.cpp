@@ -82,11 +82,14 @@ void TruthWriter::write(const FrameState& st, const std::vector<RenderedView>& v
   if (st.body.ellipsoids.empty()) return;
   nlohmann::json line{{"frame", st.frame}};
   for (const auto& [name, p] : st.body.joints) line["joints"][name] = vec(p);
-  for (const Ellipsoid& e : st.body.ellipsoids) {
+  for (std::size_t i = 0; i < st.body.ellipsoids.size(); ++i) {
+    const Ellipsoid& e = st.body.ellipsoids[i];
     const Eigen::Matrix3d& a = e.axes;
-    line["ellipsoids"].push_back({{"centre_mm", vec(e.centre_mm)},
-                                  {"axes", {vec(a.col(0)), vec(a.col(1)), vec(a.col(2))}},
-                                  {"radii_mm", vec(e.radii_mm)}});
+    nlohmann::json ellipsoid{{"centre_mm", vec(e.centre_mm)},
+                             {"axes", {vec(a.col(0)), vec(a.col(1)), vec(a.col(2))}},
+                             {"radii_mm", vec(e.radii_mm)}};
+    if (i < st.body.segments.size()) ellipsoid["segment"] = st.body.segments[i];
+    line["ellipsoids"].push_back(std::move(ellipsoid));
   }
   body_ << line.dump() << "\n";
 }
