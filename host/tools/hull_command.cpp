@@ -34,8 +34,10 @@ constexpr const char* kDescription =
     "usage: syncap hull --cameras FILE|DIR --masks DIR --out DIR [options]\n"
     "The visual hull of one mask per camera: the exact intersection of the silhouettes' viewing\n"
     "cones (CGAL corefinement, or the polyhedral method: the same solid face by face, fast) or\n"
-    "the voxel baseline. Cameras: cameras.json (its cameras in file\n"
-    "order) or a folder of 3x4 projection matrices (*.pa, name order, no distortion). Masks: the\n"
+    "the voxel baseline. Cameras: cameras.json (its cameras in file order), an OpenCV-style\n"
+    "YAML or JSON file (a sequence 'cameras', each with K, distortion k1 k2 p1 p2 [k3], R or\n"
+    "rvec, t, image_size; docs/visual-hull.md) or a folder of 3x4 projection matrices (*.pa,\n"
+    "name order, no distortion). Masks: the\n"
     "image files of DIR in name order, one per camera; foreground is any non-zero pixel, or grey\n"
     "> N with --threshold N. Writes DIR/hull.ply and DIR/hull.obj; prints each view's IoU of the\n"
     "hull's reprojection against its mask, the mesh's checks, volume, area and time.\n";
@@ -45,7 +47,9 @@ constexpr const char* kFooter =
     "(named: file, camera).";
 
 void add_hull_options(CLI::App& app, HullArgs& a) {
-  app.add_option("--cameras", a.cameras, "cameras.json, or a folder of *.pa projection matrices")
+  app.add_option("--cameras", a.cameras,
+                 "cameras.json, an OpenCV-style .yaml/.yml/.json, or a folder of *.pa projection "
+                 "matrices")
       ->option_text("FILE|DIR")
       ->required();
   app.add_option("--masks", a.masks, "the folder of mask images, one per camera in name order")

@@ -1,16 +1,21 @@
 // `syncap hull`: a synthetic sphere seen by four cameras from files (cameras.json and PNG
-// masks) gives hull.ply and hull.obj and a good IoU per view; bad files are named.
+// masks) gives hull.ply and hull.obj and a good IoU per view; bad files are named. OpenCV-style
+// camera files (YAML, JSON) with lens distortion give the hull of the ideal cameras.
 #include "hull_command.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "help_check.hpp"
 #include "hull/hull_scenes.hpp"
 #include "sensor/camera_file.hpp"
+#include "sensor/opencv_camera.hpp"
 #include "subcommand.hpp"
 
 namespace syncap::tools {
@@ -94,6 +99,124 @@ TEST_F(HullCommand, AMaskOfTheWrongSizeIsNamed) {
   EXPECT_EQ(r.status, kExitUsage);
   EXPECT_NE(r.err.find("cam01.png): mask is 320x240, the camera's image 640x480"),
             std::string::npos)
+      << r.err;
+}
+
+// The volume `syncap hull` prints ("volume V, area").
+double printed_volume(const std::string& out) {
+  const auto at = out.find(", volume ");
+  return at == std::string::npos ? -1.0 : std::stod(out.substr(at + 9));
+}
+
+// The ring cameras as OpenCV cameras with a strong lens (k1 -0.2: some 30 px at the corners),
+// and each one's view of the sphere through that lens: the ideal mask warped by OpenCV's model.
+class OpenCvHullCommand : public HullCommand {
+ protected:
+  void SetUp() override {
+    HullCommand::SetUp();
+    fs::create_directories(dir_ / "lens_masks");
+    for (const sensor::CameraModel& camera : hull::test::ring_cameras(4)) {
+      sensor::OpenCvCamera c = sensor::opencv_from_camera(camera);
+      c.distortion = {-0.2, 0.05, 0.001, -0.0005, 0.0};
+      const cv::Mat ideal =
+          cv::imread((dir_ / "masks" / ("cam0" + std::to_string(camera.id) + ".png")).string(),
+                     cv::IMREAD_GRAYSCALE);
+      cv::imwrite((dir_ / "lens_masks" / ("cam0" + std::to_string(camera.id) + ".png")).string(),
+                  through_lens(ideal, c));
+      cameras_.push_back(c);
+    }
+  }
+  // Each pixel of the distorted image shows what its ideal pixel shows.
+  static cv::Mat through_lens(const cv::Mat& ideal, const sensor::OpenCvCamera& c) {
+    std::vector<cv::Point2f> pixels, ideal_pixels;
+    for (int v = 0; v < ideal.rows; ++v)
+      for (int u = 0; u < ideal.cols; ++u) pixels.emplace_back(u, v);
+    cv::undistortPoints(pixels, ideal_pixels, c.camera_matrix, c.distortion, cv::noArray(),
+                        c.camera_matrix);
+    cv::Mat map(ideal.size(), CV_32FC2, ideal_pixels.data());
+    cv::Mat distorted;
+    cv::remap(ideal, distorted, map, cv::noArray(), cv::INTER_NEAREST);
+    return distorted;
+  }
+  // YAML with plain sequences, as a user writes it by hand; `distortion` false leaves it out.
+  void write_yaml(const fs::path& file, bool distortion) const {
+    std::ofstream out(file);
+    out << "%YAML:1.0\ncameras:\n";
+    for (const sensor::OpenCvCamera& c : cameras_) {
+      const auto list = [](const double* v, int n) {
+        std::string text = "[";
+        for (int i = 0; i < n; ++i) text += (i ? ", " : "") + std::to_string(v[i]);
+        return text + "]";
+      };
+      cv::Matx33d r;
+      cv::Rodrigues(c.rvec, r);
+      out << "  - image_size: [" << c.image_size.width << ", " << c.image_size.height << "]\n"
+          << "    K: " << list(c.camera_matrix.val, 9) << "\n"
+          << "    R: " << list(r.val, 9) << "\n"
+          << "    t: " << list(c.tvec.val, 3) << "\n";
+      if (distortion) out << "    distortion: " << list(c.distortion.val, 5) << "\n";
+    }
+  }
+  std::vector<std::string> lens_args(const fs::path& cameras) const {
+    return {"--cameras", cameras.string(),        "--masks",  (dir_ / "lens_masks").string(),
+            "--out",     (dir_ / "out").string(), "--method", "polyhedral"};
+  }
+  std::vector<sensor::OpenCvCamera> cameras_;
+};
+
+TEST_F(OpenCvHullCommand, YamlAndJsonCamerasWithTheirLensGiveTheIdealCamerasHull) {
+  const HullRun ideal = run(args("polyhedral"));
+  ASSERT_EQ(ideal.status, kExitOk) << ideal.err;
+  write_yaml(dir_ / "cameras.yaml", true);
+  const HullRun yaml = run(lens_args(dir_ / "cameras.yaml"));
+  ASSERT_EQ(yaml.status, kExitOk) << yaml.err;
+  EXPECT_NE(yaml.out.find("reprojection IoU: min 0.99"), std::string::npos) << yaml.out;
+  EXPECT_NEAR(printed_volume(yaml.out), printed_volume(ideal.out),
+              0.01 * printed_volume(ideal.out));
+  // The same cameras written by cv::FileStorage as JSON, K and R as OpenCV matrices, R as rvec.
+  {
+    cv::FileStorage json((dir_ / "cameras.json.tmp").string(),
+                         cv::FileStorage::WRITE | cv::FileStorage::FORMAT_JSON);
+    json << "cameras"
+         << "[";
+    for (const sensor::OpenCvCamera& c : cameras_) {
+      json << "{"
+           << "camera_matrix" << cv::Mat(c.camera_matrix) << "dist_coeffs" << cv::Mat(c.distortion)
+           << "rvec" << cv::Mat(c.rvec) << "tvec" << cv::Mat(c.tvec) << "image_width"
+           << c.image_size.width << "image_height" << c.image_size.height << "}";
+    }
+    json << "]";
+  }
+  fs::rename(dir_ / "cameras.json.tmp", dir_ / "opencv.json");
+  const HullRun json = run(lens_args(dir_ / "opencv.json"));
+  ASSERT_EQ(json.status, kExitOk) << json.err;
+  EXPECT_NEAR(printed_volume(json.out), printed_volume(yaml.out), 1e-6 * printed_volume(yaml.out));
+  // The lens matters: the same masks taken as ideal (k1 < 0 draws the outline inwards) give a
+  // smaller hull.
+  write_yaml(dir_ / "no_lens.yaml", false);
+  const HullRun no_lens = run(lens_args(dir_ / "no_lens.yaml"));
+  EXPECT_LT(printed_volume(no_lens.out), 0.99 * printed_volume(ideal.out)) << no_lens.out;
+}
+
+TEST_F(OpenCvHullCommand, ABrokenCameraFileNamesCameraAndField) {
+  write_yaml(dir_ / "cameras.yaml", true);
+  std::string text;
+  {
+    std::ifstream in(dir_ / "cameras.yaml");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto second_k = text.find("K:", text.find("K:") + 1);
+  std::ofstream(dir_ / "broken.yaml")
+      << text.substr(0, second_k) << "Kx" << text.substr(second_k + 1);
+  HullRun r = run(lens_args(dir_ / "broken.yaml"));
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("broken.yaml: camera 1: K is missing"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "short.yaml") << "%YAML:1.0\ncameras:\n  - image_size: [640, 480]\n"
+                                        "    K: [600, 0, 320, 0, 600, 240, 0, 0, 1]\n"
+                                        "    R: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n    t: [0, 0]\n";
+  r = run(lens_args(dir_ / "short.yaml"));
+  EXPECT_EQ(r.status, kExitUsage);
+  EXPECT_NE(r.err.find("short.yaml: camera 0: t must hold 3 finite numbers"), std::string::npos)
       << r.err;
 }
 

@@ -1,5 +1,5 @@
-// Reading a hull's input from files: cameras (our cameras.json, or a folder of 3x4 projection
-// matrices, `*.pa`) and one mask image per camera.
+// Reading a hull's input from files: cameras (our cameras.json, an OpenCV-style YAML or JSON
+// file, or a folder of 3x4 projection matrices, `*.pa`) and one mask image per camera.
 #pragma once
 
 #include <filesystem>
@@ -25,9 +25,11 @@ std::vector<std::filesystem::path> mask_files(const std::filesystem::path& folde
 // A 3x4 projection matrix file: 12 numbers, row by row (x_pixel ~ P (X, 1)).
 cv::Matx34d read_projection_matrix(const std::filesystem::path& file);
 
-// The views of `cameras` (cameras.json: its cameras in file order; a folder: its *.pa files in
-// name order, cameras without distortion of the masks' size) with the masks of `masks` in name
-// order, one per camera. Throws HullError naming the file: unreadable, a count that differs, a
+// The views of `cameras` (cameras.json: its cameras in file order; an OpenCV-style file, .yaml,
+// .yml or .json with K: its `cameras` in order, each view in ideal pixels: contour vertices
+// undistorted by OpenCV's model, the mask resampled; a folder: its *.pa files in name order,
+// cameras without distortion of the masks' size) with the masks of `masks` in name order, one
+// per camera. Throws HullError naming the file: unreadable, a count that differs, a
 // mask of the wrong size, an empty mask.
 std::vector<HullView> read_views(const std::filesystem::path& cameras,
                                  const std::filesystem::path& masks, const ViewFiles& options);
