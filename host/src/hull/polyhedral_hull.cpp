@@ -431,9 +431,6 @@ std::optional<Face> make_face(const Assembly& as, int i, int k) {
 
 // Whether a domain point projects inside every other view's silhouette. A point inside them all
 // but beyond a cone's truncation means the working volume cuts the hull: an error, since the
-// caps of one view are no boundary candidates in the other views' faces.
-// Whether a domain point projects inside every other view's silhouette. A point inside them all
-// but beyond a cone's truncation means the working volume cuts the hull: an error, since the
 // caps of one view are no boundary candidates in the other views' faces. The view that rejected
 // the last point is tried first (neighbouring pieces tend to leave by the same cone).
 bool inside_other_cones(const Assembly& as, const Face& f, const Vec2& p, int except) {
@@ -841,10 +838,7 @@ Mesh polyhedral_visual_hull(const std::vector<HullView>& views, const HullOption
   const auto start = std::chrono::steady_clock::now();
   PolyhedralStats local;
   PolyhedralStats& s = stats != nullptr ? *stats : local;
-  if (views.empty()) throw HullError("no views");
-  s.volume =
-      options.volume ? *options.volume : estimate_working_volume(views, options.volume_margin);
-  check_views(views, s.volume);
+  s.volume = checked_working_volume(views, options);
   if (views.size() < 2) throw HullError("the polyhedral hull needs at least two views");
   for (unsigned attempt = 0;; ++attempt) {
     try {

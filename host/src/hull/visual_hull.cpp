@@ -191,14 +191,20 @@ void check_views(const std::vector<HullView>& views, const WorkingVolume& volume
   }
 }
 
+WorkingVolume checked_working_volume(const std::vector<HullView>& views,
+                                     const HullOptions& options) {
+  if (views.empty()) throw HullError("no views");
+  const WorkingVolume volume =
+      options.volume ? *options.volume : estimate_working_volume(views, options.volume_margin);
+  check_views(views, volume);
+  return volume;
+}
+
 Mesh exact_visual_hull(const std::vector<HullView>& views, const HullOptions& options,
                        HullStats* stats) {
   HullStats local;
   HullStats& s = stats != nullptr ? *stats : local;
-  if (views.empty()) throw HullError("no views");
-  s.volume =
-      options.volume ? *options.volume : estimate_working_volume(views, options.volume_margin);
-  check_views(views, s.volume);
+  s.volume = checked_working_volume(views, options);
   for (unsigned attempt = 0;; ++attempt) {
     try {
       return intersect_cones(views, attempt, s);

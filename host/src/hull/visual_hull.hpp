@@ -52,6 +52,11 @@ WorkingVolume estimate_working_volume(const std::vector<HullView>& views, double
 // the camera cannot see.
 void check_views(const std::vector<HullView>& views, const WorkingVolume& volume);
 
+// Every method's start: the working volume of the options (or estimated from the views), with
+// the views checked against it (check_views). Throws HullError for no views or a bad view.
+WorkingVolume checked_working_volume(const std::vector<HullView>& views,
+                                     const HullOptions& options);
+
 struct HullStats {
   WorkingVolume volume;
   std::vector<std::size_t> order;  // the views in the order their cones were intersected

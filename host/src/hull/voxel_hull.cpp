@@ -359,11 +359,8 @@ Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& v
                        const HullOptions& options, VoxelStats* stats) {
   VoxelStats local;
   VoxelStats& s = stats != nullptr ? *stats : local;
-  if (views.empty()) throw HullError("no views");
   if (voxel.resolution < 2) throw std::invalid_argument("voxel resolution below 2");
-  s.volume =
-      options.volume ? *options.volume : estimate_working_volume(views, options.volume_margin);
-  check_views(views, s.volume);
+  s.volume = checked_working_volume(views, options);
   const Clock::time_point start = Clock::now();
   std::vector<ViewSampler> samplers;
   for (const HullView& v : views) samplers.emplace_back(v);
