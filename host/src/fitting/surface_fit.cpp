@@ -1,0 +1,200 @@
+#include "fitting/surface_fit.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace syncap::fitting {
+
+namespace {
+
+// The signed distance of p to the ellipsoid's surface along the ray from its centre: |d| - |d| /
+// rho, rho = |diag(1/radii) axes^T d| (1 on the surface).
+template <typename T>
+T ray_distance(const PosedEllipsoid<T>& e, const Eigen::Vector3d& radii,
+               const Eigen::Matrix<T, 3, 1>& p) {
+  using std::sqrt;
+  const Eigen::Matrix<T, 3, 1> d = p - e.centre;
+  const Eigen::Matrix<T, 3, 1> u = e.axes.transpose() * d;
+  const Eigen::Matrix<T, 3, 1> q(u.x() / radii.x(), u.y() / radii.y(), u.z() / radii.z());
+  const T rho_squared = q.dot(q);
+  if (rho_squared < T(1e-18)) return T(-radii.minCoeff());  // at the centre: deepest inside
+  const T length = sqrt(d.dot(d));
+  return length - length / sqrt(rho_squared);
+}
+
+// All residuals in one block: the ellipsoids are computed once per evaluation for every point.
+struct SurfaceCost {
+  const PoseParameters* parameters;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> segments;   // per point: its assigned segment
+  std::vector<double> scales;  // per point: sqrt(Huber weight) / sigma
+
+  template <typename T>
+  bool operator()(const T* x, T* residuals) const {
+    std::vector<PosedEllipsoid<T>> ellipsoids;
+    parameters->ellipsoids(x, ellipsoids);
+    const auto& segment_list = parameters->skeleton().segments();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const auto s = static_cast<std::size_t>(segments[i]);
+      residuals[i] = ray_distance<T>(ellipsoids[s], segment_list[s].radii_mm, points[i].cast<T>()) *
+                     T(scales[i]);
+    }
+    return true;
+  }
+};
+
+void check_points(std::span<const SurfacePoint> points) {
+  if (points.size() < static_cast<std::size_t>(kPoseParameterCount))
+    throw std::invalid_argument("fitting: " + std::to_string(points.size()) +
+                                " surface points for " + std::to_string(kPoseParameterCount) +
+                                " pose parameters");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!(points[i].sigma_mm > 0) || !points[i].position_mm.allFinite())
+      throw std::invalid_argument("fitting: surface point " + std::to_string(i) +
+                                  " has no finite position or no positive sigma");
+  }
+}
+
+// The knees bend backwards only: flexion is a positive rotation about the thigh's x axis (the
+// figure's left), with a little play about the other two (docs/body-fit.md, "Joint limits").
+struct Bound {
+  int index;
+  double low, high;
+};
+std::vector<Bound> joint_bounds() {
+  std::vector<Bound> bounds;
+  for (std::size_t j = 0; j < kFittedJoints.size(); ++j) {
+    if (kFittedJoints[j] != "l_knee" && kFittedJoints[j] != "r_knee") continue;
+    const int first = 6 + 3 * static_cast<int>(j);
+    bounds.push_back({first, -0.2, 2.7});
+    bounds.push_back({first + 1, -0.5, 0.5});
+    bounds.push_back({first + 2, -0.5, 0.5});
+  }
+  return bounds;
+}
+
+// The joints' parameters held near the start, each with the prior's sigma.
+struct PriorCost {
+  PoseVector start;
+  double sigma_rad;
+  template <typename T>
+  bool operator()(const T* x, T* residuals) const {
+    for (int i = 6; i < kPoseParameterCount; ++i)
+      residuals[i - 6] = (x[i] - T(start[static_cast<std::size_t>(i)])) / T(sigma_rad);
+    return true;
+  }
+};
+
+SurfaceCost cost_for(const PoseParameters& parameters, std::span<const SurfacePoint> points,
+                     const std::vector<NearestSurface>& nearest, const SurfaceFitOptions& options,
+                     double gate_mm) {
+  SurfaceCost cost{&parameters, {}, {}, {}};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double z = std::abs(nearest[i].distance_mm) / points[i].sigma_mm;
+    const double weight =
+        std::abs(nearest[i].distance_mm) > gate_mm
+            ? 0.0
+            : 1.0 / (1.0 + (z / options.cauchy_sigmas) * (z / options.cauchy_sigmas));
+    cost.points.push_back(points[i].position_mm);
+    cost.segments.push_back(nearest[i].segment);
+    cost.scales.push_back(std::sqrt(weight) / points[i].sigma_mm);
+  }
+  return cost;
+}
+
+// The gate narrows from options.gate_mm (the start may be that far off) by a fifth each round,
+// down to 8 times the points' median sigma: once the pose is near, only the body's points count.
+double gate_of_round(const SurfaceFitOptions& options, int round,
+                     std::span<const SurfacePoint> points) {
+  std::vector<double> sigmas;
+  for (const SurfacePoint& p : points) sigmas.push_back(p.sigma_mm);
+  std::nth_element(sigmas.begin(), sigmas.begin() + static_cast<long>(sigmas.size() / 2),
+                   sigmas.end());
+  return std::max(options.gate_mm * std::pow(0.8, round), 8.0 * sigmas[sigmas.size() / 2]);
+}
+
+}  // namespace
+
+std::vector<NearestSurface> nearest_surfaces(const PoseParameters& parameters, const double* x,
+                                             std::span<const SurfacePoint> points) {
+  std::vector<PosedEllipsoid<double>> ellipsoids;
+  parameters.ellipsoids(x, ellipsoids);
+  const auto& segments = parameters.skeleton().segments();
+  std::vector<NearestSurface> nearest(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t s = 0; s < ellipsoids.size(); ++s) {
+      const double d =
+          ray_distance<double>(ellipsoids[s], segments[s].radii_mm, points[i].position_mm);
+      if (std::abs(d) < best) {
+        best = std::abs(d);
+        nearest[i] = {static_cast<int>(s), d};
+      }
+    }
+  }
+  return nearest;
+}
+
+SurfaceFit fit_surface(const PoseParameters& parameters, std::span<const SurfacePoint> points,
+                       const PoseVector& start, const SurfaceFitOptions& options) {
+  check_points(points);
+  SurfaceFit fit;
+  fit.x = start;
+  fit.points = static_cast<int>(points.size());
+  const std::vector<Bound> bounds = options.joint_limits ? joint_bounds() : std::vector<Bound>{};
+  for (const Bound& b : bounds) fit.x[b.index] = std::clamp(fit.x[b.index], b.low, b.high);
+  std::vector<int> assigned;
+  for (int round = 0; round < options.rounds; ++round) {
+    const std::vector<NearestSurface> nearest = nearest_surfaces(parameters, fit.x.data(), points);
+    std::vector<int> segments;
+    for (const NearestSurface& n : nearest) segments.push_back(n.segment);
+    const bool same_assignment = segments == assigned;
+    assigned = segments;
+    ceres::Problem problem;
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<SurfaceCost, ceres::DYNAMIC, kPoseParameterCount>(
+            new SurfaceCost(cost_for(parameters, points, nearest, options,
+                                     gate_of_round(options, round, points))),
+            static_cast<int>(points.size())),
+        nullptr, fit.x.data());
+    if (options.prior_rad > 0)
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<PriorCost, kPoseParameterCount - 6, kPoseParameterCount>(
+              new PriorCost{start, options.prior_rad}),
+          nullptr, fit.x.data());
+    for (const Bound& b : bounds) {
+      problem.SetParameterLowerBound(fit.x.data(), b.index, b.low);
+      problem.SetParameterUpperBound(fit.x.data(), b.index, b.high);
+    }
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::DENSE_QR;
+    solver.max_num_iterations = options.iterations_per_round;
+    solver.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    fit.rounds = round + 1;
+    fit.iterations += static_cast<int>(summary.iterations.size());
+    if (round > 0 && same_assignment && summary.termination_type == ceres::CONVERGENCE) {
+      fit.converged = true;
+      break;
+    }
+  }
+  const double final_gate_mm = gate_of_round(options, fit.rounds - 1, points);
+  double sum = 0.0;
+  int inside_gate = 0;
+  for (const NearestSurface& n : nearest_surfaces(parameters, fit.x.data(), points)) {
+    if (std::abs(n.distance_mm) > final_gate_mm) continue;
+    sum += n.distance_mm * n.distance_mm;
+    ++inside_gate;
+  }
+  fit.points = inside_gate;
+  fit.rms_mm = inside_gate > 0 ? std::sqrt(sum / inside_gate) : 0.0;
+  return fit;
+}
+
+}  // namespace syncap::fitting
