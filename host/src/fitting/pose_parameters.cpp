@@ -14,6 +14,12 @@ Eigen::Quaterniond quaternion_of(const double* angle_axis) {
                    : Eigen::Quaterniond::Identity();
 }
 
+void set_angle_axis(const Eigen::Matrix3d& rotation, double* out) {
+  const Eigen::AngleAxisd aa(rotation);
+  const Eigen::Vector3d v = aa.angle() * aa.axis();
+  out[0] = v.x(), out[1] = v.y(), out[2] = v.z();
+}
+
 }  // namespace
 
 PoseParameters::PoseParameters(const body::Skeleton& skeleton)
@@ -34,6 +40,32 @@ PoseParameters::PoseParameters(const body::Skeleton& skeleton)
 std::array<double, kPoseParameterCount> PoseParameters::rest() const {
   std::array<double, kPoseParameterCount> x{};
   x[2] = skeleton_.rest_root_height_mm();
+  return x;
+}
+
+std::array<double, kPoseParameterCount> PoseParameters::nearest(const body::Pose& pose) const {
+  if (pose.orientation.size() != skeleton_.size())
+    throw std::invalid_argument("fitting: a pose of " + std::to_string(pose.orientation.size()) +
+                                " nodes for a skeleton of " + std::to_string(skeleton_.size()));
+  std::array<double, kPoseParameterCount> x{};
+  x[0] = pose.root_mm.x(), x[1] = pose.root_mm.y(), x[2] = pose.root_mm.z();
+  // The model's world orientations, parents first: the root's and each fitted joint's are the
+  // pose's; the others follow their parent.
+  std::vector<Eigen::Matrix3d> world(skeleton_.size());
+  for (std::size_t i = 0; i < skeleton_.size(); ++i) {
+    const int parent = skeleton_.nodes()[i].parent;
+    const Eigen::Matrix3d given = pose.orientation[i].normalized().toRotationMatrix();
+    if (parent < 0) {
+      world[i] = given;
+      set_angle_axis(given, x.data() + 3);
+    } else if (parameter_of_node_[i] >= 0) {
+      world[i] = given;
+      set_angle_axis(world[static_cast<std::size_t>(parent)].transpose() * given,
+                     x.data() + parameter_of_node_[i]);
+    } else {
+      world[i] = world[static_cast<std::size_t>(parent)];
+    }
+  }
   return x;
 }
 

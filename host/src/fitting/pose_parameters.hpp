@@ -65,6 +65,10 @@ class PoseParameters {
   std::array<double, kPoseParameterCount> rest() const;
   // The pose the parameters describe: exactly what body::body_frame() draws.
   body::Pose pose(const double* x) const;
+  // The parameters nearest a full pose (one of the retargeted motion, whose every joint turns):
+  // the root and each fitted joint take their world orientations from `pose`, the joints between
+  // them none of their own. The ceiling of what the parameters can say about that pose.
+  std::array<double, kPoseParameterCount> nearest(const body::Pose& pose) const;
 
   // World rotation of every node and node positions [mm] (body::node_positions).
   template <typename T>

@@ -108,14 +108,16 @@ SurfaceCost cost_for(const PoseParameters& parameters, std::span<const SurfacePo
 }
 
 // The gate narrows from options.gate_mm (the start may be that far off) by a fifth each round,
-// down to 8 times the points' median sigma: once the pose is near, only the body's points count.
+// down to gate_floor_mm or 8 times the points' median sigma: once the pose is near, points of
+// other things stop counting, but a limb a little off keeps its points.
 double gate_of_round(const SurfaceFitOptions& options, int round,
                      std::span<const SurfacePoint> points) {
   std::vector<double> sigmas;
   for (const SurfacePoint& p : points) sigmas.push_back(p.sigma_mm);
   std::nth_element(sigmas.begin(), sigmas.begin() + static_cast<long>(sigmas.size() / 2),
                    sigmas.end());
-  return std::max(options.gate_mm * std::pow(0.8, round), 8.0 * sigmas[sigmas.size() / 2]);
+  return std::max(options.gate_mm * std::pow(0.8, round),
+                  std::max(options.gate_floor_mm, 8.0 * sigmas[sigmas.size() / 2]));
 }
 
 }  // namespace

@@ -32,7 +32,11 @@ struct SurfaceFitOptions {
   int iterations_per_round = 10;  // Levenberg-Marquardt iterations per round at most
   // Cauchy's scale in sigmas: a point z sigmas from its surface weighs 1 / (1 + (z / scale)^2).
   double cauchy_sigmas = 3.0;
-  double gate_mm = 150.0;  // a point farther than this from every surface is not the body's
+  // A point farther than the gate from every surface is not the body's. The gate narrows by a
+  // fifth each round from gate_mm down to gate_floor_mm (or 8 median sigmas, the larger): at
+  // 8 sigmas alone, a limb 3 cm off lost its points for good.
+  double gate_mm = 150.0;
+  double gate_floor_mm = 60.0;
   // Each joint parameter's standard deviation around the start [rad]; 0: no prior.
   double prior_rad = 0.5;
   bool joint_limits = true;  // the knees bend one way only (docs/body-fit.md, "Joint limits")

@@ -43,6 +43,17 @@ TEST(PoseParameters, TheRestParametersAreTheRestFigure) {
     EXPECT_LT((fitted[i] - expected[i]).norm(), 1e-9) << i;
 }
 
+// A pose the parameters can say exactly comes back from nearest() as the same pose.
+TEST(PoseParameters, TheNearestParametersOfTheirOwnPoseAreThatPose) {
+  const PoseParameters parameters(body::hanim_skeleton());
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 10; ++trial) {
+    const PoseVector x = test::random_pose(rng, 0.8);
+    const PoseVector back = parameters.nearest(parameters.pose(x.data()));
+    EXPECT_LT(test::joint_rms_mm(parameters, x, back), 1e-9) << trial;
+  }
+}
+
 TEST(PoseParameters, ASkeletonWithoutAFittedJointIsNamed) {
   const body::Skeleton lone({body::Node{"HumanoidRoot", -1, body::NodeKind::kJoint, {}, {}, 0}}, {},
                             {0, -1, 0}, 1000.0);
