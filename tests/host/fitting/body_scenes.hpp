@@ -65,39 +65,45 @@ inline std::vector<SurfacePoint> surface_points(const body::BodyFrame& body, int
 
 // Root-mean-square distance between two poses' segment ends [mm]: the joints and end points
 // every ellipsoid spans (hips to forefoot tips, shoulders to fingertips, skull).
-// The segment ends' names and distances between two poses [mm], worst first.
-inline std::vector<std::pair<double, std::string>> joint_errors(const PoseParameters& parameters,
-                                                                const PoseVector& a,
-                                                                const PoseVector& b) {
-  const body::Skeleton& skeleton = parameters.skeleton();
-  const auto pa = body::node_positions(skeleton, parameters.pose(a.data()));
-  const auto pb = body::node_positions(skeleton, parameters.pose(b.data()));
+// The nodes every ellipsoid spans (hips to forefoot tips, shoulders to finger tips, skull): the
+// joints a motion export carries.
+inline std::vector<std::size_t> segment_ends(const body::Skeleton& skeleton) {
   std::vector<bool> used(skeleton.size(), false);
   for (const body::Segment& s : skeleton.segments())
     used[static_cast<std::size_t>(s.from)] = used[static_cast<std::size_t>(s.to)] = true;
+  std::vector<std::size_t> ends;
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (used[i]) ends.push_back(i);
+  return ends;
+}
+
+// The segment ends' names and distances between the pose `x` and the node positions `truth`
+// [mm], worst first.
+inline std::vector<std::pair<double, std::string>> joint_errors(
+    const PoseParameters& parameters, const PoseVector& x,
+    const std::vector<Eigen::Vector3d>& truth) {
+  const auto fitted = body::node_positions(parameters.skeleton(), parameters.pose(x.data()));
   std::vector<std::pair<double, std::string>> errors;
-  for (std::size_t i = 0; i < skeleton.size(); ++i)
-    if (used[i]) errors.emplace_back((pa[i] - pb[i]).norm(), skeleton.nodes()[i].name);
+  for (const std::size_t i : segment_ends(parameters.skeleton()))
+    errors.emplace_back((fitted[i] - truth[i]).norm(), parameters.skeleton().nodes()[i].name);
   std::sort(errors.rbegin(), errors.rend());
   return errors;
 }
 
+// Root-mean-square of joint_errors [mm].
+inline double joint_rms_mm(const PoseParameters& parameters, const PoseVector& x,
+                           const std::vector<Eigen::Vector3d>& truth) {
+  double sum = 0.0;
+  const auto errors = joint_errors(parameters, x, truth);
+  for (const auto& [error, name] : errors) sum += error * error;
+  return std::sqrt(sum / static_cast<double>(errors.size()));
+}
+
+// The same between two poses of the parameters.
 inline double joint_rms_mm(const PoseParameters& parameters, const PoseVector& a,
                            const PoseVector& b) {
-  const body::Skeleton& skeleton = parameters.skeleton();
-  const auto pa = body::node_positions(skeleton, parameters.pose(a.data()));
-  const auto pb = body::node_positions(skeleton, parameters.pose(b.data()));
-  std::vector<bool> used(skeleton.size(), false);
-  for (const body::Segment& s : skeleton.segments())
-    used[static_cast<std::size_t>(s.from)] = used[static_cast<std::size_t>(s.to)] = true;
-  double sum = 0.0;
-  int n = 0;
-  for (std::size_t i = 0; i < skeleton.size(); ++i) {
-    if (!used[i]) continue;
-    sum += (pa[i] - pb[i]).squaredNorm();
-    ++n;
-  }
-  return std::sqrt(sum / n);
+  return joint_rms_mm(parameters, a,
+                      body::node_positions(parameters.skeleton(), parameters.pose(b.data())));
 }
 
 }  // namespace syncap::fitting::test

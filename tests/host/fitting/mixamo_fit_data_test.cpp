@@ -20,24 +20,6 @@
 namespace syncap::fitting {
 namespace {
 
-// RMS over the segments' end points between a fitted pose and the real one [mm].
-double ends_rms_mm(const PoseParameters& parameters, const PoseVector& x,
-                   const body::BodyFrame& truth) {
-  const body::Skeleton& skeleton = parameters.skeleton();
-  const auto fitted = body::node_positions(skeleton, parameters.pose(x.data()));
-  std::vector<bool> end(skeleton.size(), false);
-  for (const body::Segment& s : skeleton.segments())
-    end[static_cast<std::size_t>(s.from)] = end[static_cast<std::size_t>(s.to)] = true;
-  double sum = 0.0;
-  int n = 0;
-  for (std::size_t i = 0; i < skeleton.size(); ++i) {
-    if (!end[i]) continue;
-    sum += (fitted[i] - truth.positions_mm[i]).squaredNorm();
-    ++n;
-  }
-  return std::sqrt(sum / n);
-}
-
 struct WalkFits {
   int fits = 0;
   long lost = 0;  // tracked: frames that dropped the track
@@ -78,10 +60,11 @@ WalkFits fit_walk(const std::filesystem::path& bvh, int frames, int step, bool t
     } else {
       fit = fit_surface(parameters, points, near_start(parameters, real));
     }
-    const double rms = ends_rms_mm(parameters, fit.x, truth);
+    const double rms = test::joint_rms_mm(parameters, fit.x, truth.positions_mm);
     w.worst_mm = std::max(w.worst_mm, rms);
     w.worst_ceiling_mm =
-        std::max(w.worst_ceiling_mm, ends_rms_mm(parameters, parameters.nearest(real), truth));
+        std::max(w.worst_ceiling_mm,
+                 test::joint_rms_mm(parameters, parameters.nearest(real), truth.positions_mm));
     w.mean_mm += rms;
     w.mean_points_kept += static_cast<double>(fit.points) / static_cast<double>(points.size());
     ++w.fits;

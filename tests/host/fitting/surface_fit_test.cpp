@@ -46,7 +46,7 @@ class SurfaceFitTest : public ::testing::Test {
       if (rms > worst) {
         worst = rms;
         worst_joints_.clear();
-        for (const auto& [error, name] : test::joint_errors(parameters_, fit.x, truth))
+        for (const auto& [error, name] : test::joint_errors(parameters_, fit.x, body.positions_mm))
           if (worst_joints_.size() < 200)
             worst_joints_ += name + " " + std::to_string(error) + "; ";
         worst_joints_ += "rounds " + std::to_string(fit.rounds) + ", iterations " +
