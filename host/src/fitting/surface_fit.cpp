@@ -61,7 +61,7 @@ void check_points(std::span<const SurfacePoint> points) {
 }
 
 // The knees bend backwards only: flexion is a positive rotation about the thigh's x axis (the
-// figure's left), with a little play about the other two (docs/body-fit.md, "Joint limits").
+// figure's left), with a little play about the other two (docs/body-fit.md, the options' table).
 struct Bound {
   int index;
   double low, high;

@@ -39,7 +39,7 @@ struct SurfaceFitOptions {
   double gate_floor_mm = 60.0;
   // Each joint parameter's standard deviation around the start [rad]; 0: no prior.
   double prior_rad = 0.5;
-  bool joint_limits = true;  // the knees bend one way only (docs/body-fit.md, "Joint limits")
+  bool joint_limits = true;  // the knees bend one way only (docs/body-fit.md, the options' table)
 };
 
 using PoseVector = std::array<double, kPoseParameterCount>;
