@@ -359,7 +359,15 @@ static void count_run_ends_with_a_summary(void** state) {
   run_trigger((char*[]){"--count", "5", "--rate", "50", "--lcm-url", "memq://", NULL}, -1, 0,
               &result);
   assert_exit_status(&result, 0);
-  assert_output_has(&result, "pulses=5 ");
+  // A period the trigger wakes too late for is skipped by design (counted as missed), as a
+  // loaded machine makes it: the run still spans its 5 periods.
+  const char* summary = strstr(result.output, "pulses=");
+  int pulses = -1, late = -1, missed = -1;
+  if (summary == NULL ||
+      sscanf(summary, "pulses=%d late=%d missed=%d", &pulses, &late, &missed) != 3)
+    print_error("no summary 'pulses=N late=N missed=N' in output:\n%s\n", result.output);
+  assert_int_equal(pulses + missed, 5);
+  assert_in_range(missed, 0, 2);
 }
 
 static void quiet_run_prints_no_summary(void** state) {
