@@ -152,6 +152,17 @@ void write_json(const std::string& file, const syncap::compare::Report& report) 
 
 }  // namespace
 
+// The rigid motion of --cameras' frame onto the truth's (its projection centres onto the true
+// ones: a wand calibration's scale is metric), said for `what` is moved by it.
+syncap::compare::Similarity motion_to_truth(const Options& o, const char* what) {
+  const auto motion = syncap::compare::fit_to_truth(
+      syncap::sensor::read_cameras(std::filesystem::path(o.truth) / "cameras.json"),
+      syncap::sensor::read_cameras(o.cameras), false);
+  std::cout << what << " moved into the truth's frame by the rigid motion of " << o.cameras
+            << "'s projection centres onto the true ones\n";
+  return motion;
+}
+
 // The host's markers against the true targets, when the groups carry them; true when within the
 // limits (or when there are none).
 bool check_markers(const Options& o, const syncap::compare::Truth& truth,
@@ -159,15 +170,7 @@ bool check_markers(const Options& o, const syncap::compare::Truth& truth,
   const bool any = std::any_of(groups.begin(), groups.end(),
                                [](const auto& g) { return g.markers.has_value(); });
   if (!any) return true;
-  if (!o.cameras.empty()) {
-    namespace fs = std::filesystem;
-    const auto motion = syncap::compare::fit_to_truth(
-        syncap::sensor::read_cameras(fs::path(o.truth) / "cameras.json"),
-        syncap::sensor::read_cameras(o.cameras), false);
-    syncap::compare::move_markers(groups, motion);
-    std::cout << "markers moved into the truth's frame by the rigid motion of " << o.cameras
-              << "'s projection centres onto the true ones\n";
-  }
+  if (!o.cameras.empty()) syncap::compare::move_markers(groups, motion_to_truth(o, "markers"));
   const auto positions = syncap::compare::read_true_positions(std::filesystem::path(o.truth) /
                                                               "truth" / "targets.csv");
   const auto check =
@@ -187,13 +190,7 @@ bool check_markers(const Options& o, const syncap::compare::Truth& truth,
 bool check_hulls(const Options& o) {
   if (o.hull.meshes.empty()) return true;
   std::optional<syncap::compare::Similarity> to_truth;
-  if (!o.cameras.empty()) {
-    to_truth = syncap::compare::fit_to_truth(
-        syncap::sensor::read_cameras(std::filesystem::path(o.truth) / "cameras.json"),
-        syncap::sensor::read_cameras(o.cameras), false);
-    std::cout << "hulls moved into the truth's frame by the rigid motion of " << o.cameras
-              << "'s projection centres onto the true ones\n";
-  }
+  if (!o.cameras.empty()) to_truth = motion_to_truth(o, "hulls");
   const auto checks =
       syncap::compare::check_hulls(o.truth, o.groups, o.hull.meshes, o.hull.tolerance_mm, to_truth);
   std::cout << syncap::compare::format_hull_checks(checks, o.hull.tolerance_mm);

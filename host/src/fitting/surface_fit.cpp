@@ -107,17 +107,20 @@ SurfaceCost cost_for(const PoseParameters& parameters, std::span<const SurfacePo
   return cost;
 }
 
-// The gate narrows from options.gate_mm (the start may be that far off) by a fifth each round,
-// down to gate_floor_mm or 8 times the points' median sigma: once the pose is near, points of
-// other things stop counting, but a limb a little off keeps its points.
-double gate_of_round(const SurfaceFitOptions& options, int round,
-                     std::span<const SurfacePoint> points) {
+double median_sigma_mm(std::span<const SurfacePoint> points) {
   std::vector<double> sigmas;
   for (const SurfacePoint& p : points) sigmas.push_back(p.sigma_mm);
   std::nth_element(sigmas.begin(), sigmas.begin() + static_cast<long>(sigmas.size() / 2),
                    sigmas.end());
+  return sigmas[sigmas.size() / 2];
+}
+
+// The gate narrows from options.gate_mm (the start may be that far off) by a fifth each round,
+// down to gate_floor_mm or 8 times the points' median sigma: once the pose is near, points of
+// other things stop counting, but a limb a little off keeps its points.
+double gate_of_round(const SurfaceFitOptions& options, int round, double sigma_mm) {
   return std::max(options.gate_mm * std::pow(0.8, round),
-                  std::max(options.gate_floor_mm, 8.0 * sigmas[sigmas.size() / 2]));
+                  std::max(options.gate_floor_mm, 8.0 * sigma_mm));
 }
 
 }  // namespace
@@ -145,6 +148,7 @@ std::vector<NearestSurface> nearest_surfaces(const PoseParameters& parameters, c
 SurfaceFit fit_surface(const PoseParameters& parameters, std::span<const SurfacePoint> points,
                        const PoseVector& start, const SurfaceFitOptions& options) {
   check_points(points);
+  const double median_sigma = median_sigma_mm(points);
   SurfaceFit fit;
   fit.x = start;
   fit.points = static_cast<int>(points.size());
@@ -161,7 +165,7 @@ SurfaceFit fit_surface(const PoseParameters& parameters, std::span<const Surface
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<SurfaceCost, ceres::DYNAMIC, kPoseParameterCount>(
             new SurfaceCost(cost_for(parameters, points, nearest, options,
-                                     gate_of_round(options, round, points))),
+                                     gate_of_round(options, round, median_sigma))),
             static_cast<int>(points.size())),
         nullptr, fit.x.data());
     if (options.prior_rad > 0)
@@ -186,7 +190,7 @@ SurfaceFit fit_surface(const PoseParameters& parameters, std::span<const Surface
       break;
     }
   }
-  const double final_gate_mm = gate_of_round(options, fit.rounds - 1, points);
+  const double final_gate_mm = gate_of_round(options, fit.rounds - 1, median_sigma);
   double sum = 0.0;
   int inside_gate = 0;
   for (const NearestSurface& n : nearest_surfaces(parameters, fit.x.data(), points)) {

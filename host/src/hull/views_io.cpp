@@ -24,13 +24,19 @@ namespace {
 // A .pa matrix gives pixels only; any pixel pitch reproduces them (c scales with it).
 constexpr double kPaPixelMm = 0.01;
 
+// ".PNG" -> ".png".
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
 std::vector<fs::path> files_with(const fs::path& folder, const std::set<std::string>& extensions) {
   std::vector<fs::path> files;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
-    std::string ext = e.path().extension().string();
-    std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (e.is_regular_file() && extensions.contains(ext)) files.push_back(e.path());
+    if (e.is_regular_file() && extensions.contains(lower_extension(e.path())))
+      files.push_back(e.path());
   }
   if (ec) throw HullError(folder.string() + ": cannot read the folder: " + ec.message());
   std::ranges::sort(files);
@@ -167,8 +173,7 @@ Cameras read_opencv_cameras(const fs::path& path) {
 }
 
 bool opencv_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::ranges::transform(ext, ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  const std::string ext = lower_extension(path);
   return ext == ".yaml" || ext == ".yml";
 }
 
