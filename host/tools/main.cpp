@@ -18,6 +18,7 @@
 #include "calibrate_command.hpp"
 #include "clip_command.hpp"
 #include "ctl_command.hpp"
+#include "fit_command.hpp"
 #include "hull_command.hpp"
 #include "log_command.hpp"
 #include "markers_command.hpp"
@@ -46,6 +47,9 @@ constexpr std::array kSubcommands{
                &syncap::tools::ctl_command},
     Subcommand{"markers", "reconstruct the 3D markers of a recorded LCM log (as syncap-host)",
                &syncap::tools::markers_command},
+    Subcommand{"fit",
+               "fit and track the body on the visual hulls of a recorded LCM log (BVH, C3D, TRC)",
+               &syncap::tools::fit_command},
     Subcommand{"hull", "the visual hull of one mask per calibrated camera (PLY, OBJ, IoU per view)",
                &syncap::tools::hull_command},
     Subcommand{"keygen", "create the installation's key that signs the edges' commands",

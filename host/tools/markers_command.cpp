@@ -10,6 +10,7 @@
 #include "io/export_error.hpp"
 #include "io/lcm_log_reader.hpp"
 #include "io/trc_writer.hpp"
+#include "log_feed.hpp"
 #include "outputs/json_lines_stage.hpp"
 #include "pipeline/host_node.hpp"
 #include "reconstruction/hull_stage.hpp"
@@ -19,8 +20,6 @@
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
-#include "syncap/proto/channels.hpp"
-#include "syncap/proto/decode.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -39,30 +38,6 @@ struct MarkersArgs {
   host_app::TrackingArgs tracking;
   host_app::HullArgs hull;
 };
-
-// Feeds one log event to the node; false when it is ours but cannot be decoded (counted).
-bool feed(pipeline::HostNode& node, const io::LogEvent& e, bool silhouettes, long& rejected) {
-  const auto decode_into = [&](auto& msg) {
-    return proto::try_decode(e.data.data(), e.data.size(), msg).ok();
-  };
-  bool ok = true;
-  if (e.channel == proto::kTriggerChannel) {
-    trigger_t t;
-    ok = decode_into(t) && node.on_trigger(t);
-  } else if (proto::camera_of_channel(e.channel) &&
-             e.channel.starts_with(proto::kBlobChannelPrefix)) {
-    blob_frame_t f;
-    ok = decode_into(f) && node.on_blob_part(f, e.channel);
-  } else if (silhouettes && proto::camera_of_channel(e.channel) &&
-             e.channel.starts_with(proto::kSilhouetteChannelPrefix)) {
-    silhouette_part_t p;
-    ok = decode_into(p) && node.on_silhouette_part(p, e.channel);
-  } else {
-    return true;  // statuses, commands (and silhouettes without --hull): not needed
-  }
-  if (!ok) ++rejected;
-  return ok;
-}
 
 std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a, std::ostream& out,
                               std::ostream& err) {
@@ -105,13 +80,6 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   return std::nullopt;
 }
 
-std::set<int> expected_cameras(const MarkersArgs& a, const std::vector<sensor::CameraModel>& cams) {
-  if (!a.camera_ids.empty()) return a.camera_ids;
-  std::set<int> ids;
-  for (const auto& c : cams) ids.insert(c.id);
-  return ids;
-}
-
 // DIR/markers.c3d and DIR/markers.trc of the tracked trajectories; false (named on err) when
 // there is nothing to export or a file cannot be written.
 bool export_trajectories(const tracking::TrackHistory& history, double rate_hz,
@@ -138,23 +106,11 @@ bool export_trajectories(const tracking::TrackHistory& history, double rate_hz,
 int markers_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
   MarkersArgs a;
   if (const auto status = parse_args(args, a, out, err)) return *status;
-  std::vector<sensor::CameraModel> cameras;
-  try {
-    cameras = sensor::read_cameras(a.calibration);
-  } catch (const sensor::CameraFileError& e) {
-    err << kName << ": --calibration " << e.what() << '\n';
-    return kExitUsage;
-  }
-  const std::string log_path = a.input.substr(7);
-  std::ifstream log(log_path, std::ios::binary);
-  std::error_code ec;
-  std::filesystem::create_directories(a.out, ec);
-  std::ofstream jsonl(std::filesystem::path(a.out) / "markers.jsonl");
-  if (!log || !jsonl) {
-    err << kName << ": " << (!log ? log_path + ": cannot be read" : a.out + ": cannot be written")
-        << '\n';
-    return kExitUsage;
-  }
+  OfflineInputs in;
+  if (const auto status =
+          open_offline_inputs(kName, a.calibration, a.input, a.out, "markers.jsonl", in, err))
+    return *status;
+  const std::vector<sensor::CameraModel>& cameras = in.cameras;
   auto marker_stage =
       std::make_unique<reconstruction::MarkerStage>(cameras, a.markers.matching, a.markers.stage);
   const reconstruction::MarkerStage* markers = marker_stage.get();
@@ -177,20 +133,10 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
     hull = stage.get();
     stages.push_back(std::move(stage));
   }
-  stages.push_back(std::make_unique<outputs::JsonLinesStage>(jsonl, true));
-  pipeline::HostNode node({expected_cameras(a, cameras), a.max_lag, 1'000'000}, std::move(stages));
-  io::LcmLogReader reader(log);
-  long rejected = 0;
-  bool damaged = false;
-  while (const auto event = reader.next()) {
-    feed(node, *event, a.hull.enabled, rejected);
-    node.poll();
-    for (const io::LogError& e : reader.take_errors()) {
-      err << kName << ": " << e.message << '\n';
-      damaged = true;
-    }
-  }
-  node.finish();
+  stages.push_back(std::make_unique<outputs::JsonLinesStage>(in.jsonl, true));
+  pipeline::HostNode node({expected_cameras(a.camera_ids, cameras), a.max_lag, 1'000'000},
+                          std::move(stages));
+  auto [rejected, damaged] = replay_log(in.log, node, a.hull.enabled, kName, err);
   if (!export_trajectories(history, tracker->rate_hz(), a.out, err)) damaged = true;
   const auto s = node.stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "

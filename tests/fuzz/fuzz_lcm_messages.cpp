@@ -17,6 +17,7 @@
 
 #include "fuzz_check.hpp"
 #include "syncap/blob_frame_t.hpp"
+#include "syncap/body_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
@@ -106,6 +107,7 @@ struct Harness {
     add<syncap::edge_command_t>();
     add<syncap::marker_frame_t>();
     add<syncap::hull_frame_t>();
+    add<syncap::body_frame_t>();
   }
 };
 

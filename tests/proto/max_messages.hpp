@@ -7,6 +7,7 @@
 #include <string>
 
 #include "syncap/blob_frame_t.hpp"
+#include "syncap/body_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
@@ -180,6 +181,23 @@ inline hull_frame_t max_hull_frame() {
     h.max_mm[i] = 2345.25f - static_cast<float>(i);
   }
   return h;
+}
+
+inline body_frame_t max_body_frame() {
+  body_frame_t b{};
+  b.frame_number = (int64_t{1} << 41) + 9;
+  b.trigger_monotonic_ns = 1'234'567'890'123;
+  b.trigger_realtime_ns = 1'795'000'000'000'000'000;
+  b.host_us = 2'000'000'000;
+  b.fit_us = 1'999'999'999;
+  b.flags = body_frame_t::FLAG_STARTED | body_frame_t::FLAG_LOST;
+  b.rms_mm = 12.25f;
+  b.points = 100'000;
+  b.points_kept = 99'999;
+  for (int i = 0; i < 60; ++i) b.parameters[i] = -3.0f + 0.1f * static_cast<float>(i);
+  for (int j = 0; j < 19; ++j)
+    for (int k = 0; k < 3; ++k) b.joint_mm[j][k] = 1000.5f * static_cast<float>(k) - 7.0f * j;
+  return b;
 }
 
 }  // namespace syncap::test

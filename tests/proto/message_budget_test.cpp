@@ -96,6 +96,15 @@ TEST(MessageBudget, HullFrameIsItsDocumentedFixedSize) {
   EXPECT_FLOAT_EQ(back.max_mm[2], hull.max_mm[2]);
 }
 
+TEST(MessageBudget, BodyFrameIsItsDocumentedFixedSize) {
+  const body_frame_t body = test::max_body_frame();
+  expect_fits_and_round_trips(body, 521);
+  const body_frame_t back = decode<body_frame_t>(encode(body));
+  EXPECT_EQ(back.points_kept, body.points_kept);
+  EXPECT_FLOAT_EQ(back.parameters[59], body.parameters[59]);
+  EXPECT_FLOAT_EQ(back.joint_mm[18][2], body.joint_mm[18][2]);
+}
+
 TEST(MessageBudget, MarkerFrameAtMaxMarkersFitsOneDatagram) {
   const marker_frame_t frame = test::max_marker_frame();
   expect_fits_and_round_trips(frame, 8 + 39 + 34 * marker_frame_t::MAX_MARKERS);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "body_check.hpp"
 #include "calibration_check.hpp"
 #include "comparison.hpp"
 #include "groups.hpp"
@@ -38,9 +39,18 @@ struct HullLimits {
   double min_view_iou = 0.9;
 };
 
+// The host's fitted body, when --body asks for it (the groups' "body" entries).
+struct BodyLimits {
+  bool check = false;
+  double max_rms_mm = 20;
+  double max_angle_deg = 4;
+  long max_starts = 2;  // the first start and one restart
+};
+
 struct Options {
   std::string truth, groups, json, cameras;
   HullLimits hull;
+  BodyLimits body;
   syncap::compare::Thresholds thresholds;
   MarkerLimits markers;
   double max_reprojection_px = 0.5;
@@ -119,6 +129,21 @@ void add_hull_options(CLI::App& app, HullLimits& h) {
       ->group(group);
 }
 
+void add_body_options(CLI::App& app, BodyLimits& b) {
+  const std::string group =
+      "The host's fitted body (syncap-host --body, syncap fit), against truth/body.jsonl's joints";
+  app.add_flag("--body", b.check, "check the groups' fitted bodies")->group(group);
+  cli::add_checked(app, "--max-body-rms-mm", b.max_rms_mm, "MM", cli::non_negative(),
+                   "joint-centre RMS over all fitted frames (20)")
+      ->group(group);
+  cli::add_checked(app, "--max-body-angle-deg", b.max_angle_deg, "DEG", cli::non_negative(),
+                   "mean error of the hips', knees', shoulders' and elbows' angles (4)")
+      ->group(group);
+  app.add_option("--max-body-starts", b.max_starts,
+                 "automatic starts, the first included (2: one restart)")
+      ->group(group);
+}
+
 void add_calibration_options(CLI::App& app, Options& o) {
   const std::string group = "A calibration against the truth";
   app.add_option("--cameras", o.cameras,
@@ -138,6 +163,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
   add_marker_options(app, o.markers);
   add_calibration_options(app, o);
   add_hull_options(app, o.hull);
+  add_body_options(app, o.body);
   return cli::parse_main(app, argc, argv, [&o] {
     if (o.groups.empty() && o.cameras.empty())
       throw CLI::ValidationError("--groups FILE (or --cameras FILE) is required");
@@ -208,6 +234,23 @@ bool check_hulls(const Options& o) {
   return pass;
 }
 
+// The fitted body against the true joints, when asked; true when within the limits.
+bool check_body(const Options& o) {
+  if (!o.body.check) return true;
+  std::optional<syncap::compare::Similarity> to_truth;
+  if (!o.cameras.empty()) to_truth = motion_to_truth(o, "body joints");
+  const auto check = syncap::compare::check_body(o.truth, o.groups, to_truth);
+  std::cout << syncap::compare::format_body_check(check);
+  const bool pass =
+      check.fitted > 0 && check.fitted == check.frames && check.rms_mm() <= o.body.max_rms_mm &&
+      check.mean_angle_error_deg() <= o.body.max_angle_deg && check.starts <= o.body.max_starts;
+  std::cout << (pass ? "PASS" : "FAIL")
+            << ": body (every frame fitted, joint-centre RMS <= " << o.body.max_rms_mm
+            << " mm, joint-angle error <= " << o.body.max_angle_deg
+            << " deg, starts <= " << o.body.max_starts << ")\n";
+  return pass;
+}
+
 // The calibration check: 0 when the true targets reproject within the limit.
 int check_cameras(const Options& o) {
   namespace fs = std::filesystem;
@@ -255,7 +298,8 @@ int main(int argc, char** argv) {
     if (!o.json.empty()) write_json(o.json, report);
     const bool markers_pass = check_markers(o, truth, groups);
     const bool hull_pass = check_hulls(o);
-    return report.pass() && markers_pass && hull_pass && cameras_status == 0 ? 0 : 1;
+    const bool body_pass = check_body(o);
+    return report.pass() && markers_pass && hull_pass && body_pass && cameras_status == 0 ? 0 : 1;
   } catch (const syncap::compare::InputError& e) {
     std::cerr << "syncap-hil-compare: " << e.what() << "\n";
     return 2;

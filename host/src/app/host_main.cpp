@@ -2,7 +2,8 @@
 // frame number (pipeline::HostNode) and runs the stages on each group on a worker thread: with
 // --calibration the markers are matched, triangulated, tracked and published live
 // (docs/reconstruction.md), and with --hull the person's visual hull is built from the
-// silhouettes (docs/visual-hull.md).
+// silhouettes (docs/visual-hull.md), and with --body the articulated body is fitted to it and
+// tracked (docs/body-fit.md).
 #include <lcm/lcm-cpp.hpp>
 
 #include <atomic>
@@ -13,6 +14,8 @@
 
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
+#include "body/hanim_model.hpp"
+#include "outputs/body_message_stage.hpp"
 #include "outputs/hull_message_stage.hpp"
 #include "outputs/json_lines_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
@@ -36,6 +39,7 @@ struct Stages {
   reconstruction::RigidSetStage* rigid_sets = nullptr;
   outputs::MarkerMessageStage* marker_message = nullptr;
   reconstruction::HullStage* hull = nullptr;
+  reconstruction::BodyFitStage* body = nullptr;
 };
 
 // The hull after the markers: the markers' message leaves before the slower hull is built.
@@ -47,6 +51,16 @@ void add_hull_stages(const host_app::HullArgs& args, std::vector<sensor::CameraM
   if (args.message)
     s.chain.push_back(std::make_unique<outputs::HullMessageStage>(
         [&lcm](const hull_frame_t& m) { lcm.publish(proto::kHullChannel, &m); }));
+}
+
+// The body after the hull it is fitted to.
+void add_body_stages(const host_app::BodyArgs& args, lcm::LCM& lcm, Stages& s) {
+  auto stage = std::make_unique<reconstruction::BodyFitStage>(body::hanim_skeleton(), args.stage);
+  s.body = stage.get();
+  s.chain.push_back(std::move(stage));
+  if (args.message)
+    s.chain.push_back(std::make_unique<outputs::BodyMessageStage>(
+        [&lcm](const body_frame_t& m) { lcm.publish(proto::kBodyChannel, &m); }));
 }
 
 Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& lcm) {
@@ -71,6 +85,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
       s.chain.push_back(std::move(message));
     }
     if (o.hull.enabled) add_hull_stages(o.hull, cameras, lcm, s);
+    if (o.body.enabled) add_body_stages(o.body, lcm, s);
   }
   if (!o.quiet)
     s.chain.push_back(
@@ -176,9 +191,9 @@ int run(const host_app::HostOptions& o) {
   if (!o.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
   receive(lcm, node, o, last_pulse);
   node.finish();
-  host_app::print_summary(
-      {node, sub, arrivals, stages.markers, stages.marker_message, stages.rigid_sets, stages.hull},
-      std::cout);
+  host_app::print_summary({node, sub, arrivals, stages.markers, stages.marker_message,
+                           stages.rigid_sets, stages.hull, stages.body},
+                          std::cout);
   return 0;
 }
 

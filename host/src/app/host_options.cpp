@@ -99,6 +99,23 @@ void add_hull_options(CLI::App& app, HullArgs& args) {
   app.add_option("--hull-meshes", stage.mesh_dir, "write every hull as DIR/hull_<frame>.ply");
 }
 
+void add_body_options(CLI::App& app, BodyArgs& args) {
+  app.add_option("--body-points", args.points,
+                 "points spread over each hull's surface for the fit (default " +
+                     std::to_string(args.points) + ")")
+      ->check(cli::whole_in<std::size_t>(100, 100000));
+  app.add_option("--body-point-sigma", args.stage.point_sigma_mm,
+                 "the hull points' standard deviation [mm] (default " +
+                     cli::number_text(args.stage.point_sigma_mm) + ")")
+      ->check(cli::number_in(0.1, 1000));
+}
+
+void apply_body_options(const BodyArgs& body, HullArgs& hull) {
+  if (!body.enabled) return;
+  hull.enabled = true;
+  hull.stage.surface_samples = body.points;
+}
+
 void load_rigid_sets(TrackingArgs& args) {
   if (args.rigid_sets_path.empty()) return;
   try {
@@ -146,6 +163,11 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
   add_hull_options(app, o.hull);
   app.add_flag("!--no-hull-message", o.hull.message, "do not publish hull_frame_t");
+  app.add_flag("--body", o.body.enabled,
+               "fit the articulated body to every visual hull and track it (turns --hull on): "
+               "the pose on SYNCAP_BODY and in --out (docs/body-fit.md)");
+  add_body_options(app, o.body);
+  app.add_flag("!--no-body-message", o.body.message, "do not publish body_frame_t");
 }
 
 }  // namespace
@@ -167,6 +189,9 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
     o.cameras = parse_camera_list(cameras);
     if (!volume.empty()) o.markers.matching.volume = parse_volume(volume);
     load_rigid_sets(o.tracking);
+    if (o.body.enabled && o.calibration.empty())
+      throw CLI::ValidationError("--body", "needs --calibration (the cameras' models)");
+    apply_body_options(o.body, o.hull);
     if (o.hull.enabled && o.calibration.empty())
       throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");
   } catch (const CLI::CallForHelp&) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "matching/marker_matcher.hpp"
+#include "reconstruction/body_fit_stage.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
 #include "tracking/marker_tracker.hpp"
@@ -39,6 +40,15 @@ struct HullArgs {
   bool message = true;  // publish hull_frame_t on SYNCAP_HULL (syncap-host's --no-hull-message)
 };
 
+// The body fit stage's options (--body and --body-*): the articulated body fitted to every
+// hull (docs/body-fit.md).
+struct BodyArgs {
+  bool enabled = false;      // --body (turns the hull on)
+  std::size_t points = 800;  // points spread over each hull's surface for the fit
+  reconstruction::BodyFitStageOptions stage;
+  bool message = true;  // publish body_frame_t on SYNCAP_BODY (syncap-host's --no-body-message)
+};
+
 struct HostOptions {
   std::set<int> cameras{0};
   std::string lcm_url;
@@ -53,6 +63,7 @@ struct HostOptions {
   bool marker_message = true;  // publish marker_frame_t on SYNCAP_MARKERS
   TrackingArgs tracking;
   HullArgs hull;
+  BodyArgs body;
 };
 
 // "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and
@@ -67,6 +78,10 @@ void add_marker_options(CLI::App& app, MarkerArgs& args);
 // --hull, --hull-method, --hull-resolution, --hull-every, --hull-max-wait-ms, --hull-iou,
 // --hull-min-iou and --hull-meshes on `app`; syncap-host and syncap markers share them.
 void add_hull_options(CLI::App& app, HullArgs& args);
+// --body-points and --body-point-sigma on `app`; syncap-host and syncap fit share them.
+void add_body_options(CLI::App& app, BodyArgs& args);
+// With --body: the hull on, sampling its surface for the fit.
+void apply_body_options(const BodyArgs& body, HullArgs& hull);
 // Reads args.rigid_sets_path, if given, into args.rigid_sets; CLI::ValidationError naming
 // --rigid-sets with the file's "path:line: problem" when it cannot be used.
 void load_rigid_sets(TrackingArgs& args);

@@ -85,6 +85,7 @@ void print_summary(const SummaryInputs& in, std::ostream& out) {
   if (in.markers != nullptr) print_reconstruction(in, out);
   if (in.rigid_sets != nullptr) out << in.rigid_sets->summary();
   if (in.hull != nullptr) out << in.hull->summary();
+  if (in.body != nullptr) out << in.body->summary();
   out.flush();
 }
 

@@ -7,6 +7,7 @@
 #include "aggregator/arrival_tally.hpp"
 #include "outputs/marker_message_stage.hpp"
 #include "pipeline/host_node.hpp"
+#include "reconstruction/body_fit_stage.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
@@ -46,6 +47,7 @@ struct SummaryInputs {
   const outputs::MarkerMessageStage* marker_message = nullptr;  // with --calibration
   const reconstruction::RigidSetStage* rigid_sets = nullptr;    // with --rigid-sets
   const reconstruction::HullStage* hull = nullptr;              // with --hull
+  const reconstruction::BodyFitStage* body = nullptr;           // with --body
 };
 
 void print_summary(const SummaryInputs& in, std::ostream& out);

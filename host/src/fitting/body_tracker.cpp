@@ -28,8 +28,7 @@ TrackedFrame BodyTracker::track(std::span<const SurfacePoint> points) {
   if (kept < options_.min_points_kept) {
     frame.lost = true;
     ++counters_.lost;
-    last_.reset();
-    before_last_.reset();
+    stop();
     return frame;
   }
   before_last_ = last_;

@@ -37,6 +37,11 @@ class BodyTracker {
   // Starts (or restarts) the track at a pose: the next frame's fit starts there.
   void start(const PoseVector& pose);
   bool tracking() const { return last_.has_value(); }
+  // Drops the track: the next frame needs a start() again.
+  void stop() {
+    last_.reset();
+    before_last_.reset();
+  }
 
   // Fits the frame's points from the prediction. Throws std::logic_error when not tracking (call
   // start() first) and what fit_surface throws.

@@ -10,8 +10,8 @@
 // farther than a gate from every segment get none), so that points of another object or a wrong
 // assignment do not pull the body. A weak prior holds the joints near the start (a tracker's
 // prediction): the spine's and the shoulder girdle's joints turn the same ellipsoids, and
-// without it the fit drifts along their common motion. Joint limits are bounds on the knees'
-// parameters (they bend one way).
+// without it the fit drifts along their common motion. Joint limits are bounds on the joints'
+// parameters (a documented table; today the knees', which bend one way).
 #pragma once
 
 #include <Eigen/Core>
@@ -39,7 +39,7 @@ struct SurfaceFitOptions {
   double gate_floor_mm = 60.0;
   // Each joint parameter's standard deviation around the start [rad]; 0: no prior.
   double prior_rad = 0.5;
-  bool joint_limits = true;  // the knees bend one way only (docs/body-fit.md, the options' table)
+  bool joint_limits = true;  // the joints' ranges (docs/body-fit.md, "Joint limits")
 };
 
 using PoseVector = std::array<double, kPoseParameterCount>;

@@ -120,12 +120,35 @@ void write_hull(JsonText& j, const pipeline::HullSummary& h) {
   j.key("volume_mm3").number(std::round(h.volume_mm3)).end_object();
 }
 
+// {"fit_us", "flags", "joints"? {"<name>": [x, y, z] (mm)}, "parameters"? [...], "points",
+// "points_kept", "rms_mm"}
+void write_body(JsonText& j, const pipeline::BodyFitSummary& b) {
+  j.begin_object().key("fit_us").integer(std::llround(b.fit_us)).key("flags").integer(b.flags);
+  if (!b.joints_mm.empty()) {
+    j.key("joints").begin_object();
+    for (std::size_t i = 0; i < b.joints_mm.size() && i < b.joint_names.size(); ++i) {
+      j.key(b.joint_names[i]).begin_array();
+      for (int k = 0; k < 3; ++k) j.number(micrometres(b.joints_mm[i][k]));
+      j.end_array();
+    }
+    j.end_object();
+  }
+  if (!b.parameters.empty()) {
+    j.key("parameters").begin_array();
+    for (const double x : b.parameters) j.number(std::round(x * 1e6) / 1e6);
+    j.end_array();
+  }
+  j.key("points").integer(b.points).key("points_kept").integer(b.points_kept);
+  j.key("rms_mm").number(micrometres(b.rms_mm)).end_object();
+}
+
 }  // namespace
 
 void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool with_markers) {
   const host::FrameGroup& g = work.group;
   JsonText j(out);
   j.begin_object();
+  if (work.body) write_body(j.key("body"), *work.body);
   write_cameras(j, g);
   j.key("complete").flag(g.complete()).key("frame").integer(g.frame_number);
   if (work.hull) write_hull(j.key("hull"), *work.hull);

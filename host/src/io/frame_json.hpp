@@ -17,17 +17,20 @@
 
 namespace syncap::io {
 
-// One frame group as its line, without the newline: {"cameras": {"3": {"blobs": [{"area", "x",
-// "y"}], "processing_us", "silhouette"?}}, "complete", "frame", "hull"?, "incomplete_silhouettes"?,
-// "markers"?: [...], "missing_cameras", "rigid_sets"?: [...], "trigger_monotonic_ns"?}, keys in
-// this (sorted) order ("markers" only once a reconstruction stage ran, "rigid_sets" with the
-// rigid set stage, "hull" when the hull stage worked on the group). A marker: {"cameras" [ids],
-// "id", "predicted"?, "residual_px", "sigma" [sx, sy, sz] (mm), "two_cameras"?, "x", "y", "z"
-// (mm)}. A rigid set: {"collinear"?, "found", "name", and when found: "marker_ids" [the set's
-// markers' trajectory ids], "rms_mm", "rotation" [9, row-major: world = R * set + t],
-// "translation" [x, y, z] (mm)}. The hull: {"area_mm2", "cameras", "error"? (why none was
+// One frame group as its line, without the newline: {"body"?, "cameras": {"3": {"blobs": [{"area",
+// "x", "y"}], "processing_us", "silhouette"?}}, "complete", "frame", "hull"?,
+// "incomplete_silhouettes"?, "markers"?: [...], "missing_cameras", "rigid_sets"?: [...],
+// "trigger_monotonic_ns"?}, keys in this (sorted) order ("markers" only once a reconstruction stage
+// ran, "rigid_sets" with the rigid set stage, "hull" when the hull stage worked on the group). A
+// marker: {"cameras" [ids], "id", "predicted"?, "residual_px", "sigma" [sx, sy, sz] (mm),
+// "two_cameras"?, "x", "y", "z" (mm)}. A rigid set: {"collinear"?, "found", "name", and when found:
+// "marker_ids" [the set's markers' trajectory ids], "rms_mm", "rotation" [9, row-major: world = R *
+// set + t], "translation" [x, y, z] (mm)}. The hull: {"area_mm2", "cameras", "error"? (why none was
 // built), "faces", "flags" (hull_frame_t's), "hull_us", "max", "min" [x, y, z] (mm, its box),
-// "vertices", "view_iou"? {"<camera id>": reprojection IoU}, "volume_mm3"}. A number that is not
+// "vertices", "view_iou"? {"<camera id>": reprojection IoU}, "volume_mm3"}. The body (when the
+// body fit stage worked on the group): {"fit_us", "flags" (body_frame_t's), "joints"? {"<H-Anim
+// name>": [x, y, z] (mm)}, "parameters"? [the pose, fitting::PoseVector], "points",
+// "points_kept", "rms_mm"}. A number that is not
 // finite is written as null. Appends to `out`, so that a writer reuses one buffer for every line.
 void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool with_markers);
 std::string frame_line(const pipeline::FrameWork& work, bool with_markers);
@@ -67,12 +70,13 @@ struct FrameRecord {
   std::optional<std::vector<pipeline::Marker3d>> markers;
   std::vector<pipeline::RigidBody> rigid_bodies;
   std::optional<pipeline::HullSummary> hull;
+  std::optional<pipeline::BodyFitSummary> body;
 };
 
 // One line. Required: what identifies a frame and its measurements ("frame", "complete",
 // "cameras", a camera's "blobs" or "silhouette", a blob's "x" and "y", a contour's "points", a
 // marker's "x", "y", "z" and "cameras", a rigid set's "name" and "found", the hull's "flags" and
-// "volume_mm3"); any other field, when
+// "volume_mm3", the body's "flags"); any other field, when
 // absent, takes its default, so hand-written lines in tests stay short. A number written as null
 // (not finite when written) reads as NaN. Throws FrameLineError
 // naming `where` and the field ("cameras.2.blobs[0].y is not a number").

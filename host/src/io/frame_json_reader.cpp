@@ -233,6 +233,31 @@ pipeline::HullSummary hull_at(const json& value, const At& at) {
   return h;
 }
 
+pipeline::BodyFitSummary body_at(const json& value, const At& at) {
+  const json& object = object_at(value, at);
+  pipeline::BodyFitSummary b;
+  b.flags = whole_at<int>(member(object, "flags", at), at / "flags");
+  b.fit_us = optional_field(object, "fit_us", at, number_at, 0.0);
+  b.points = optional_field(object, "points", at, whole_at<int>, 0);
+  b.points_kept = optional_field(object, "points_kept", at, whole_at<int>, 0);
+  b.rms_mm = optional_field(object, "rms_mm", at, number_at, 0.0);
+  if (object.contains("joints")) {
+    const At joints = at / "joints";
+    for (const auto& [name, position] : object_at(object["joints"], joints).items()) {
+      const std::vector<double> v = numbers_at(position, 3, joints / name);
+      b.joint_names.push_back(name);
+      b.joints_mm.emplace_back(v[0], v[1], v[2]);
+    }
+  }
+  if (object.contains("parameters")) {
+    const At list = at / "parameters";
+    const json& values = array_at(object["parameters"], list);
+    for (std::size_t i = 0; i < values.size(); ++i)
+      b.parameters.push_back(number_at(values[i], list[i]));
+  }
+  return b;
+}
+
 template <class Read>
 auto list_at(const json& value, const At& at, Read read) {
   std::vector<decltype(read(value, at))> items;
@@ -275,6 +300,7 @@ FrameRecord parse_frame_line(std::string_view line, const std::string& where) {
   if (object.contains("rigid_sets"))
     r.rigid_bodies = list_at(object["rigid_sets"], at / "rigid_sets", rigid_body_at);
   if (object.contains("hull")) r.hull = hull_at(object["hull"], at / "hull");
+  if (object.contains("body")) r.body = body_at(object["body"], at / "body");
   return r;
 }
 

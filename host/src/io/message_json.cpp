@@ -121,6 +121,24 @@ void to_json(nlohmann::ordered_json& json, const hull_frame_t& msg) {
   };
 }
 
+void to_json(nlohmann::ordered_json& json, const body_frame_t& msg) {
+  nlohmann::ordered_json joints = nlohmann::ordered_json::array();
+  for (const auto& joint : msg.joint_mm) joints.push_back(joint);
+  json = {
+      {"frame_number", msg.frame_number},
+      {"trigger_monotonic_ns", msg.trigger_monotonic_ns},
+      {"trigger_realtime_ns", msg.trigger_realtime_ns},
+      {"host_us", msg.host_us},
+      {"fit_us", msg.fit_us},
+      {"flags", msg.flags},
+      {"rms_mm", msg.rms_mm},
+      {"points", msg.points},
+      {"points_kept", msg.points_kept},
+      {"parameters", msg.parameters},
+      {"joint_mm", joints},
+  };
+}
+
 // The trigger module's heartbeat (proto/msg/trigger_status_t.lcm).
 void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg);
 void to_json(nlohmann::ordered_json& json, const trigger_status_t& msg) {
@@ -218,12 +236,12 @@ KnownType known() {
   return {Message::getHash(), &decode_as<Message>};
 }
 
-const std::array<KnownType, 11>& known_types() {
-  static const std::array<KnownType, 11> types{
+const std::array<KnownType, 12>& known_types() {
+  static const std::array<KnownType, 12> types{
       known<trigger_t>(),         known<blob_t>(),          known<blob_frame_t>(),
       known<silhouette_part_t>(), known<camera_status_t>(), known<edge_command_t>(),
       known<trigger_status_t>(),  known<clip_polygon_t>(),  known<marker_t>(),
-      known<marker_frame_t>(),    known<hull_frame_t>()};
+      known<marker_frame_t>(),    known<hull_frame_t>(),    known<body_frame_t>()};
   return types;
 }
 

@@ -10,6 +10,7 @@
 
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/blob_t.hpp"
+#include "syncap/body_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
@@ -33,6 +34,7 @@ void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg);
 void to_json(nlohmann::ordered_json& json, const marker_t& msg);
 void to_json(nlohmann::ordered_json& json, const marker_frame_t& msg);
 void to_json(nlohmann::ordered_json& json, const hull_frame_t& msg);
+void to_json(nlohmann::ordered_json& json, const body_frame_t& msg);
 
 }  // namespace syncap
 

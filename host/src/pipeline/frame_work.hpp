@@ -52,6 +52,24 @@ struct HullSummary {
   // Camera id -> IoU of the hull's reprojection against that camera's silhouette, when asked.
   std::map<int, double> view_iou;
   std::string error;  // why there is no hull (FLAG_FAILED)
+  // Points spread evenly over the mesh's surface, when the stage is asked for them (the body
+  // fit's input: HullStageOptions::surface_samples).
+  std::vector<Eigen::Vector3d> surface_mm;
+};
+
+// The articulated body fitted to one frame's hull (reconstruction::BodyFitStage,
+// docs/body-fit.md).
+struct BodyFitSummary {
+  int flags = 0;                   // body_frame_t::FLAG_*, ORed
+  std::vector<double> parameters;  // the pose (fitting::PoseVector); empty without a fit
+  // The joints' centres [mm] in the calibration's frame, named (H-Anim), in the order of
+  // body_frame_t's joint_mm (the root, then fitting::kFittedJoints); empty without a fit.
+  std::vector<std::string> joint_names;
+  std::vector<Eigen::Vector3d> joints_mm;
+  double rms_mm = 0;    // the hull points' distances to the body's surface, RMS
+  int points = 0;       // hull surface points given to the fit
+  int points_kept = 0;  // of them, within the fit's last gate
+  double fit_us = 0;    // the fit, and the automatic start when there was one (wall time)
 };
 
 struct FrameWork {
@@ -63,6 +81,7 @@ struct FrameWork {
   std::vector<Marker3d> markers;
   std::vector<RigidBody> rigid_bodies;  // one per set of the rigid set stage, found or not
   std::optional<HullSummary> hull;      // the hull stage ran on a group with silhouettes
+  std::optional<BodyFitSummary> body;   // the body fit stage ran on a group with a hull
 };
 
 // The calling thread's CPU time [us] (CLOCK_THREAD_CPUTIME_ID): what a stage cost the host,

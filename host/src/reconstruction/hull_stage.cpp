@@ -6,6 +6,7 @@
 
 #include "hull/polyhedral_hull.hpp"
 #include "hull/reprojection.hpp"
+#include "hull/surface_samples.hpp"
 #include "hull/voxel_hull.hpp"
 #include "syncap/hull_frame_t.hpp"
 #include "util/printf_string.hpp"
@@ -121,6 +122,8 @@ void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& v
     summary.hull_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     measure(mesh, views, summary);
+    if (options_.surface_samples > 0)
+      summary.surface_mm = hull::sample_surface(mesh, options_.surface_samples);
     ++stats_.hulls;
     if (!options_.mesh_dir.empty())
       hull::write_mesh(options_.mesh_dir / ("hull_" + std::to_string(frame_number) + ".ply"), mesh);

@@ -51,6 +51,9 @@ struct HullStageOptions {
   // The full mesh check (self-intersections: an AABB tree of the faces, several ms); otherwise
   // closedness, orientation and manifoldness only.
   bool check_self_intersection = false;
+  // Points spread evenly over each hull's surface into HullSummary::surface_mm (the body fit's
+  // input); 0: none.
+  std::size_t surface_samples = 0;
   // Writes DIR/hull_<frame>.ply for every hull built; empty: no meshes.
   std::filesystem::path mesh_dir;
 };

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Reads the exports of syncap-io-export-samples back with independent readers and checks every
 value against the synthetic trajectories (synthetic_trajectories.hpp; the formulas are repeated
-here). C3D: PyPI ezc3d and c3d; TRC: plain parsing as OpenSim's TRCFileAdapter does it.
+here). C3D: PyPI ezc3d and c3d; TRC: plain parsing as OpenSim's TRCFileAdapter does it; BVH:
+PyPI bvh (leg.bvh, the motion export_samples_main.cpp writes).
 
 ezc3d (1.7.2) decodes the fourth word of float data as two 16-bit integers, not as the C3D guide's
 integer stored as a float (pyomeca/ezc3d issue 386), so residuals and camera masks are checked
@@ -160,6 +161,30 @@ def check_trc_row(row, f, markers, rate):
         expect(all(abs(a - b) < 5e-5 for a, b in zip(got, position(f, m))), "TRC f%d m%d" % (f, m))
 
 
+def check_bvh(module, path):
+    """leg.bvh: root, l_hip, l_knee; Y up in metres; the root rising 1 mm and the knee bending
+    1 degree about X a frame, 10 frames at 50 Hz."""
+    with open(path) as handle:
+        motion = module.Bvh(handle.read())
+    expect(motion.get_joints_names() == ["root", "l_hip", "l_knee"],
+           "BVH joints %s" % motion.get_joints_names())
+    expect(motion.joint_parent_index("l_knee") == 1, "BVH l_knee's parent")
+    expect(motion.joint_offset("l_hip") == (0.1, -0.05, 0.0), "BVH l_hip offset %s"
+           % (motion.joint_offset("l_hip"),))
+    expect(motion.joint_channels("root") == ["Xposition", "Yposition", "Zposition", "Zrotation",
+                                             "Xrotation", "Yrotation"], "BVH root channels")
+    expect(motion.joint_channels("l_knee") == ["Zrotation", "Xrotation", "Yrotation"],
+           "BVH l_knee channels")
+    expect(motion.nframes == 10 and motion.frame_time == 0.02, "BVH frames %d, frame time %s"
+           % (motion.nframes, motion.frame_time))
+    for f in range(10):
+        root_y = motion.frame_joint_channel(f, "root", "Yposition")
+        expect(abs(root_y - (0.9 + 0.001 * f)) < 1e-9, "BVH f%d root Y %s" % (f, root_y))
+        knee = motion.frame_joint_channels(f, "l_knee", ["Zrotation", "Xrotation", "Yrotation"])
+        expect(abs(knee[0]) < 1e-9 and abs(knee[1] - f) < 1e-6 and abs(knee[2]) < 1e-9,
+               "BVH f%d knee %s" % (f, knee))
+
+
 def import_readers():
     readers = {}
     for name in ("ezc3d", "c3d"):
@@ -196,6 +221,9 @@ def main():
             if case != "long":
                 check_trc("%s/%s.trc" % (folder, case), frames, markers, rate, names, first_frame)
                 print("%s.trc: %d frames x %d markers match" % (case, frames, markers))
+        import bvh  # pinned by scripts/py-deps.sh beside the C3D readers: missing is a failure
+        check_bvh(bvh, "%s/leg.bvh" % folder)
+        print("leg.bvh read by bvh %s: 3 joints x 10 frames match" % version("bvh"))
     except Mismatch as error:
         print("FAIL: %s" % error)
         return 1

@@ -217,6 +217,33 @@ TEST(MessageJson, HullFrameRoundTripsWithItsBox) {
       "min_mm":[-250.5,0.0,0.0],"max_mm":[0.0,0.0,1800.25]})"));
 }
 
+TEST(MessageJson, BodyFrameRoundTripsWithItsJoints) {
+  body_frame_t msg{};
+  msg.frame_number = 12;
+  msg.host_us = 300000;
+  msg.fit_us = 250000;
+  msg.flags = body_frame_t::FLAG_TRACKED;
+  msg.rms_mm = 16.5f;
+  msg.points = 800;
+  msg.points_kept = 797;
+  msg.parameters[0] = -31.5f;
+  msg.parameters[59] = 0.25f;
+  msg.joint_mm[0][2] = 1060.5f;
+  msg.joint_mm[18][0] = -95.25f;
+
+  const nlohmann::json fields = fields_of(msg);
+  std::vector<double> parameters(60, 0.0);
+  parameters[0] = -31.5, parameters[59] = 0.25;
+  std::vector<std::vector<double>> joints(19, std::vector<double>(3, 0.0));
+  joints[0][2] = 1060.5, joints[18][0] = -95.25;
+  nlohmann::json expected = nlohmann::json::parse(R"({"frame_number":12,"trigger_monotonic_ns":0,
+      "trigger_realtime_ns":0,"host_us":300000,"fit_us":250000,"flags":2,"rms_mm":16.5,
+      "points":800,"points_kept":797})");
+  expected["parameters"] = parameters;
+  expected["joint_mm"] = joints;
+  EXPECT_EQ(fields, expected);
+}
+
 TEST(Base64, EncodesWithPadding) {
   EXPECT_EQ(base64_encode(Bytes{}), "");
   EXPECT_EQ(base64_encode(Bytes{'f'}), "Zg==");

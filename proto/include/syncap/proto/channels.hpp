@@ -43,6 +43,8 @@ inline constexpr const char* kEdgeClipChannel = "SYNCAP_EDGE_CLIP";
 inline constexpr const char* kMarkersChannel = "SYNCAP_MARKERS";
 // hull_frame_t: the measures of the host's visual hull of each frame (docs/visual-hull.md).
 inline constexpr const char* kHullChannel = "SYNCAP_HULL";
+// body_frame_t: the body fitted to each frame's visual hull (docs/body-fit.md).
+inline constexpr const char* kBodyChannel = "SYNCAP_BODY";
 
 // Per-camera channels carry the camera id as two decimal digits: SYNCAP_BLOBS_03.
 inline constexpr int kMaxCameraId = 99;

@@ -1,0 +1,112 @@
+#include "reconstruction/body_fit_stage.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "syncap/body_frame_t.hpp"
+#include "util/printf_string.hpp"
+
+namespace syncap::reconstruction {
+
+std::vector<std::string> body_message_joints(const body::Skeleton& skeleton) {
+  std::vector<std::string> names{skeleton.node(0).name};
+  for (const std::string_view joint : fitting::kFittedJoints) names.emplace_back(joint);
+  return names;
+}
+
+BodyFitStage::BodyFitStage(const body::Skeleton& skeleton, BodyFitStageOptions options)
+    : parameters_(skeleton), options_(options), tracker_(parameters_, options_.tracker) {}
+
+void BodyFitStage::process(pipeline::FrameWork& work) {
+  if (!work.hull) return;  // no silhouettes in this group: nothing to say about the body
+  ++stats_.frames;
+  pipeline::BodyFitSummary body;
+  if (!work.group.trigger) body.flags |= body_frame_t::FLAG_NO_TRIGGER;
+  const std::vector<Eigen::Vector3d>& surface = work.hull->surface_mm;
+  body.points = static_cast<int>(surface.size());
+  if (surface.size() < static_cast<std::size_t>(fitting::kPoseParameterCount)) {
+    body.flags |= body_frame_t::FLAG_NO_HULL;
+    ++stats_.no_hull;
+  } else {
+    std::vector<fitting::SurfacePoint> points;
+    points.reserve(surface.size());
+    for (const Eigen::Vector3d& p : surface) points.push_back({p, options_.point_sigma_mm});
+    if (options_.restart_every > 0 && work.group.frame_number % options_.restart_every == 0)
+      tracker_.stop();
+    const auto begin = std::chrono::steady_clock::now();
+    fit(work.group.frame_number, points, body);
+    body.fit_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - begin).count();
+    stats_.fit_us.add(body.fit_us);
+  }
+  work.body = std::move(body);
+}
+
+void BodyFitStage::fit(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
+                       pipeline::BodyFitSummary& body) {
+  try {
+    if (tracker_.tracking()) {
+      const fitting::TrackedFrame tracked = tracker_.track(points);
+      ++stats_.tracked;
+      if (tracked.predicted) body.flags |= body_frame_t::FLAG_TRACKED;
+      if (!tracked.lost) {
+        describe(tracked.fit, body);
+        return;
+      }
+      // Lost: the same frame's hull starts the body again, so that the frame still gets a pose.
+      body.flags |= body_frame_t::FLAG_LOST;
+      ++stats_.lost;
+      stats_.last_problem = util::printf_string(
+          "frame %lld: track lost (%d of %zu points kept), started again",
+          static_cast<long long>(frame_number), tracked.fit.points, points.size());
+    }
+    start(frame_number, points, body);
+  } catch (const std::exception& e) {  // fit_surface's checks: a point that is not finite
+    body.flags |= body_frame_t::FLAG_NO_HULL;
+    ++stats_.no_hull;
+    stats_.last_problem = "frame " + std::to_string(frame_number) + ": " + e.what();
+  }
+}
+
+void BodyFitStage::start(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
+                         pipeline::BodyFitSummary& body) {
+  const fitting::BodyStart start = fitting::start_body(parameters_, points, options_.start);
+  if (!start.found) {
+    body.flags |= body_frame_t::FLAG_NO_START;
+    ++stats_.no_start;
+    stats_.last_problem = "frame " + std::to_string(frame_number) + ": no start: " + start.why_not;
+    return;
+  }
+  tracker_.start(start.fit.x);
+  body.flags |= body_frame_t::FLAG_STARTED;
+  ++stats_.starts;
+  describe(start.fit, body);
+}
+
+void BodyFitStage::describe(const fitting::SurfaceFit& fit, pipeline::BodyFitSummary& body) const {
+  body.parameters.assign(fit.x.begin(), fit.x.end());
+  body.rms_mm = fit.rms_mm;
+  body.points_kept = fit.points;
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::Vector3d> positions;
+  parameters_.nodes(fit.x.data(), rotations, positions);
+  body.joint_names = body_message_joints(parameters_.skeleton());
+  body.joints_mm.clear();
+  body.joints_mm.push_back(positions[0]);
+  for (const int node : parameters_.fitted_nodes())
+    body.joints_mm.push_back(positions[static_cast<std::size_t>(node)]);
+}
+
+std::string BodyFitStage::summary() const {
+  const BodyFitStageStats& s = stats_;
+  std::string line = util::printf_string(
+      "host body: %ld frames with a hull, %ld without points to fit, %ld starts (%ld found no "
+      "body), %ld frames tracked, %ld lost; fit time p50 %.1f ms, p99 %.1f ms\n",
+      s.frames, s.no_hull, s.starts, s.no_start, s.tracked, s.lost,
+      pipeline::quantile(s.fit_us.values(), 0.5) * 1e-3,
+      pipeline::quantile(s.fit_us.values(), 0.99) * 1e-3);
+  if (!s.last_problem.empty()) line += "host body: last problem: " + s.last_problem + "\n";
+  return line;
+}
+
+}  // namespace syncap::reconstruction

@@ -1,0 +1,72 @@
+// The articulated body fitted to every frame's visual hull and tracked (docs/body-fit.md, "Live"):
+// the stage after the hull stage. Points spread over the hull's surface (HullStageOptions::
+// surface_samples) are the observations. The first frame with a hull starts the body
+// automatically (fitting::start_body); every later frame is fitted from the tracker's
+// prediction, and a frame whose fit loses the track (too few points kept) starts again from its
+// own hull. Each frame the stage worked on gets a pipeline::BodyFitSummary (the pose, the
+// joints' centres, the fit's RMS and points kept, flags); a frame without a hull is flagged,
+// never fitted from nothing, and the stage never stops the pipeline.
+#pragma once
+
+#include <string>
+
+#include "body/skeleton.hpp"
+#include "fitting/body_start.hpp"
+#include "fitting/body_tracker.hpp"
+#include "pipeline/frame_work.hpp"
+#include "pipeline/recent_values.hpp"
+
+namespace syncap::reconstruction {
+
+struct BodyFitStageOptions {
+  fitting::BodyTrackerOptions tracker;
+  fitting::BodyStartOptions start;
+  // The hull's points' standard deviation [mm]: the hull is the silhouettes' cones' intersection,
+  // it lies on or outside the body, by up to centimetres between the views (docs/body-fit.md).
+  double point_sigma_mm = 10.0;
+  // Drops the track on every frame whose number is a multiple of this, so that the frame starts
+  // the body automatically: measures the automatic start all through a recording (syncap fit
+  // --restart-every); 0: never.
+  int restart_every = 0;
+};
+
+struct BodyFitStageStats {
+  long frames = 0;    // groups with a hull (or a failed one)
+  long no_hull = 0;   // of them, no hull or too few points to fit
+  long starts = 0;    // automatic starts that found the body
+  long no_start = 0;  // automatic starts that did not
+  long tracked = 0;   // frames fitted by the tracker
+  long lost = 0;      // of them, the track lost (and started again on the same frame)
+  std::string last_problem;
+  pipeline::RecentValues fit_us;  // per frame: a start or a tracked fit
+};
+
+class BodyFitStage : public pipeline::Stage {
+ public:
+  // Throws std::invalid_argument when the skeleton lacks a fitted joint.
+  explicit BodyFitStage(const body::Skeleton& skeleton, BodyFitStageOptions options = {});
+  const char* name() const override { return "body fit"; }
+  void process(pipeline::FrameWork& work) override;
+  const BodyFitStageStats& stats() const { return stats_; }
+  const fitting::PoseParameters& parameters() const { return parameters_; }
+  // "host body: ..." lines: frames, starts, tracked, lost, time p50/p99, the last problem.
+  std::string summary() const;
+
+ private:
+  void fit(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
+           pipeline::BodyFitSummary& body);
+  // The automatic start on this frame's points; the tracker goes on from it when it found the body.
+  void start(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
+             pipeline::BodyFitSummary& body);
+  void describe(const fitting::SurfaceFit& fit, pipeline::BodyFitSummary& body) const;
+
+  fitting::PoseParameters parameters_;
+  BodyFitStageOptions options_;
+  fitting::BodyTracker tracker_;
+  BodyFitStageStats stats_;
+};
+
+// The joints body_frame_t carries, in its order: the root, then fitting::kFittedJoints.
+std::vector<std::string> body_message_joints(const body::Skeleton& skeleton);
+
+}  // namespace syncap::reconstruction

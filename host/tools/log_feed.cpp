@@ -1,0 +1,82 @@
+#include "log_feed.hpp"
+
+#include <filesystem>
+
+#include "sensor/camera_file.hpp"
+#include "subcommand.hpp"
+#include "syncap/proto/channels.hpp"
+#include "syncap/proto/decode.hpp"
+
+namespace syncap::tools {
+
+bool feed(pipeline::HostNode& node, const io::LogEvent& e, bool silhouettes, long& rejected) {
+  const auto decode_into = [&](auto& msg) {
+    return proto::try_decode(e.data.data(), e.data.size(), msg).ok();
+  };
+  bool ok = true;
+  if (e.channel == proto::kTriggerChannel) {
+    trigger_t t;
+    ok = decode_into(t) && node.on_trigger(t);
+  } else if (proto::camera_of_channel(e.channel) &&
+             e.channel.starts_with(proto::kBlobChannelPrefix)) {
+    blob_frame_t f;
+    ok = decode_into(f) && node.on_blob_part(f, e.channel);
+  } else if (silhouettes && proto::camera_of_channel(e.channel) &&
+             e.channel.starts_with(proto::kSilhouetteChannelPrefix)) {
+    silhouette_part_t p;
+    ok = decode_into(p) && node.on_silhouette_part(p, e.channel);
+  } else {
+    return true;  // statuses, commands (and silhouettes when not asked for): not needed
+  }
+  if (!ok) ++rejected;
+  return ok;
+}
+
+std::optional<int> open_offline_inputs(const char* name, const std::string& calibration,
+                                       const std::string& input, const std::string& out_dir,
+                                       const std::string& jsonl_name, OfflineInputs& inputs,
+                                       std::ostream& err) {
+  try {
+    inputs.cameras = sensor::read_cameras(calibration);
+  } catch (const sensor::CameraFileError& e) {
+    err << name << ": --calibration " << e.what() << '\n';
+    return kExitUsage;
+  }
+  const std::string log_path = input.substr(input.find(':') + 1);
+  inputs.log.open(log_path, std::ios::binary);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  inputs.jsonl.open(std::filesystem::path(out_dir) / jsonl_name);
+  if (!inputs.log || !inputs.jsonl) {
+    err << name << ": "
+        << (!inputs.log ? log_path + ": cannot be read" : out_dir + ": cannot be written") << '\n';
+    return kExitUsage;
+  }
+  return std::nullopt;
+}
+
+std::set<int> expected_cameras(const std::set<int>& given,
+                               const std::vector<sensor::CameraModel>& cameras) {
+  if (!given.empty()) return given;
+  std::set<int> ids;
+  for (const sensor::CameraModel& c : cameras) ids.insert(c.id);
+  return ids;
+}
+
+ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silhouettes,
+                         const char* name, std::ostream& err) {
+  io::LcmLogReader reader(log);
+  ReplayOutcome outcome;
+  while (const auto event = reader.next()) {
+    feed(node, *event, silhouettes, outcome.rejected);
+    node.poll();
+    for (const io::LogError& e : reader.take_errors()) {
+      err << name << ": " << e.message << '\n';
+      outcome.damaged = true;
+    }
+  }
+  node.finish();
+  return outcome;
+}
+
+}  // namespace syncap::tools

@@ -1,0 +1,158 @@
+// The body fit stage on frames whose hull surface is a posed body's (points of known truth): the
+// first frame starts the body automatically, the next are tracked, a frame whose body jumped
+// away loses the track and starts again on its own points; a frame without points is flagged
+// and the pipeline goes on; the message carries the joints in the order the .lcm file names.
+#include "reconstruction/body_fit_stage.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+
+#include "body/hanim_model.hpp"
+#include "body_scenes.hpp"
+#include "io/frame_json.hpp"
+#include "outputs/body_message_stage.hpp"
+#include "syncap/body_frame_t.hpp"
+
+namespace syncap::reconstruction {
+namespace {
+
+using fitting::PoseVector;
+
+class BodyFitStageTest : public ::testing::Test {
+ protected:
+  // A frame group whose hull surface is the body of pose x (the hull's points, exact but for
+  // 2 mm of noise).
+  pipeline::FrameWork frame(int64_t number, const PoseVector& x) {
+    pipeline::FrameWork work;
+    work.group.frame_number = number;
+    work.group.trigger = trigger_t{};
+    work.ready = std::chrono::steady_clock::now();
+    work.hull.emplace();
+    const auto body = body::body_frame(parameters_.skeleton(), parameters_.pose(x.data()));
+    for (const fitting::SurfacePoint& p : fitting::test::surface_points(body, 30, rng_, 2.0))
+      work.hull->surface_mm.push_back(p.position_mm);
+    return work;
+  }
+  // A standing pose: the rest figure at (300, -200), turned to face `heading`.
+  PoseVector standing(double heading) const {
+    PoseVector x = parameters_.rest();
+    x[0] = 300, x[1] = -200, x[5] = heading;
+    return x;
+  }
+  const fitting::PoseParameters parameters_{body::hanim_skeleton()};
+  std::mt19937 rng_{4};
+};
+
+TEST_F(BodyFitStageTest, StartsOnTheFirstFrameThenTracksAndStartsAgainWhenLost) {
+  BodyFitStage stage(body::hanim_skeleton());
+  PoseVector truth = standing(0.7);
+  for (int64_t f = 0; f < 3; ++f) {
+    truth[0] += 30;  // walking along X at 0.9 m/s (30 Hz)
+    pipeline::FrameWork work = frame(f, truth);
+    stage.process(work);
+    ASSERT_TRUE(work.body) << f;
+    EXPECT_EQ(work.body->flags, f == 0   ? body_frame_t::FLAG_STARTED
+                                : f == 1 ? 0
+                                         : body_frame_t::FLAG_TRACKED)
+        << f;
+    ASSERT_EQ(work.body->parameters.size(), std::size_t{fitting::kPoseParameterCount});
+    PoseVector fitted;
+    std::copy(work.body->parameters.begin(), work.body->parameters.end(), fitted.begin());
+    EXPECT_LT(fitting::test::joint_rms_mm(parameters_, fitted, truth), 10.0) << f;
+    // The joints: the root's centre first, named; the fit's points nearly all kept.
+    ASSERT_EQ(work.body->joints_mm.size(), 19u);
+    EXPECT_EQ(work.body->joint_names.front(), "HumanoidRoot");
+    EXPECT_LT((work.body->joints_mm[0] - Eigen::Vector3d(truth[0], truth[1], truth[2])).norm(),
+              10.0);
+    EXPECT_GT(work.body->points_kept, 0.95 * work.body->points);
+  }
+  // The person is suddenly 1 m away (a second person, a wrong frame): the tracked fit keeps too
+  // few points, and the frame's own points start the body there.
+  truth[1] += 1000;
+  pipeline::FrameWork jumped = frame(3, truth);
+  stage.process(jumped);
+  EXPECT_EQ(jumped.body->flags,
+            body_frame_t::FLAG_TRACKED | body_frame_t::FLAG_LOST | body_frame_t::FLAG_STARTED);
+  EXPECT_LT((jumped.body->joints_mm[0] - Eigen::Vector3d(truth[0], truth[1], truth[2])).norm(),
+            15.0);
+  EXPECT_EQ(stage.stats().starts, 2);
+  EXPECT_EQ(stage.stats().tracked, 3);
+  EXPECT_EQ(stage.stats().lost, 1);
+  EXPECT_NE(stage.summary().find("2 starts (0 found no body), 3 frames tracked, 1 lost"),
+            std::string::npos)
+      << stage.summary();
+}
+
+TEST_F(BodyFitStageTest, AFrameWithoutPointsIsFlaggedAndNothingIsFitted) {
+  BodyFitStage stage(body::hanim_skeleton());
+  pipeline::FrameWork no_silhouettes;  // no hull stage output at all: not the stage's business
+  stage.process(no_silhouettes);
+  EXPECT_FALSE(no_silhouettes.body);
+  pipeline::FrameWork failed = frame(7, standing(0));
+  failed.hull->surface_mm.resize(10);  // a failed or tiny hull
+  failed.group.trigger.reset();
+  stage.process(failed);
+  ASSERT_TRUE(failed.body);
+  EXPECT_EQ(failed.body->flags, body_frame_t::FLAG_NO_HULL | body_frame_t::FLAG_NO_TRIGGER);
+  EXPECT_TRUE(failed.body->parameters.empty());
+  EXPECT_EQ(stage.stats().no_hull, 1);
+  // A hull that is no standing person (a flat heap on the floor): no start, said why.
+  pipeline::FrameWork flat = frame(8, standing(0));
+  for (Eigen::Vector3d& p : flat.hull->surface_mm) p.z() *= 0.1;
+  stage.process(flat);
+  EXPECT_EQ(flat.body->flags, body_frame_t::FLAG_NO_START);
+  EXPECT_NE(stage.summary().find("frame 8: no start: the points are"), std::string::npos)
+      << stage.summary();
+}
+
+TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
+  BodyFitStage stage(body::hanim_skeleton());
+  pipeline::FrameWork work = frame(42, standing(-0.4));
+  stage.process(work);
+  ASSERT_TRUE(work.body);
+  // The message's joint order is the one its .lcm file documents, and the stage's.
+  const std::vector<std::string> names = body_message_joints(parameters_.skeleton());
+  std::ifstream lcm(std::string(SYNCAP_SOURCE_DIR) + "/proto/msg/body_frame_t.lcm");
+  std::stringstream text;
+  text << lcm.rdbuf();
+  std::string documented = std::regex_replace(text.str(), std::regex("\n *//"), "");
+  documented = documented.substr(documented.find("in this order: ") + 15);
+  documented = documented.substr(0, documented.find(" ("));
+  std::string joined;
+  for (const std::string& n : names) joined += (joined.empty() ? "" : ", ") + n;
+  EXPECT_EQ(documented, joined);
+  EXPECT_EQ(work.body->joint_names, names);
+
+  std::vector<body_frame_t> sent;
+  outputs::BodyMessageStage message([&sent](const body_frame_t& m) { sent.push_back(m); });
+  message.process(work);
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(sent[0].frame_number, 42);
+  EXPECT_EQ(sent[0].flags, body_frame_t::FLAG_STARTED);
+  EXPECT_EQ(sent[0].points, static_cast<int>(work.hull->surface_mm.size()));
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(sent[0].joint_mm[18][k], work.body->joints_mm[18][k], 1e-3);
+  EXPECT_FLOAT_EQ(sent[0].parameters[5], static_cast<float>(work.body->parameters[5]));
+
+  const io::FrameRecord back = io::parse_frame_line(io::frame_line(work, false), "test");
+  ASSERT_TRUE(back.body);
+  EXPECT_EQ(back.body->flags, work.body->flags);
+  EXPECT_EQ(back.body->points_kept, work.body->points_kept);
+  ASSERT_EQ(back.body->joints_mm.size(), 19u);
+  for (std::size_t j = 0; j < back.body->joint_names.size(); ++j) {
+    const auto at = std::find(names.begin(), names.end(), back.body->joint_names[j]);
+    ASSERT_NE(at, names.end());
+    EXPECT_LT((back.body->joints_mm[j] -
+               work.body->joints_mm[static_cast<std::size_t>(at - names.begin())])
+                  .norm(),
+              1e-3);
+  }
+  EXPECT_NEAR(back.body->parameters[5], work.body->parameters[5], 1e-6);
+}
+
+}  // namespace
+}  // namespace syncap::reconstruction
