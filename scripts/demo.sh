@@ -27,7 +27,8 @@ hil/netns-run hil/run-slice --build "$build" --out "$out" --frames "$frames" || 
 
 echo "demo: [3/5] replay bench: hil/run ring-6cam-person --short (six fake GigE cameras"
 echo "      triggered through the simulated GPIO chip, six edges segmenting the person, the host"
-echo "      building the person's visual hull live; compared with the truth)"
+echo "      building the person's visual hull live; compared with the truth; then, through a"
+echo "      calibration from the run's wand phase, the articulated body fitted to every hull)"
 bench_status=0
 ring_out=$out/ring-6cam-person
 hil/run ring-6cam-person --short --build "$build" --out "$ring_out" || bench_status=$?
@@ -40,6 +41,15 @@ if [ -s "$ring_out/traffic.lcmlog" ]; then
       | "      frame \($f.frame_number): hull of \($f.cameras) silhouettes, "
         + "\($f.volume_mm3 / 1e6 | floor) litres, \($f.faces) triangles, built in "
         + "\($f.hull_us / 1000 | floor) ms, flags \($f.flags)"'
+fi
+body_dir=$ring_out/calibrated-body
+if [ -s "$body_dir/body.bvh" ]; then
+  echo "      the body fitted to the hulls (syncap fit; the skeleton and its motion in"
+  echo "      $body_dir/body.bvh, the joints' centres in joints.c3d and joints.trc):"
+  jq -r 'select(.body.joints and .frame % 10 == 5) | .body as $b
+    | "      frame \(.frame): root at (\($b.joints.HumanoidRoot | map(floor) | join(", "))) mm, "
+      + "head at (\($b.joints.skullbase | map(floor) | join(", "))) mm, hull points "
+      + "\($b.rms_mm) mm RMS from the body, flags \($b.flags)"' "$body_dir/body.jsonl"
 fi
 
 echo "demo: [4/5] live 3D markers: hil/run markers-8cam-body (eight fake cameras, a wand phase,"
@@ -69,7 +79,8 @@ echo "      groups.jsonl      one JSON line per frame group the host formed (thi
 echo "      traffic.lcmlog    all LCM traffic (decode: $build/bin/syncap log $out/traffic.lcmlog)"
 echo "      render/           the slice's rendered frames and truth"
 echo "      ring-6cam-person/ the bench run: render/ (images, truth), groups.jsonl, compare.json,"
-echo "                        hull/ (the person's hull of every frame, PLY), logs"
+echo "                        hull/ (the person's hull of every frame, PLY), calibrated-body/"
+echo "                        (the fitted body: body.jsonl, body.bvh, joints.c3d, joints.trc), logs"
 echo "      markers-8cam-body/ the mocap run: offline/ and calibrated/ markers (.jsonl, .c3d, .trc),"
 echo "                        calibration/ (from the run's wand phase), traffic.lcmlog"
 echo "      *.log             each process' own output"

@@ -129,7 +129,8 @@ BodyCheck check_body(const fs::path& truth_dir, const fs::path& groups_file,
       fitted[r.body->joint_names[j]] =
           to_truth ? to_truth->apply(r.body->joints_mm[j]) : r.body->joints_mm[j];
     score(fitted, true_joints->second, static_cast<long>(r.frame), check);
-    if (flags & kStarted) check.start_rms_mm.push_back(check.frame_rms_mm.back());
+    if (flags & kStarted)
+      check.starts_rms_mm.emplace_back(static_cast<long>(r.frame), check.frame_rms_mm.back());
   }
   return check;
 }
@@ -164,16 +165,22 @@ std::string format_body_check(const BodyCheck& c) {
   for (const auto& [error, name] : joints)
     out += util::printf_string(" %s %.1f", name.c_str(), error);
   out += " (mm)\n";
-  if (c.start_rms_mm.empty()) return out;
-  const long good = std::count_if(c.start_rms_mm.begin(), c.start_rms_mm.end(),
-                                  [](double rms) { return rms <= 50.0; });
-  return out + util::printf_string(
-                   "body: automatic starts: %zu, joint RMS within 50 mm in %ld (%.0f %%), median "
-                   "%.1f mm, max %.1f mm\n",
-                   c.start_rms_mm.size(), good,
-                   100.0 * static_cast<double>(good) / static_cast<double>(c.start_rms_mm.size()),
-                   median_of(c.start_rms_mm),
-                   *std::max_element(c.start_rms_mm.begin(), c.start_rms_mm.end()));
+  if (c.starts_rms_mm.empty()) return out;
+  std::vector<double> rms;
+  for (const auto& [frame, error] : c.starts_rms_mm) rms.push_back(error);
+  const long good = std::count_if(rms.begin(), rms.end(), [](double e) { return e <= 50.0; });
+  out += util::printf_string(
+      "body: automatic starts: %zu, joint RMS within 50 mm in %ld (%.0f %%), median %.1f mm, max "
+      "%.1f mm",
+      rms.size(), good, 100.0 * static_cast<double>(good) / static_cast<double>(rms.size()),
+      median_of(rms), *std::max_element(rms.begin(), rms.end()));
+  std::vector<std::pair<long, double>> worst = c.starts_rms_mm;
+  std::sort(worst.begin(), worst.end(),
+            [](const auto& a, const auto& b) { return a.second > b.second; });
+  for (std::size_t i = 0; i < worst.size() && i < 3 && worst[i].second > 50.0; ++i)
+    out += util::printf_string("%s frame %ld %.0f mm", i == 0 ? "; worst:" : ",", worst[i].first,
+                               worst[i].second);
+  return out + "\n";
 }
 
 }  // namespace syncap::compare

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibration_check.hpp"
@@ -26,7 +27,7 @@ struct BodyCheck {
   long no_start = 0;                 // records flagged NO_START
   long no_hull = 0;                  // records flagged NO_HULL
   std::vector<double> frame_rms_mm;  // per fitted frame
-  std::vector<double> start_rms_mm;  // per frame an automatic start fitted (STARTED)
+  std::vector<std::pair<long, double>> starts_rms_mm;           // frame and joint RMS of each start
   std::map<std::string, std::vector<double>> joint_errors_mm;   // per joint, per fitted frame
   std::map<std::string, std::vector<double>> angle_errors_deg;  // "l_knee", ...: |fit - truth|
   double rms_mm() const;                // over every joint of every fitted frame

@@ -193,7 +193,9 @@ SurfaceFit fit_surface(const PoseParameters& parameters, std::span<const Surface
       problem.SetParameterUpperBound(fit.x.data(), b.index, b.high);
     }
     ceres::Solver::Options solver;
-    solver.linear_solver_type = ceres::DENSE_QR;
+    // The normal equations (60 x 60) rather than QR of the 800 x 60 Jacobian: a quarter less time
+    // per tracked frame on the replay bench, the same poses.
+    solver.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solver.max_num_iterations = options.iterations_per_round;
     solver.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
