@@ -44,7 +44,7 @@ struct HullArgs {
 // hull (docs/body-fit.md).
 struct BodyArgs {
   bool enabled = false;      // --body (turns the hull on)
-  std::size_t points = 800;  // points spread over each hull's surface for the fit
+  std::size_t points = 1600;  // points spread over each hull's surface for the fit
   reconstruction::BodyFitStageOptions stage;
   bool message = true;  // publish body_frame_t on SYNCAP_BODY (syncap-host's --no-body-message)
 };
