@@ -43,7 +43,7 @@ struct HullArgs {
 // The body fit stage's options (--body and --body-*): the articulated body fitted to every
 // hull (docs/body-fit.md).
 struct BodyArgs {
-  bool enabled = false;      // --body (turns the hull on)
+  bool enabled = false;       // --body (turns the hull on)
   std::size_t points = 1600;  // points spread over each hull's surface for the fit
   reconstruction::BodyFitStageOptions stage;
   bool message = true;  // publish body_frame_t on SYNCAP_BODY (syncap-host's --no-body-message)
