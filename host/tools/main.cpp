@@ -22,6 +22,7 @@
 #include "hull_command.hpp"
 #include "log_command.hpp"
 #include "markers_command.hpp"
+#include "record_command.hpp"
 #include "subcommand.hpp"
 
 namespace {
@@ -37,6 +38,9 @@ struct Subcommand {
 constexpr std::array kSubcommands{
     Subcommand{"log", "print the events of an LCM log file as JSON lines",
                &syncap::tools::log_command},
+    Subcommand{"record",
+               "record the LCM traffic into an LCM log file (as lcm-logger, never dropping)",
+               &syncap::tools::record_command},
     Subcommand{"bundle", "adjust a scene description (SDL) file: bundle adjustment",
                &syncap::tools::bundle_command},
     Subcommand{"calibrate", "calibrate the cameras from wand or LED observations",
