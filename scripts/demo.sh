@@ -35,7 +35,7 @@ hil/run ring-6cam-person --short --build "$build" --out "$ring_out" || bench_sta
 [ "$bench_status" -eq 77 ] && bench_status=0  # skipped: motion data absent (said above)
 [ "$bench_status" -eq 0 ] || status=$bench_status
 if [ -s "$ring_out/traffic.lcmlog" ]; then
-  echo "      the hulls on SYNCAP_HULL as lcm-logger received them (meshes in $ring_out/hull/):"
+  echo "      the hulls on SYNCAP_HULL as syncap record received them (meshes in $ring_out/hull/):"
   "$build/bin/syncap" log "$ring_out/traffic.lcmlog" --channel SYNCAP_HULL 2>/dev/null |
     jq -r 'select(.fields.frame_number % 10 == 5) | .fields as $f
       | "      frame \($f.frame_number): hull of \($f.cameras) silhouettes, "
@@ -54,7 +54,7 @@ fi
 
 echo "demo: [4/5] live 3D markers: hil/run markers-8cam-body (eight fake cameras, a wand phase,"
 echo "      then a person wearing 33 markers); the host reconstructs and tracks them live and"
-echo "      publishes them on SYNCAP_MARKERS; as lcm-logger received them during the run:"
+echo "      publishes them on SYNCAP_MARKERS; as syncap record received them during the run:"
 markers_out=$out/markers-8cam-body
 markers_status=0
 hil/run markers-8cam-body --max-phase-frames 60 --marker-limits 0.99,0.01,3 --max-rms-px 0.3 \
