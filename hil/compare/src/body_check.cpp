@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <numeric>
 
 #include "input_error.hpp"
 #include "io/frame_json.hpp"
+#include "pipeline/recent_values.hpp"
+#include "true_body.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::compare {
@@ -19,25 +19,6 @@ using Joints = std::map<std::string, Eigen::Vector3d>;
 
 // body_frame_t's flags (proto/msg/body_frame_t.lcm).
 constexpr int kStarted = 1, kLost = 4, kNoHull = 8, kNoStart = 16;
-
-std::map<long, Joints> read_true_joints(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot read");
-  std::map<long, Joints> frames;
-  std::string line;
-  for (long number = 1; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    try {
-      const nlohmann::json j = nlohmann::json::parse(line);
-      Joints& joints = frames[j.at("frame").get<long>()];
-      for (const auto& [name, p] : j.at("joints").items())
-        joints[name] = {p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>()};
-    } catch (const nlohmann::json::exception& e) {
-      fail_at(file.string(), number, e.what());
-    }
-  }
-  return frames;
-}
 
 // A joint's angle between its two bones: the joint, and the far ends of the bones.
 struct JointAngle {
@@ -81,11 +62,6 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 }  // namespace
 
 double BodyCheck::rms_mm() const {
@@ -105,7 +81,9 @@ double BodyCheck::mean_angle_error_deg() const {
 
 BodyCheck check_body(const fs::path& truth_dir, const fs::path& groups_file,
                      const std::optional<Similarity>& to_truth) {
-  const std::map<long, Joints> truth = read_true_joints(truth_dir / "truth" / "body.jsonl");
+  std::map<long, Joints> truth;
+  for (auto& [frame, body] : read_true_bodies(truth_dir / "truth" / "body.jsonl"))
+    truth[frame] = std::move(body.joints_mm);
   std::vector<io::FrameRecord> records;
   try {
     records = io::read_frame_lines(groups_file);
@@ -136,19 +114,14 @@ BodyCheck check_body(const fs::path& truth_dir, const fs::path& groups_file,
 }
 
 std::string format_body_check(const BodyCheck& c) {
-  std::vector<double> sorted = c.frame_rms_mm;
-  std::sort(sorted.begin(), sorted.end());
-  const auto quantile = [&sorted](double p) {
-    return sorted.empty()
-               ? 0.0
-               : sorted[static_cast<std::size_t>(p * static_cast<double>(sorted.size() - 1))];
-  };
+  // Quantiles by nearest rank, as the host's own summaries.
+  const auto quantile = [&c](double p) { return pipeline::quantile(c.frame_rms_mm, p); };
   std::string out = util::printf_string(
       "body: %ld frames with a true body, %ld fitted (%ld starts, %ld lost, %ld found no body, "
       "%ld without a hull); joint-centre RMS %.1f mm (per frame median %.1f, p95 %.1f, max "
       "%.1f); joint-angle error mean %.1f deg",
       c.frames, c.fitted, c.starts, c.lost, c.no_start, c.no_hull, c.rms_mm(), quantile(0.5),
-      quantile(0.95), sorted.empty() ? 0.0 : sorted.back(), c.mean_angle_error_deg());
+      quantile(0.95), quantile(1.0), c.mean_angle_error_deg());
   for (const char* pair : {"hip", "knee", "shoulder", "elbow"}) {
     std::vector<double> both;
     for (const char* side : {"l_", "r_"}) {
@@ -173,7 +146,7 @@ std::string format_body_check(const BodyCheck& c) {
       "body: automatic starts: %zu, joint RMS within 50 mm in %ld (%.0f %%), median %.1f mm, max "
       "%.1f mm",
       rms.size(), good, 100.0 * static_cast<double>(good) / static_cast<double>(rms.size()),
-      median_of(rms), *std::max_element(rms.begin(), rms.end()));
+      pipeline::quantile(rms, 0.5), pipeline::quantile(rms, 1.0));
   std::vector<std::pair<long, double>> worst = c.starts_rms_mm;
   std::sort(worst.begin(), worst.end(),
             [](const auto& a, const auto& b) { return a.second > b.second; });

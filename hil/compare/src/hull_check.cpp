@@ -9,9 +9,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "hull/mesh.hpp"
@@ -21,6 +19,7 @@
 #include "io/frame_json.hpp"
 #include "sensor/camera_file.hpp"
 #include "silhouettes.hpp"
+#include "true_body.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::compare {
@@ -33,43 +32,8 @@ using hull::Point3;
 constexpr int kPointsPerEllipsoid = 400;
 constexpr double kVolumeStepMm = 10.0;  // the true volume's sampling grid
 
-struct Ellipsoid {
-  std::string segment;  // the body segment's name ("" in renders from before it was written)
-  Eigen::Vector3d centre;
-  Eigen::Matrix3d axes;  // columns: unit axes
-  Eigen::Vector3d radii;
-  bool contains(const Eigen::Vector3d& x) const {
-    return (axes.transpose() * (x - centre)).cwiseQuotient(radii).squaredNorm() < 1.0;
-  }
-};
+using Ellipsoid = TrueEllipsoid;
 using Body = std::vector<Ellipsoid>;
-
-Eigen::Vector3d vector_at(const nlohmann::json& v) {
-  return {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()};
-}
-
-std::map<long, Body> read_bodies(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot read");
-  std::map<long, Body> bodies;
-  std::string line;
-  for (long number = 1; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    try {
-      const nlohmann::json j = nlohmann::json::parse(line);
-      Body& body = bodies[j.at("frame").get<long>()];
-      for (const nlohmann::json& e : j.at("ellipsoids")) {
-        Ellipsoid el{e.value("segment", ""), vector_at(e.at("centre_mm")), Eigen::Matrix3d::Zero(),
-                     vector_at(e.at("radii_mm"))};
-        for (int c = 0; c < 3; ++c) el.axes.col(c) = vector_at(e.at("axes").at(c));
-        body.push_back(el);
-      }
-    } catch (const nlohmann::json::exception& e) {
-      fail_at(file.string(), number, e.what());
-    }
-  }
-  return bodies;
-}
 
 struct SurfacePoint {
   Eigen::Vector3d x;
@@ -195,7 +159,9 @@ double HullCheck::coverage() const {
 HullChecks check_hulls(const fs::path& truth_dir, const fs::path& groups_file,
                        const fs::path& mesh_dir, double tolerance_mm,
                        const std::optional<Similarity>& to_truth) {
-  const std::map<long, Body> bodies = read_bodies(truth_dir / "truth" / "body.jsonl");
+  std::map<long, Body> bodies;
+  for (auto& [frame, body] : read_true_bodies(truth_dir / "truth" / "body.jsonl"))
+    bodies[frame] = std::move(body.ellipsoids);
   const std::vector<sensor::CameraModel> cameras = sensor::read_cameras(truth_dir / "cameras.json");
   std::vector<io::FrameRecord> records;
   try {

@@ -6,20 +6,13 @@ namespace syncap::fitting {
 
 namespace {
 
-// The nodes the BVH keeps: the root, then the fitted joints.
-std::vector<int> kept_nodes(const PoseParameters& parameters) {
-  std::vector<int> nodes{0};
-  nodes.insert(nodes.end(), parameters.fitted_nodes().begin(), parameters.fitted_nodes().end());
-  return nodes;
-}
-
 Eigen::Matrix3d rotation_of(const double* angle_axis) { return detail::rotation_of(angle_axis); }
 
 }  // namespace
 
 std::vector<io::BvhJoint> bvh_joints(const PoseParameters& parameters) {
   const body::Skeleton& skeleton = parameters.skeleton();
-  const std::vector<int> nodes = kept_nodes(parameters);
+  const std::vector<int>& nodes = parameters.reported_nodes();
   std::vector<io::BvhJoint> joints;
   for (std::size_t j = 0; j < nodes.size(); ++j) {
     const body::Node& node = skeleton.node(nodes[j]);
@@ -78,7 +71,7 @@ io::MarkerTrajectories joint_trajectories(const PoseParameters& parameters,
                                           std::span<const std::optional<PoseVector>> frames,
                                           double rate_hz, int64_t first_frame) {
   io::MarkerTrajectories out;
-  const std::vector<int> nodes = kept_nodes(parameters);
+  const std::vector<int>& nodes = parameters.reported_nodes();
   for (const int node : nodes) out.labels.push_back(parameters.skeleton().node(node).name);
   out.rate_hz = rate_hz;
   out.first_frame = first_frame;

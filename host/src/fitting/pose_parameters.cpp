@@ -35,6 +35,14 @@ PoseParameters::PoseParameters(const body::Skeleton& skeleton)
     fitted_nodes_.push_back(node);
     parameter_of_node_[static_cast<std::size_t>(node)] = 6 + 3 * static_cast<int>(j);
   }
+  reported_nodes_.push_back(0);
+  reported_nodes_.insert(reported_nodes_.end(), fitted_nodes_.begin(), fitted_nodes_.end());
+}
+
+std::vector<std::string> PoseParameters::reported_joint_names() const {
+  std::vector<std::string> names;
+  for (const int node : reported_nodes_) names.push_back(skeleton_.node(node).name);
+  return names;
 }
 
 std::array<double, kPoseParameterCount> PoseParameters::rest() const {

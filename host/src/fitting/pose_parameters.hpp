@@ -60,6 +60,10 @@ class PoseParameters {
   const body::Skeleton& skeleton() const { return skeleton_; }
   // The node index of each fitted joint, in kFittedJoints' order.
   const std::vector<int>& fitted_nodes() const { return fitted_nodes_; }
+  // The nodes a fit reports (body_frame_t's joints, the BVH, the joint-centre exports): the root,
+  // then the fitted joints in kFittedJoints' order; and their names.
+  const std::vector<int>& reported_nodes() const { return reported_nodes_; }
+  std::vector<std::string> reported_joint_names() const;
 
   // The rest figure standing on the floor above the world origin (body::Pose::rest).
   std::array<double, kPoseParameterCount> rest() const;
@@ -83,6 +87,7 @@ class PoseParameters {
  private:
   body::Skeleton skeleton_;
   std::vector<int> fitted_nodes_;
+  std::vector<int> reported_nodes_;
   std::vector<int> parameter_of_node_;  // per node: index of its first angle-axis parameter, -1
 };
 

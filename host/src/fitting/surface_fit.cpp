@@ -1,5 +1,7 @@
 #include "fitting/surface_fit.hpp"
 
+#include "fitting/surface_cost.hpp"
+
 #include <ceres/ceres.h>
 
 #include <array>
@@ -14,95 +16,6 @@
 namespace syncap::fitting {
 
 namespace {
-
-// The signed distance of p to the ellipsoid's surface along the ray from its centre: |d| - |d| /
-// rho, rho = |diag(1/radii) axes^T d| (1 on the surface).
-template <typename T>
-T ray_distance(const PosedEllipsoid<T>& e, const Eigen::Vector3d& radii,
-               const Eigen::Matrix<T, 3, 1>& p) {
-  using std::sqrt;
-  const Eigen::Matrix<T, 3, 1> d = p - e.centre;
-  const Eigen::Matrix<T, 3, 1> u = e.axes.transpose() * d;
-  const Eigen::Matrix<T, 3, 1> q(u.x() / radii.x(), u.y() / radii.y(), u.z() / radii.z());
-  const T rho_squared = q.dot(q);
-  if (rho_squared < T(1e-18)) return T(-radii.minCoeff());  // at the centre: deepest inside
-  const T length = sqrt(d.dot(d));
-  return length - length / sqrt(rho_squared);
-}
-
-// All residuals in one block: the ellipsoids are computed once per evaluation for every point.
-struct SurfaceCost {
-  const PoseParameters* parameters;
-  std::vector<Eigen::Vector3d> points;
-  std::vector<int> segments;   // per point: its assigned segment
-  std::vector<double> scales;  // per point: sqrt(Huber weight) / sigma
-
-  template <typename T>
-  bool operator()(const T* x, T* residuals) const {
-    std::vector<PosedEllipsoid<T>> ellipsoids;
-    parameters->ellipsoids(x, ellipsoids);
-    const auto& segment_list = parameters->skeleton().segments();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const auto s = static_cast<std::size_t>(segments[i]);
-      residuals[i] = ray_distance<T>(ellipsoids[s], segment_list[s].radii_mm, points[i].cast<T>()) *
-                     T(scales[i]);
-    }
-    return true;
-  }
-};
-
-// The same residuals with the derivatives taken in two steps: each ellipsoid's centre and axes
-// (12 numbers) as functions of the 60 parameters once per evaluation (Jets of 60), then each
-// point's residual as a function of its ellipsoid's 12 numbers (Jets of 12), chained: a point
-// costs 12 x 60 multiply-adds instead of the whole distance in 60-wide Jets.
-class ChainedSurfaceCost : public ceres::CostFunction {
- public:
-  explicit ChainedSurfaceCost(SurfaceCost cost) : cost_(std::move(cost)) {
-    set_num_residuals(static_cast<int>(cost_.points.size()));
-    mutable_parameter_block_sizes()->push_back(kPoseParameterCount);
-  }
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const double* x = parameters[0];
-    if (jacobians == nullptr || jacobians[0] == nullptr) return cost_(x, residuals);
-    using Jet60 = ceres::Jet<double, kPoseParameterCount>;
-    using Jet12 = ceres::Jet<double, 12>;
-    std::array<Jet60, kPoseParameterCount> xj;
-    for (int i = 0; i < kPoseParameterCount; ++i) xj[i] = Jet60(x[i], i);
-    std::vector<PosedEllipsoid<Jet60>> ellipsoids;
-    cost_.parameters->ellipsoids(xj.data(), ellipsoids);
-    // Per segment: its 12 numbers as Jet12 seeds and their derivatives by x (12 x 60).
-    const std::size_t segments = ellipsoids.size();
-    std::vector<PosedEllipsoid<Jet12>> local(segments);
-    std::vector<Eigen::Matrix<double, 12, kPoseParameterCount, Eigen::RowMajor>> dq_dx(segments);
-    for (std::size_t s = 0; s < segments; ++s) {
-      for (int k = 0; k < 3; ++k) {
-        local[s].centre[k] = Jet12(ellipsoids[s].centre[k].a, k);
-        dq_dx[s].row(k) = ellipsoids[s].centre[k].v.transpose();
-      }
-      for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) {
-          const int k = 3 + 3 * c + r;
-          local[s].axes(r, c) = Jet12(ellipsoids[s].axes(r, c).a, k);
-          dq_dx[s].row(k) = ellipsoids[s].axes(r, c).v.transpose();
-        }
-    }
-    const auto& segment_list = cost_.parameters->skeleton().segments();
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, kPoseParameterCount, Eigen::RowMajor>>
-        jacobian(jacobians[0], num_residuals(), kPoseParameterCount);
-    for (std::size_t i = 0; i < cost_.points.size(); ++i) {
-      const auto s = static_cast<std::size_t>(cost_.segments[i]);
-      const Jet12 d =
-          ray_distance<Jet12>(local[s], segment_list[s].radii_mm, cost_.points[i].cast<Jet12>());
-      residuals[i] = d.a * cost_.scales[i];
-      jacobian.row(static_cast<Eigen::Index>(i)) = cost_.scales[i] * (d.v.transpose() * dq_dx[s]);
-    }
-    return true;
-  }
-
- private:
-  SurfaceCost cost_;
-};
 
 void check_points(std::span<const SurfacePoint> points) {
   if (points.size() < static_cast<std::size_t>(kPoseParameterCount))

@@ -8,14 +8,11 @@
 
 namespace syncap::reconstruction {
 
-std::vector<std::string> body_message_joints(const body::Skeleton& skeleton) {
-  std::vector<std::string> names{skeleton.node(0).name};
-  for (const std::string_view joint : fitting::kFittedJoints) names.emplace_back(joint);
-  return names;
-}
-
 BodyFitStage::BodyFitStage(const body::Skeleton& skeleton, BodyFitStageOptions options)
-    : parameters_(skeleton), options_(options), tracker_(parameters_, options_.tracker) {}
+    : parameters_(skeleton),
+      joint_names_(parameters_.reported_joint_names()),
+      options_(options),
+      tracker_(parameters_, options_.tracker) {}
 
 void BodyFitStage::process(pipeline::FrameWork& work) {
   if (!work.hull) return;  // no silhouettes in this group: nothing to say about the body
@@ -90,10 +87,9 @@ void BodyFitStage::describe(const fitting::SurfaceFit& fit, pipeline::BodyFitSum
   std::vector<Eigen::Matrix3d> rotations;
   std::vector<Eigen::Vector3d> positions;
   parameters_.nodes(fit.x.data(), rotations, positions);
-  body.joint_names = body_message_joints(parameters_.skeleton());
+  body.joint_names = joint_names_;
   body.joints_mm.clear();
-  body.joints_mm.push_back(positions[0]);
-  for (const int node : parameters_.fitted_nodes())
+  for (const int node : parameters_.reported_nodes())
     body.joints_mm.push_back(positions[static_cast<std::size_t>(node)]);
 }
 

@@ -61,12 +61,10 @@ class BodyFitStage : public pipeline::Stage {
   void describe(const fitting::SurfaceFit& fit, pipeline::BodyFitSummary& body) const;
 
   fitting::PoseParameters parameters_;
+  std::vector<std::string> joint_names_;  // body_frame_t's joints (parameters_.reported_nodes())
   BodyFitStageOptions options_;
   fitting::BodyTracker tracker_;
   BodyFitStageStats stats_;
 };
-
-// The joints body_frame_t carries, in its order: the root, then fitting::kFittedJoints.
-std::vector<std::string> body_message_joints(const body::Skeleton& skeleton);
 
 }  // namespace syncap::reconstruction

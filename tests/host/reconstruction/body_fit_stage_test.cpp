@@ -115,7 +115,7 @@ TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
   stage.process(work);
   ASSERT_TRUE(work.body);
   // The message's joint order is the one its .lcm file documents, and the stage's.
-  const std::vector<std::string> names = body_message_joints(parameters_.skeleton());
+  const std::vector<std::string> names = parameters_.reported_joint_names();
   std::ifstream lcm(std::string(SYNCAP_SOURCE_DIR) + "/proto/msg/body_frame_t.lcm");
   std::stringstream text;
   text << lcm.rdbuf();
