@@ -35,6 +35,8 @@ struct FitArgs {
   std::string cameras;      // expected ids; default: the calibration's
   std::set<int> camera_ids;
   int max_lag = 30;
+  std::string silhouette_gap;  // CAMERA:FIRST:LAST
+  std::optional<SilhouetteGap> gap;
   host_app::HullArgs hull;
   host_app::BodyArgs body;
 };
@@ -61,12 +63,22 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
                  "(measures the automatic start through the recording; default 0: only when lost)")
       ->check(CLI::Range(0, 1000000));
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
+  app.add_option("--leave-out-silhouettes", a.silhouette_gap,
+                 "CAMERA:FIRST:LAST: replay without that camera's silhouettes for those frames "
+                 "(the robustness check of a camera's masks missing for a while)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
     app.parse(reversed);
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
+    if (!a.silhouette_gap.empty()) {
+      try {
+        a.gap = SilhouetteGap::parse(a.silhouette_gap);
+      } catch (const std::invalid_argument& e) {
+        throw CLI::ValidationError("--leave-out-silhouettes", e.what());
+      }
+    }
     a.body.enabled = true;
     host_app::apply_body_options(a.body, a.hull);
   } catch (const CLI::CallForHelp&) {
@@ -154,7 +166,7 @@ int fit_command(std::span<const std::string> args, std::ostream& out, std::ostre
   stages.push_back(std::make_unique<outputs::JsonLinesStage>(in.jsonl, false));
   pipeline::HostNode node({expected_cameras(a.camera_ids, in.cameras), a.max_lag, 1'000'000},
                           std::move(stages));
-  auto [rejected, damaged] = replay_log(in.log, node, true, kName, err);
+  auto [rejected, damaged] = replay_log(in.log, node, true, kName, err, a.gap);
   if (!export_motion(body->parameters(), *record, dir, err)) damaged = true;
   const auto s = node.stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), " << rejected

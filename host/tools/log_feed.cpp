@@ -1,5 +1,8 @@
 #include "log_feed.hpp"
 
+#include <sstream>
+#include <stdexcept>
+
 #include <filesystem>
 
 #include "sensor/camera_file.hpp"
@@ -63,12 +66,37 @@ std::set<int> expected_cameras(const std::set<int>& given,
   return ids;
 }
 
+SilhouetteGap SilhouetteGap::parse(const std::string& text) {
+  SilhouetteGap gap;
+  char colon1 = 0, colon2 = 0;
+  long long first = 0, last = 0;
+  std::istringstream in(text);
+  if (!(in >> gap.camera >> colon1 >> first >> colon2 >> last) || colon1 != ':' || colon2 != ':' ||
+      !(in >> std::ws).eof() || gap.camera < 0 || gap.camera > proto::kMaxCameraId || first > last)
+    throw std::invalid_argument("'" + text + "' is not CAMERA:FIRST:LAST (a camera id 0.." +
+                                std::to_string(proto::kMaxCameraId) +
+                                ", frame numbers FIRST <= LAST)");
+  gap.first = first;
+  gap.last = last;
+  return gap;
+}
+
+bool SilhouetteGap::leaves_out(const io::LogEvent& e) const {
+  if (!e.channel.starts_with(proto::kSilhouetteChannelPrefix) ||
+      proto::camera_of_channel(e.channel) != camera)
+    return false;
+  silhouette_part_t part;
+  if (!proto::try_decode(e.data.data(), e.data.size(), part).ok()) return false;
+  return part.frame_number >= first && part.frame_number <= last;
+}
+
 ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silhouettes,
-                         const char* name, std::ostream& err) {
+                         const char* name, std::ostream& err,
+                         const std::optional<SilhouetteGap>& gap) {
   io::LcmLogReader reader(log);
   ReplayOutcome outcome;
   while (const auto event = reader.next()) {
-    feed(node, *event, silhouettes, outcome.rejected);
+    if (!gap || !gap->leaves_out(*event)) feed(node, *event, silhouettes, outcome.rejected);
     node.poll();
     for (const io::LogError& e : reader.take_errors()) {
       err << name << ": " << e.message << '\n';

@@ -45,8 +45,22 @@ struct ReplayOutcome {
   bool damaged = false;  // the log reader reported damage (named on err)
 };
 
-// Feeds every event of `log` to the node, polling after each, then finishes it.
+// One camera's silhouettes left out of a replay for a range of frames: the robustness check of
+// a camera's masks missing for a while (docs/body-fit.md). Parsed from "CAMERA:FIRST:LAST".
+struct SilhouetteGap {
+  int camera = -1;
+  int64_t first = 0, last = -1;
+
+  // std::invalid_argument naming the text when it is not CAMERA:FIRST:LAST with FIRST <= LAST.
+  static SilhouetteGap parse(const std::string& text);
+  // True for a silhouette part of the camera in the range (decoded for its frame number).
+  bool leaves_out(const io::LogEvent& e) const;
+};
+
+// Feeds every event of `log` to the node, polling after each, then finishes it; events `gap`
+// leaves out are not fed.
 ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silhouettes,
-                         const char* name, std::ostream& err);
+                         const char* name, std::ostream& err,
+                         const std::optional<SilhouetteGap>& gap = std::nullopt);
 
 }  // namespace syncap::tools
