@@ -52,9 +52,11 @@ TEST(TrafficRecorderOnMulticast, ABurstWhileNotHandlingIsRecordedWhole) {
 }
 
 TEST(TrafficRecorderOnMulticast, LcmsDefaultQueueLosesTheSameBurst) {
+  // Less than half on this machine (2026-11-27); only "not all" is asserted, since how much LCM's
+  // receive thread takes off the socket while this thread sleeps depends on the load.
   const std::int64_t recorded = record_burst(30, "recorder-default");
-  EXPECT_LT(recorded, kBurst / 2) << "LCM's default queue kept the burst: the deep queue's test "
-                                     "above proves nothing";
+  EXPECT_LT(recorded, kBurst) << "LCM's default queue kept the burst: the deep queue's test "
+                                 "above proves nothing";
 }
 
 }  // namespace
