@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -24,6 +23,7 @@
 #include "calibration/observations.hpp"
 #include "calibration/outputs.hpp"
 #include "io/lcm_log_reader.hpp"
+#include "stop_request.hpp"
 #include "subcommand.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/cli/options.hpp"
@@ -352,9 +352,6 @@ calibration::Observations read_lcm_log(const std::string& file, const CalibrateA
   return collector.finish();
 }
 
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
-
 calibration::Observations read_live(const std::string& url, const CalibrateArgs& a,
                                     std::ostream& err, bool progress) {
   if (a.cameras.empty()) throw UsageError{"lcm: needs --cameras (the ids to wait for)"};
@@ -375,25 +372,24 @@ calibration::Observations read_live(const std::string& url, const CalibrateArgs&
                                 collector.add_blob_frame(f);
                                 last_blob = Clock::now();
                               });
-  g_stop = 0;
-  auto previous_int = std::signal(SIGINT, on_signal);
-  auto previous_term = std::signal(SIGTERM, on_signal);
-  if (progress) err << kPrefix << "listening on " << url << " (Ctrl-C ends the collection)\n";
-  long reported = 0;
-  while (!g_stop) {
-    lcm.handleTimeout(100);
-    if (a.frames > 0 && collector.frame_groups() >= a.frames) break;
-    if (past_range) break;
-    if (last_blob && Clock::now() - *last_blob > std::chrono::duration<double>(a.idle_timeout_s)) {
-      break;
-    }
-    if (progress && collector.frame_groups() >= reported + 30) {
-      reported = collector.frame_groups();
-      err << kPrefix << reported << " frame groups\n";
+  {
+    const StopRequest stop;
+    if (progress) err << kPrefix << "listening on " << url << " (Ctrl-C ends the collection)\n";
+    long reported = 0;
+    while (!stop.requested()) {
+      lcm.handleTimeout(100);
+      if (a.frames > 0 && collector.frame_groups() >= a.frames) break;
+      if (past_range) break;
+      if (last_blob &&
+          Clock::now() - *last_blob > std::chrono::duration<double>(a.idle_timeout_s)) {
+        break;
+      }
+      if (progress && collector.frame_groups() >= reported + 30) {
+        reported = collector.frame_groups();
+        err << kPrefix << reported << " frame groups\n";
+      }
     }
   }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
   return collector.finish();
 }
 

@@ -1,10 +1,10 @@
 #include "record_command.hpp"
 
 #include <chrono>
-#include <csignal>
 #include <optional>
 
 #include "io/export_error.hpp"
+#include "stop_request.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
@@ -39,9 +39,6 @@ std::optional<int> parse_record_args(std::span<const std::string> args, RecordAr
   return cli::parse(app, args, out, err);
 }
 
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
-
 // Handles messages until a signal, the deadline or a write error, flushing every kFlushInterval;
 // then takes what LCM still holds, so that what arrived before the signal is in the log.
 // ExportError on a write error.
@@ -50,19 +47,17 @@ void record_until_stopped(lcm::LCM& lcm, const TrafficRecorder& recorder, io::Lc
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   Clock::time_point flushed = start;
-  g_stop = 0;
-  auto previous_int = std::signal(SIGINT, on_signal);
-  auto previous_term = std::signal(SIGTERM, on_signal);
-  while (!g_stop && recorder.write_error().empty() &&
-         (duration_s <= 0 || Clock::now() - start < std::chrono::duration<double>(duration_s))) {
-    lcm.handleTimeout(static_cast<int>(kFlushInterval.count()));
-    if (Clock::now() - flushed >= kFlushInterval) {
-      log.flush();
-      flushed = Clock::now();
+  {
+    const StopRequest stop;
+    while (!stop.requested() && recorder.write_error().empty() &&
+           (duration_s <= 0 || Clock::now() - start < std::chrono::duration<double>(duration_s))) {
+      lcm.handleTimeout(static_cast<int>(kFlushInterval.count()));
+      if (Clock::now() - flushed >= kFlushInterval) {
+        log.flush();
+        flushed = Clock::now();
+      }
     }
   }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
   while (recorder.write_error().empty() && lcm.handleTimeout(0) > 0) {
   }
   if (!recorder.write_error().empty()) throw io::ExportError(log.path(), recorder.write_error());
