@@ -197,6 +197,9 @@ inline body_frame_t max_body_frame() {
   for (int i = 0; i < 60; ++i) b.parameters[i] = -3.0f + 0.1f * static_cast<float>(i);
   for (int j = 0; j < 19; ++j)
     for (int k = 0; k < 3; ++k) b.joint_mm[j][k] = 1000.5f * static_cast<float>(k) - 7.0f * j;
+  b.sigma0 = 1.25f;
+  for (int i = 0; i < 60; ++i) b.parameter_sigmas[i] = 0.001f * static_cast<float>(i + 1);
+  for (int j = 0; j < 19; ++j) b.joint_sigma_mm[j] = 0.5f + static_cast<float>(j);
   return b;
 }
 

@@ -98,7 +98,7 @@ TEST(MessageBudget, HullFrameIsItsDocumentedFixedSize) {
 
 TEST(MessageBudget, BodyFrameIsItsDocumentedFixedSize) {
   const body_frame_t body = test::max_body_frame();
-  expect_fits_and_round_trips(body, 521);
+  expect_fits_and_round_trips(body, 841);
   const body_frame_t back = decode<body_frame_t>(encode(body));
   EXPECT_EQ(back.points_kept, body.points_kept);
   EXPECT_FLOAT_EQ(back.parameters[59], body.parameters[59]);

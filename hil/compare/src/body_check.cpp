@@ -58,6 +58,20 @@ void score(const Joints& fitted, const Joints& truth, long frame, BodyCheck& che
   }
 }
 
+// The frame's errors over the sigmas its record predicts (scaled as the joints were moved).
+void score_precision(const io::FrameRecord& r, const Joints& fitted, const Joints& truth,
+                     double scale, BodyCheck& check) {
+  const pipeline::BodyFitSummary& b = *r.body;
+  if (b.joint_sigmas_mm.size() != b.joint_names.size()) return;
+  check.sigma0.push_back(b.sigma0);
+  for (std::size_t j = 0; j < b.joint_names.size(); ++j) {
+    const double sigma = scale * b.joint_sigmas_mm[j];
+    const double error = (fitted.at(b.joint_names[j]) - truth.at(b.joint_names[j])).norm();
+    check.joint_sigmas_mm.push_back(sigma);
+    check.normalized_errors.push_back(sigma > 0 ? error / (std::sqrt(3.0) * sigma) : 0.0);
+  }
+}
+
 double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
@@ -107,6 +121,7 @@ BodyCheck check_body(const fs::path& truth_dir, const fs::path& groups_file,
       fitted[r.body->joint_names[j]] =
           to_truth ? to_truth->apply(r.body->joints_mm[j]) : r.body->joints_mm[j];
     score(fitted, true_joints->second, static_cast<long>(r.frame), check);
+    score_precision(r, fitted, true_joints->second, to_truth ? to_truth->scale : 1.0, check);
     if (flags & kStarted)
       check.starts_rms_mm.emplace_back(static_cast<long>(r.frame), check.frame_rms_mm.back());
   }
@@ -138,6 +153,19 @@ std::string format_body_check(const BodyCheck& c) {
   for (const auto& [error, name] : joints)
     out += util::printf_string(" %s %.1f", name.c_str(), error);
   out += " (mm)\n";
+  if (!c.normalized_errors.empty()) {
+    double squares = 0;
+    for (const double z : c.normalized_errors) squares += z * z;
+    const long within = std::count_if(c.normalized_errors.begin(), c.normalized_errors.end(),
+                                      [](double z) { return z <= 3.0; });
+    out += util::printf_string(
+        "body: precision: joint sigma median %.1f mm (p95 %.1f), sigma0 median %.2f; error / "
+        "predicted sigma RMS %.2f (1: honest), within 3 sigma %.1f %%\n",
+        pipeline::quantile(c.joint_sigmas_mm, 0.5), pipeline::quantile(c.joint_sigmas_mm, 0.95),
+        pipeline::quantile(c.sigma0, 0.5),
+        std::sqrt(squares / static_cast<double>(c.normalized_errors.size())),
+        100.0 * static_cast<double>(within) / static_cast<double>(c.normalized_errors.size()));
+  }
   if (c.starts_rms_mm.empty()) return out;
   std::vector<double> rms;
   for (const auto& [frame, error] : c.starts_rms_mm) rms.push_back(error);

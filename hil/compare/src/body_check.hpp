@@ -30,6 +30,12 @@ struct BodyCheck {
   std::vector<std::pair<long, double>> starts_rms_mm;           // frame and joint RMS of each start
   std::map<std::string, std::vector<double>> joint_errors_mm;   // per joint, per fitted frame
   std::map<std::string, std::vector<double>> angle_errors_deg;  // "l_knee", ...: |fit - truth|
+  // The fit's own precision against the truth (frames whose record carries joint sigmas): per
+  // joint and frame, the error over its predicted 3D sigma (sqrt(3) x the joint's sigma), whose
+  // RMS is 1 where the sigmas are honest; the predicted sigmas; each frame's sigma0.
+  std::vector<double> normalized_errors;
+  std::vector<double> joint_sigmas_mm;
+  std::vector<double> sigma0;
   double rms_mm() const;                // over every joint of every fitted frame
   double mean_angle_error_deg() const;  // over the hips, knees, shoulders and elbows
 };
@@ -42,7 +48,8 @@ BodyCheck check_body(const std::filesystem::path& truth_dir,
                      const std::optional<Similarity>& to_truth = std::nullopt);
 
 // "body: N frames, M fitted (starts, lost), joint RMS ..., angle errors ...\n", a line of the
-// joints, worst first, and one of the automatic starts (joint RMS within 50 mm).
+// joints, worst first, one of the fit's precision against the errors (when the records carry
+// it), and one of the automatic starts (joint RMS within 50 mm).
 std::string format_body_check(const BodyCheck& check);
 
 }  // namespace syncap::compare

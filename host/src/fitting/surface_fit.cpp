@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace syncap::fitting {
 
@@ -106,6 +107,41 @@ double gate_of_round(const SurfaceFitOptions& options, int round, double sigma_m
                   std::max(options.gate_floor_mm, 8.0 * sigma_mm));
 }
 
+// The fit's observations at its solution, for its covariance (pose_precision.hpp): the points
+// within the final gate with their assignment (each residual over its sigma, unweighted: the
+// covariance applies the loss itself), then the prior's rows.
+Observations observations_at(const PoseParameters& parameters, const PoseVector& x,
+                             const PoseVector& start, std::span<const SurfacePoint> points,
+                             const std::vector<NearestSurface>& nearest, double gate_mm,
+                             const SurfaceFitOptions& options) {
+  SurfaceCost cost{&parameters, {}, {}, {}};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (std::abs(nearest[i].distance_mm) > gate_mm) continue;
+    cost.points.push_back(points[i].position_mm);
+    cost.segments.push_back(nearest[i].segment);
+    cost.scales.push_back(1.0 / points[i].sigma_mm);
+  }
+  const auto point_rows = static_cast<Eigen::Index>(cost.points.size());
+  const Eigen::Index prior_rows = options.prior_rad > 0 ? kPoseParameterCount - 6 : 0;
+  Observations o;
+  o.jacobian.setZero(point_rows + prior_rows, kPoseParameterCount);
+  o.z.resize(point_rows + prior_rows);
+  o.cauchy_scale.setConstant(point_rows + prior_rows, options.cauchy_sigmas);
+  if (point_rows > 0) {
+    const ChainedSurfaceCost surface(std::move(cost));
+    const double* parameter_blocks[] = {x.data()};
+    double* jacobian_blocks[] = {o.jacobian.data()};
+    surface.Evaluate(parameter_blocks, o.z.data(), jacobian_blocks);
+  }
+  for (Eigen::Index i = 0; i < prior_rows; ++i) {
+    const auto p = static_cast<std::size_t>(6 + i);
+    o.z(point_rows + i) = (x[p] - start[p]) / options.prior_rad;
+    o.jacobian(point_rows + i, 6 + i) = 1.0 / options.prior_rad;
+    o.cauchy_scale(point_rows + i) = std::numeric_limits<double>::infinity();
+  }
+  return o;
+}
+
 }  // namespace
 
 std::vector<NearestSurface> nearest_surfaces(const PoseParameters& parameters, const double* x,
@@ -174,15 +210,20 @@ SurfaceFit fit_surface(const PoseParameters& parameters, std::span<const Surface
     }
   }
   const double final_gate_mm = gate_of_round(options, fit.rounds - 1, median_sigma);
+  const std::vector<NearestSurface> nearest = nearest_surfaces(parameters, fit.x.data(), points);
   double sum = 0.0;
   int inside_gate = 0;
-  for (const NearestSurface& n : nearest_surfaces(parameters, fit.x.data(), points)) {
+  for (const NearestSurface& n : nearest) {
     if (std::abs(n.distance_mm) > final_gate_mm) continue;
     sum += n.distance_mm * n.distance_mm;
     ++inside_gate;
   }
   fit.points = inside_gate;
   fit.rms_mm = inside_gate > 0 ? std::sqrt(sum / inside_gate) : 0.0;
+  if (options.precision)
+    fit.precision = pose_precision(
+        parameters, fit.x.data(),
+        observations_at(parameters, fit.x, start, points, nearest, final_gate_mm, options));
   return fit;
 }
 

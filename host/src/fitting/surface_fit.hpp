@@ -19,6 +19,7 @@
 #include <span>
 
 #include "fitting/pose_parameters.hpp"
+#include "fitting/pose_precision.hpp"
 
 namespace syncap::fitting {
 
@@ -40,17 +41,21 @@ struct SurfaceFitOptions {
   // Each joint parameter's standard deviation around the start [rad]; 0: no prior.
   double prior_rad = 0.5;
   bool joint_limits = true;  // the joints' ranges (docs/body-fit.md, "Joint limits")
+  // The parameters' and joints' sigmas at the solution (pose_precision.hpp): one more evaluation
+  // of the Jacobian, about one Levenberg-Marquardt iteration's time.
+  bool precision = true;
 };
 
 using PoseVector = std::array<double, kPoseParameterCount>;
 
 struct SurfaceFit {
   PoseVector x{};
-  double rms_mm = 0.0;     // the points' distances to their segments' surfaces, RMS
-  int points = 0;          // within the last round's gate of the final pose: the body's
-  int rounds = 40;         // run
-  int iterations = 0;      // Levenberg-Marquardt iterations over all rounds
-  bool converged = false;  // the last round kept every assignment and the solver converged
+  double rms_mm = 0.0;      // the points' distances to their segments' surfaces, RMS
+  int points = 0;           // within the last round's gate of the final pose: the body's
+  int rounds = 40;          // run
+  int iterations = 0;       // Levenberg-Marquardt iterations over all rounds
+  bool converged = false;   // the last round kept every assignment and the solver converged
+  PosePrecision precision;  // with SurfaceFitOptions::precision (else not valid)
 };
 
 // Throws std::invalid_argument for fewer points than parameters or a sigma that is not positive.

@@ -120,10 +120,16 @@ void write_hull(JsonText& j, const pipeline::HullSummary& h) {
   j.key("volume_mm3").number(std::round(h.volume_mm3)).end_object();
 }
 
-// {"fit_us", "flags", "joints"? {"<name>": [x, y, z] (mm)}, "parameters"? [...], "points",
-// "points_kept", "rms_mm"}
+// {"fit_us", "flags", "joint_sigmas_mm"? {"<name>": sigma}, "joints"? {"<name>": [x, y, z] (mm)},
+// "parameter_sigmas"? [...], "parameters"? [...], "points", "points_kept", "rms_mm", "sigma0"?}
 void write_body(JsonText& j, const pipeline::BodyFitSummary& b) {
   j.begin_object().key("fit_us").integer(std::llround(b.fit_us)).key("flags").integer(b.flags);
+  if (!b.joint_sigmas_mm.empty()) {
+    j.key("joint_sigmas_mm").begin_object();
+    for (std::size_t i = 0; i < b.joint_sigmas_mm.size() && i < b.joint_names.size(); ++i)
+      j.key(b.joint_names[i]).number(micrometres(b.joint_sigmas_mm[i]));
+    j.end_object();
+  }
   if (!b.joints_mm.empty()) {
     j.key("joints").begin_object();
     for (std::size_t i = 0; i < b.joints_mm.size() && i < b.joint_names.size(); ++i) {
@@ -133,13 +139,20 @@ void write_body(JsonText& j, const pipeline::BodyFitSummary& b) {
     }
     j.end_object();
   }
+  if (!b.parameter_sigmas.empty()) {
+    j.key("parameter_sigmas").begin_array();
+    for (const double s : b.parameter_sigmas) j.number(std::round(s * 1e6) / 1e6);
+    j.end_array();
+  }
   if (!b.parameters.empty()) {
     j.key("parameters").begin_array();
     for (const double x : b.parameters) j.number(std::round(x * 1e6) / 1e6);
     j.end_array();
   }
   j.key("points").integer(b.points).key("points_kept").integer(b.points_kept);
-  j.key("rms_mm").number(micrometres(b.rms_mm)).end_object();
+  j.key("rms_mm").number(micrometres(b.rms_mm));
+  if (!b.parameter_sigmas.empty()) j.key("sigma0").number(std::round(b.sigma0 * 1e4) / 1e4);
+  j.end_object();
 }
 
 }  // namespace

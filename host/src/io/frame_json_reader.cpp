@@ -249,11 +249,22 @@ pipeline::BodyFitSummary body_at(const json& value, const At& at) {
       b.joints_mm.emplace_back(v[0], v[1], v[2]);
     }
   }
-  if (object.contains("parameters")) {
-    const At list = at / "parameters";
-    const json& values = array_at(object["parameters"], list);
-    for (std::size_t i = 0; i < values.size(); ++i)
-      b.parameters.push_back(number_at(values[i], list[i]));
+  const auto numbers_of = [&](const char* key) {
+    std::vector<double> out;
+    if (!object.contains(key)) return out;
+    const At list = at / key;
+    const json& values = array_at(object[key], list);
+    for (std::size_t i = 0; i < values.size(); ++i) out.push_back(number_at(values[i], list[i]));
+    return out;
+  };
+  b.parameters = numbers_of("parameters");
+  b.parameter_sigmas = numbers_of("parameter_sigmas");
+  b.sigma0 = optional_field(object, "sigma0", at, number_at, 0.0);
+  if (object.contains("joint_sigmas_mm")) {
+    const At sigmas = at / "joint_sigmas_mm";
+    const json& by_name = object_at(object["joint_sigmas_mm"], sigmas);
+    for (const std::string& name : b.joint_names)
+      b.joint_sigmas_mm.push_back(number_at(member(by_name, name.c_str(), sigmas), sigmas / name));
   }
   return b;
 }

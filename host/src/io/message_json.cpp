@@ -136,6 +136,9 @@ void to_json(nlohmann::ordered_json& json, const body_frame_t& msg) {
       {"points_kept", msg.points_kept},
       {"parameters", msg.parameters},
       {"joint_mm", joints},
+      {"sigma0", msg.sigma0},
+      {"parameter_sigmas", msg.parameter_sigmas},
+      {"joint_sigma_mm", msg.joint_sigma_mm},
   };
 }
 

@@ -20,6 +20,11 @@ body_frame_t body_message(const pipeline::FrameWork& work, int32_t host_us) {
     m.parameters[i] = static_cast<float>(b.parameters[i]);
   for (std::size_t j = 0; j < b.joints_mm.size() && j < std::size(m.joint_mm); ++j)
     for (int k = 0; k < 3; ++k) m.joint_mm[j][k] = static_cast<float>(b.joints_mm[j][k]);
+  m.sigma0 = static_cast<float>(b.sigma0);
+  for (std::size_t i = 0; i < b.parameter_sigmas.size() && i < std::size(m.parameter_sigmas); ++i)
+    m.parameter_sigmas[i] = static_cast<float>(b.parameter_sigmas[i]);
+  for (std::size_t j = 0; j < b.joint_sigmas_mm.size() && j < std::size(m.joint_sigma_mm); ++j)
+    m.joint_sigma_mm[j] = static_cast<float>(b.joint_sigmas_mm[j]);
   return m;
 }
 

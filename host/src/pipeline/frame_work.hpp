@@ -70,6 +70,10 @@ struct BodyFitSummary {
   int points = 0;       // hull surface points given to the fit
   int points_kept = 0;  // of them, within the fit's last gate
   double fit_us = 0;    // the fit, and the automatic start when there was one (wall time)
+  // The fit's precision (fitting::PosePrecision); the vectors empty when it has none.
+  double sigma0 = 0;
+  std::vector<double> parameter_sigmas;  // per parameter [mm, rad]
+  std::vector<double> joint_sigmas_mm;   // per joint, in joint_names' order
 };
 
 struct FrameWork {

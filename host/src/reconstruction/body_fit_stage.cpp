@@ -91,6 +91,13 @@ void BodyFitStage::describe(const fitting::SurfaceFit& fit, pipeline::BodyFitSum
   body.joints_mm.clear();
   for (const int node : parameters_.reported_nodes())
     body.joints_mm.push_back(positions[static_cast<std::size_t>(node)]);
+  body.sigma0 = fit.precision.sigma0;
+  body.parameter_sigmas.clear();
+  body.joint_sigmas_mm.clear();
+  if (fit.precision.valid) {
+    body.parameter_sigmas.assign(fit.precision.sigmas.begin(), fit.precision.sigmas.end());
+    body.joint_sigmas_mm = fit.precision.joint_sigmas_mm;
+  }
 }
 
 std::string BodyFitStage::summary() const {

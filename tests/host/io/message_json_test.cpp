@@ -230,6 +230,9 @@ TEST(MessageJson, BodyFrameRoundTripsWithItsJoints) {
   msg.parameters[59] = 0.25f;
   msg.joint_mm[0][2] = 1060.5f;
   msg.joint_mm[18][0] = -95.25f;
+  msg.sigma0 = 1.5f;
+  msg.parameter_sigmas[6] = 0.125f;
+  msg.joint_sigma_mm[3] = 4.5f;
 
   const nlohmann::json fields = fields_of(msg);
   std::vector<double> parameters(60, 0.0);
@@ -241,6 +244,11 @@ TEST(MessageJson, BodyFrameRoundTripsWithItsJoints) {
       "points":800,"points_kept":797})");
   expected["parameters"] = parameters;
   expected["joint_mm"] = joints;
+  expected["sigma0"] = 1.5;
+  std::vector<double> parameter_sigmas(60, 0.0), joint_sigmas(19, 0.0);
+  parameter_sigmas[6] = 0.125, joint_sigmas[3] = 4.5;
+  expected["parameter_sigmas"] = parameter_sigmas;
+  expected["joint_sigma_mm"] = joint_sigmas;
   EXPECT_EQ(fields, expected);
 }
 

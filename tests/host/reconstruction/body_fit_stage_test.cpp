@@ -137,6 +137,17 @@ TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(sent[0].joint_mm[18][k], work.body->joints_mm[18][k], 1e-3);
   EXPECT_FLOAT_EQ(sent[0].parameters[5], static_cast<float>(work.body->parameters[5]));
+  // The fit's precision rides along: positive sigmas for every joint and parameter.
+  ASSERT_EQ(work.body->joint_sigmas_mm.size(), 19u);
+  ASSERT_EQ(work.body->parameter_sigmas.size(), 60u);
+  EXPECT_GT(sent[0].sigma0, 0.0f);
+  for (int j = 0; j < 19; ++j) {
+    EXPECT_GT(sent[0].joint_sigma_mm[j], 0.0f) << names[static_cast<std::size_t>(j)];
+    EXPECT_FLOAT_EQ(sent[0].joint_sigma_mm[j],
+                    static_cast<float>(work.body->joint_sigmas_mm[static_cast<std::size_t>(j)]));
+  }
+  EXPECT_FLOAT_EQ(sent[0].parameter_sigmas[59],
+                  static_cast<float>(work.body->parameter_sigmas[59]));
 
   const io::FrameRecord back = io::parse_frame_line(io::frame_line(work, false), "test");
   ASSERT_TRUE(back.body);
@@ -152,6 +163,15 @@ TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
               1e-3);
   }
   EXPECT_NEAR(back.body->parameters[5], work.body->parameters[5], 1e-6);
+  ASSERT_EQ(back.body->joint_sigmas_mm.size(), 19u);
+  for (std::size_t j = 0; j < back.body->joint_names.size(); ++j) {
+    const auto at = std::find(names.begin(), names.end(), back.body->joint_names[j]);
+    EXPECT_NEAR(back.body->joint_sigmas_mm[j],
+                work.body->joint_sigmas_mm[static_cast<std::size_t>(at - names.begin())], 1e-3);
+  }
+  ASSERT_EQ(back.body->parameter_sigmas.size(), 60u);
+  EXPECT_NEAR(back.body->parameter_sigmas[7], work.body->parameter_sigmas[7], 1e-6);
+  EXPECT_NEAR(back.body->sigma0, work.body->sigma0, 1e-4);
 }
 
 }  // namespace
