@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=${SYNCAP_PY_VENV:-${SYNCAP_BUILD_DIR:-build}/py-venv}
-PACKAGES=(ezc3d==1.7.2 c3d==0.6.0 bvh==0.3)
+PACKAGES=(ezc3d==1.7.2 c3d==0.6.0 bvh==0.3 rerun-sdk==0.41.0 lcm==1.5.3)
 
 installed() {
   "$venv/bin/python3" - "${PACKAGES[@]}" <<'PY' 2>/dev/null
