@@ -9,6 +9,7 @@ from __future__ import annotations
 import collections
 import os
 import re
+import sys
 from typing import Iterator
 
 import lcm
@@ -64,6 +65,7 @@ def live_events(url: str | None, channel_regex: str, poll_ms: int = 100
         queue.append((channel, data, f"{name} message {count[0]}"))
 
     lc.subscribe(channel_regex, on_message)
+    print(f"syncap view: listening on {name} (Ctrl-C ends)", file=sys.stderr, flush=True)
     while True:
         if not queue:
             lc.handle_timeout(poll_ms)
