@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import shutil
+import signal
+import subprocess
 import sys
 import time
+from pathlib import Path
 
 EXIT_USAGE = 2  # as every syncap program: a usage error or bad input, named
 
@@ -25,12 +29,15 @@ def parse_args(argv):
                    help="the calibration's cameras: frusta in 3D, 2D content in their images")
     p.add_argument("--save", metavar="FILE.rrd", help="write a Rerun recording")
     p.add_argument("--web", action="store_true",
-                   help="serve Rerun's web viewer on localhost (--web-port, --grpc-port)")
+                   help="serve Rerun's web viewer on 127.0.0.1 (--web-port, --grpc-port); it "
+                        "stays up after a recording ended, until Ctrl-C")
     p.add_argument("--web-port", type=int, default=9090, metavar="PORT")
     p.add_argument("--grpc-port", type=int, default=9876, metavar="PORT",
-                   help="the data server the web viewer reads from (localhost)")
+                   help="the data server the web viewer reads from (127.0.0.1; --spawn's "
+                        "viewer listens on it too, or on the next one with --web)")
     p.add_argument("--spawn", action="store_true",
-                   help="start Rerun's desktop viewer (the `rerun` of the venv) and stream to it")
+                   help="start Rerun's desktop viewer (the venv's `rerun`, on 127.0.0.1) and "
+                        "stream to it")
     p.add_argument("--max-frames", type=int, metavar="N",
                    help="stop after N frame numbers were shown")
     p.add_argument("--channel", default=".*", metavar="REGEX",
@@ -60,24 +67,46 @@ def parse_args(argv):
     return args
 
 
-def open_sinks(args, rr):
-    """Every output asked for, at once (rr.set_sinks replaces, so they are set together)."""
-    sinks = []
+def rerun_executable() -> str:
+    """The `rerun` binary rerun-sdk ships (package rerun_cli). The venv's bin/rerun is a Python
+    wrapper that runs it as a child: stopping the wrapper would leave the binary running."""
+    try:
+        import rerun_cli
+        path = Path(rerun_cli.__file__).parent / "rerun"
+        if path.is_file():
+            return str(path)
+    except ImportError:
+        pass
+    return shutil.which("rerun") or "rerun"
+
+
+def start_rerun(args: list[str], detach: bool) -> subprocess.Popen:
+    """A `rerun` process bound to 127.0.0.1: the viewer is for this workstation, never for the
+    camera network (rr.serve_web_viewer and rr.spawn listen on every interface)."""
+    return subprocess.Popen([rerun_executable(), "--bind", "127.0.0.1"] + args,
+                            stdout=subprocess.DEVNULL, start_new_session=detach)
+
+
+def open_sinks(args, rr) -> list[subprocess.Popen]:
+    """Every output asked for, at once (rr.set_sinks replaces, so they are set together); the
+    rerun processes started for --web and --spawn."""
+    sinks, children = [], []
     if args.save:
         sinks.append(rr.FileSink(args.save))
     if args.web:
-        # The data server and the web viewer's page on localhost only: the viewer is for the
-        # workstation, not for the camera network.
-        server = rr.GrpcServerSink(bind_ip="127.0.0.1", port=args.grpc_port)
-        sinks.append(server)
+        # `rerun --serve-web` holds the data server and the web viewer's page, both on localhost.
+        children.append(start_rerun(["--serve-web", "--port", str(args.grpc_port),
+                                     "--web-viewer-port", str(args.web_port)], detach=False))
+        sinks.append(rr.GrpcSink(f"rerun+http://127.0.0.1:{args.grpc_port}/proxy"))
+        print(f"syncap view: web viewer at http://127.0.0.1:{args.web_port}/?url=rerun%2Bhttp"
+              f"%3A%2F%2F127.0.0.1%3A{args.grpc_port}%2Fproxy", file=sys.stderr)
     if args.spawn:
-        rr.spawn(port=args.grpc_port + (1 if args.web else 0), connect=False)
-        sinks.append(rr.GrpcSink(f"rerun+http://127.0.0.1:{args.grpc_port + (1 if args.web else 0)}/proxy"))
+        # The desktop viewer outlives this program (its own session), as rr.spawn's does.
+        port = args.grpc_port + (1 if args.web else 0)
+        start_rerun(["--port", str(port)], detach=True)
+        sinks.append(rr.GrpcSink(f"rerun+http://127.0.0.1:{port}/proxy"))
     rr.set_sinks(*sinks)
-    if args.web:
-        rr.serve_web_viewer(web_port=args.web_port, open_browser=False, connect_to=server.uri)
-        print(f"syncap view: web viewer at http://localhost:{args.web_port}/?url={server.uri}",
-              file=sys.stderr)
+    return children
 
 
 def main(argv=None) -> int:
@@ -111,8 +140,10 @@ def main(argv=None) -> int:
     import rerun as rr
     from .logger import StopInput, ViewLogger
 
+    # SIGTERM ends the program as Ctrl-C does: what arrived is flushed, the children stopped.
+    signal.signal(signal.SIGTERM, _interrupt)
     rr.init("syncap_view", spawn=False)
-    open_sinks(args, rr)
+    children = open_sinks(args, rr)
     view = ViewLogger(types, camera_list, trail_frames=args.trail, max_frames=args.max_frames,
                       image_plane_mm=args.frustum_mm, quiet=args.quiet)
     start = time.monotonic()
@@ -130,16 +161,22 @@ def main(argv=None) -> int:
     elapsed = time.monotonic() - start
     print(f"syncap view: {view.summary()}\nsyncap view: {elapsed:.2f} s, "
           f"{len(view.frames) / elapsed if elapsed > 0 else 0:.1f} frames/s", file=sys.stderr)
-    if args.web:  # the server goes with the recording stream: keep it until Ctrl-C
-        rr.flush()
+    rr.disconnect()  # flushes the sinks (the .rrd's footer, the data to the web server)
+    if children:  # the web viewer's server holds the data: keep it until Ctrl-C
         print("syncap view: input ended; the web viewer stays up until Ctrl-C", file=sys.stderr)
         try:
-            while True:
-                time.sleep(1)
+            while all(c.poll() is None for c in children):
+                time.sleep(0.5)
         except KeyboardInterrupt:
             pass
-    rr.disconnect()  # flushes the sinks (the .rrd's footer)
+        for c in children:
+            c.terminate()
+            c.wait()
     return 0
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
 
 
 def _prime(events):

@@ -1,5 +1,5 @@
 """`syncap view --lcm-url` subscribed live: messages published on LCM multicast arrive in the
-.rrd. Runs only inside a private network namespace (hil/netns-run; run_test.sh --netns sets
+.rrd; `--web` serves the recording on 127.0.0.1 only. Runs only inside a private network namespace (hil/netns-run; run_test.sh --netns sets
 SYNCAP_VIEWER_NETNS=1 there): multicast never leaves it."""
 
 import os
@@ -46,6 +46,42 @@ class LiveTest(unittest.TestCase):
             self.assertEqual(frames, set(range(5)), err)
             self.assertIn("/world/markers", entities)
             self.assertIn("/cameras/01/blobs", entities)
+
+    def test_web_serves_on_localhost_what_was_logged(self):
+        """--web: `rerun --serve-web` bound to 127.0.0.1 holds the replayed recording; a second
+        rerun saving from its data server gets every frame; SIGTERM stops both."""
+        import make_log
+        from syncap_view.cli import rerun_executable
+        with tempfile.TemporaryDirectory() as d:
+            log, saved = f"{d}/t.lcmlog", f"{d}/from-web.rrd"
+            make_log.write(log, None, None, 10)
+            viewer = subprocess.Popen(
+                support.program() + ["--input", f"lcmlog:{log}", "--web", "--quiet",
+                                     "--web-port", "19090", "--grpc-port", "19876"],
+                stderr=subprocess.PIPE, text=True, env=support.run_env())
+            try:
+                deadline = time.monotonic() + 60
+                while "input ended" not in self._line(viewer, 5):
+                    self.assertLess(time.monotonic(), deadline, "the replay did not end")
+                listening = subprocess.run(["ss", "-ltn"], capture_output=True, text=True).stdout
+                for port in ("19090", "19876"):
+                    self.assertIn(f"127.0.0.1:{port}", listening)
+                    self.assertNotIn(f"0.0.0.0:{port}", listening)
+                # `rerun URL --save FILE` streams until stopped; 8 s is plenty for 10 frames.
+                subprocess.run(["timeout", "8", rerun_executable(), "--bind", "127.0.0.1",
+                                "--port", "19877", "--save", saved,
+                                "rerun+http://127.0.0.1:19876/proxy"],
+                               capture_output=True)
+            finally:
+                viewer.terminate()
+                viewer.wait(timeout=30)
+            self.assertEqual(viewer.returncode, 0)
+            _, frames = read_rrd(saved)
+            self.assertEqual(frames, set(range(10)))
+            time.sleep(0.5)
+            left = subprocess.run(["pgrep", "-f", "--serve-web --port 19876"],
+                                  capture_output=True, text=True).stdout
+            self.assertEqual(left, "", "the web server outlived the viewer")
 
     @staticmethod
     def _line(proc, timeout):
