@@ -22,6 +22,9 @@ def parse_args(argv):
     src = p.add_mutually_exclusive_group()
     src.add_argument("--input", metavar="lcmlog:FILE",
                      help="replay a recorded LCM log (syncap record, lcm-logger)")
+    src.add_argument("--groups", metavar="FILE.jsonl",
+                     help="replay the host's JSON lines (syncap-host --out, syncap markers): "
+                          "blobs, silhouettes, markers, rigid sets' poses, hull, body")
     src.add_argument("--lcm-url", metavar="URL",
                      help="live: subscribe on this LCM URL (default: $LCM_DEFAULT_URL or LCM's "
                           "default, udpm://239.255.76.67:7667?ttl=0)")
@@ -127,7 +130,9 @@ def main(argv=None) -> int:
             return EXIT_USAGE
     log_errors: list[str] = []
     try:
-        if args.input:
+        if args.groups:
+            events = sources.group_lines(args.groups)
+        elif args.input:
             events = sources.log_events(args.input[len("lcmlog:"):], args.channel, log_errors)
             # Open the file now, so that a missing one is an error before any sink is made.
             events = _prime(events)
@@ -147,14 +152,19 @@ def main(argv=None) -> int:
     view = ViewLogger(types, camera_list, trail_frames=args.trail, max_frames=args.max_frames,
                       image_plane_mm=args.frustum_mm, quiet=args.quiet)
     start = time.monotonic()
+    interrupted = False
     try:
         for event in events:
-            if event is not None:
+            if event is None:
+                continue
+            if args.groups:
+                view.handle_group(*event)
+            else:
                 view.handle(*event)
     except StopInput:
         pass
     except KeyboardInterrupt:
-        pass
+        interrupted = True
     view.finish()
     for e in log_errors:
         view.skip(e.split(" ")[0], "", e)
@@ -162,7 +172,7 @@ def main(argv=None) -> int:
     print(f"syncap view: {view.summary()}\nsyncap view: {elapsed:.2f} s, "
           f"{len(view.frames) / elapsed if elapsed > 0 else 0:.1f} frames/s", file=sys.stderr)
     rr.disconnect()  # flushes the sinks (the .rrd's footer, the data to the web server)
-    if children:  # the web viewer's server holds the data: keep it until Ctrl-C
+    if children and not interrupted:  # the web server holds the data: keep it until Ctrl-C
         print("syncap view: input ended; the web viewer stays up until Ctrl-C", file=sys.stderr)
         try:
             while all(c.poll() is None for c in children):

@@ -15,6 +15,7 @@ Entity paths (docs/viewer.md lists them):
 from __future__ import annotations
 
 import io
+import json
 import re
 import sys
 from collections import Counter, defaultdict, deque
@@ -24,7 +25,7 @@ import numpy as np
 import rerun as rr
 
 from . import cameras as cams
-from .contour import decode_silhouette
+from .contour import Contour, decode_silhouette
 from .parts import Joined, PartJoiner
 
 TIMELINE = "frame"
@@ -39,12 +40,22 @@ PARENT = {"vl5": "HumanoidRoot", "vt10": "vl5", "vc7": "vt10", "skullbase": "vc7
           "l_elbow": "l_shoulder", "r_elbow": "r_shoulder", "l_wrist": "l_elbow",
           "r_wrist": "r_elbow", "l_hip": "HumanoidRoot", "r_hip": "HumanoidRoot",
           "l_knee": "l_hip", "r_knee": "r_hip", "l_ankle": "l_knee", "r_ankle": "r_knee"}
-BONES = [(JOINTS.index(PARENT[j]), i) for i, j in enumerate(JOINTS) if j in PARENT]
 
 SYNCAP_CHANNEL = re.compile(r"SYNCAP_[A-Z_]+(\d\d)?")
 MARKER_RADIUS_MM = 12.0
 JOINT_RADIUS_MM = 25.0
+RIGID_AXES_MM = 150.0
 GREEN, ORANGE, GREY, RED = (60, 200, 90), (255, 150, 40), (150, 150, 150), (230, 60, 50)
+
+
+def _finite(*values) -> bool:
+    """JSON lines write a number that is not finite as null."""
+    return all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values)
+
+
+def _entity_name(name: str) -> str:
+    """A rigid set's name as one entity path part."""
+    return re.sub(r"[^A-Za-z0-9_.-]", "_", str(name)) or "_"
 
 
 class StopInput(Exception):
@@ -211,25 +222,37 @@ class ViewLogger:
 
     def log_blobs(self, j: Joined):
         first = j.parts[0]
-        self._frame(j.frame)
-        self._sensor_outline(j.camera, first.image_width, first.image_height)
         blobs = [b for p in j.parts for b in p.blobs]
-        path = self.camera_path(j.camera)
+        self.blobs(j.camera, j.frame, [(b.x, b.y, b.area) for b in blobs],
+                   max(p.processing_us for p in j.parts), first.image_width, first.image_height)
+
+    def blobs(self, camera: int, frame: int, blobs: list, processing_us: float,
+              width: int = 0, height: int = 0):
+        """One camera's blobs of a frame, each (x, y, area) in syncap's pixels."""
+        self._frame(frame)
+        self._sensor_outline(camera, width, height)
+        path = self.camera_path(camera)
         if blobs:
-            xy = np.array([(b.x, b.y) for b in blobs], dtype=np.float32) + cams.PIXEL_OFFSET
-            radii = np.sqrt(np.maximum([b.area for b in blobs], 1.0) / np.pi).astype(np.float32)
+            xy = np.array([(x, y) for x, y, _ in blobs], dtype=np.float32) + cams.PIXEL_OFFSET
+            radii = np.sqrt(np.maximum([a for _, _, a in blobs], 1.0) / np.pi).astype(np.float32)
             rr.log(f"{path}/blobs", rr.Points2D(xy, radii=radii, colors=[ORANGE]))
         else:
             rr.log(f"{path}/blobs", rr.Points2D(np.zeros((0, 2), dtype=np.float32)))
-        plots = f"plots/cameras/{j.camera:02d}"
+        plots = f"plots/cameras/{camera:02d}"
         rr.log(f"{plots}/blobs", rr.Scalars(len(blobs)))
-        rr.log(f"{plots}/frame_processing_us", rr.Scalars(max(p.processing_us for p in j.parts)))
+        rr.log(f"{plots}/frame_processing_us", rr.Scalars(processing_us))
 
     def log_silhouette(self, j: Joined):
         first = j.parts[0]
-        self._frame(j.frame)
-        self._sensor_outline(j.camera, first.image_width, first.image_height)
-        contours = decode_silhouette(j.parts)
+        self.silhouette(j.camera, j.frame, decode_silhouette(j.parts),
+                        first.image_width, first.image_height)
+
+    def silhouette(self, camera: int, frame: int, contours: list, width: int = 0,
+                   height: int = 0):
+        """One camera's outline of a frame: closed polygons (green, holes orange), pieces of
+        polygons that lost a part open and grey."""
+        self._frame(frame)
+        self._sensor_outline(camera, width, height)
         strips, colors = [], []
         for c in contours:
             if not c.points:
@@ -239,7 +262,7 @@ class ViewLogger:
                 pts = np.vstack([pts, pts[:1]])
             strips.append(pts)
             colors.append(GREY if not c.complete else (ORANGE if c.hole else GREEN))
-        rr.log(f"{self.camera_path(j.camera)}/silhouette",
+        rr.log(f"{self.camera_path(camera)}/silhouette",
                rr.LineStrips2D(strips, colors=colors if colors else None))
 
     def on_camera_status(self, m):
@@ -285,19 +308,26 @@ class ViewLogger:
     # --- 3D ---
 
     def log_markers(self, j: Joined):
-        self._frame(j.frame)
         markers = [mk for p in j.parts for mk in p.markers]
-        pos = np.array([(mk.x, mk.y, mk.z) for mk in markers], dtype=np.float32).reshape(-1, 3)
-        ids = [mk.id for mk in markers]
-        predicted = [bool(mk.flags & 2) for mk in markers]  # marker_t.FLAG_PREDICTED
+        self.markers(j.frame, [mk.id for mk in markers],
+                     [(mk.x, mk.y, mk.z) for mk in markers],
+                     [bool(mk.flags & 2) for mk in markers],  # marker_t.FLAG_PREDICTED
+                     j.parts[0].host_us)
+
+    def markers(self, frame: int, ids: list, positions: list, predicted: list,
+                host_us: float | None):
+        """A frame's 3D markers [mm] with their trajectory ids (-1: untracked); predicted ones
+        (not seen this frame) grey."""
+        self._frame(frame)
+        pos = np.array(positions, dtype=np.float32).reshape(-1, 3)
         rr.log("world/markers", rr.Points3D(
             pos, radii=MARKER_RADIUS_MM, class_ids=[max(i, 0) for i in ids],
             labels=[str(i) if i >= 0 else "" for i in ids],
             colors=[GREY if p else (255, 255, 255) for p in predicted] if any(predicted) else None))
-        self._log_trails(j.frame, ids, pos)
-        first = j.parts[0]
-        rr.log("plots/markers/count", rr.Scalars(len(markers)))
-        rr.log("plots/markers/host_ms", rr.Scalars(first.host_us / 1000.0))
+        self._log_trails(frame, ids, pos)
+        rr.log("plots/markers/count", rr.Scalars(len(ids)))
+        if host_us is not None:
+            rr.log("plots/markers/host_ms", rr.Scalars(host_us / 1000.0))
 
     def _log_trails(self, frame: int, ids: list[int], pos: np.ndarray):
         """Each tracked marker's positions over the last `trail_frames` frames."""
@@ -317,42 +347,118 @@ class ViewLogger:
             [np.array([p for _, p in t]) for _, t in keep], class_ids=[i for i, _ in keep]))
 
     def on_hull(self, m):
-        self._frame(m.frame_number)
-        failed = bool(m.flags & 4) or m.volume_mm3 <= 0  # hull_frame_t.FLAG_FAILED
+        self.hull(m.frame_number, bool(m.flags & 4) or m.volume_mm3 <= 0,  # FLAG_FAILED
+                  m.min_mm, m.max_mm, {
+                      "volume_l": m.volume_mm3 / 1e6, "area_m2": m.area_mm2 / 1e6,
+                      "vertices": m.vertices, "faces": m.faces, "cameras": m.cameras,
+                      "hull_ms": m.hull_us / 1000.0, "host_ms": m.host_us / 1000.0})
+
+    def hull(self, frame: int, failed: bool, lo, hi, numbers: dict):
+        """The hull's bounding box [mm] (cleared when no hull was built) and its numbers."""
+        self._frame(frame)
         if failed:
             rr.log("world/hull/bbox", rr.Clear(recursive=False))
         else:
-            lo, hi = np.array(m.min_mm), np.array(m.max_mm)
+            lo, hi = np.array(lo, dtype=np.float64), np.array(hi, dtype=np.float64)
             rr.log("world/hull/bbox", rr.Boxes3D(
                 mins=[lo], sizes=[hi - lo], colors=[GREEN],
-                labels=[f"hull {m.volume_mm3 / 1e6:.1f} l"]))
-        rr.log("plots/hull/volume_l", rr.Scalars(m.volume_mm3 / 1e6))
-        rr.log("plots/hull/area_m2", rr.Scalars(m.area_mm2 / 1e6))
-        rr.log("plots/hull/vertices", rr.Scalars(m.vertices))
-        rr.log("plots/hull/faces", rr.Scalars(m.faces))
-        rr.log("plots/hull/cameras", rr.Scalars(m.cameras))
-        rr.log("plots/hull/hull_ms", rr.Scalars(m.hull_us / 1000.0))
-        rr.log("plots/hull/host_ms", rr.Scalars(m.host_us / 1000.0))
+                labels=[f"hull {numbers.get('volume_l', 0):.1f} l"]))
+        for name, value in numbers.items():
+            if value is not None:
+                rr.log(f"plots/hull/{name}", rr.Scalars(value))
 
     def on_body(self, m):
-        self._frame(m.frame_number)
         no_fit = bool(m.flags & (8 | 16))  # FLAG_NO_HULL, FLAG_NO_START: nothing fitted
-        if no_fit:
+        numbers = {"rms_mm": m.rms_mm, "fit_ms": m.fit_us / 1000.0, "points_kept": m.points_kept}
+        # sigma0 exists only where the .lcm files define it (added on main late 2026-11).
+        if getattr(m, "sigma0", None) is not None:
+            numbers["sigma0"] = m.sigma0
+        self.body(m.frame_number, None if no_fit else dict(zip(JOINTS, m.joint_mm)), numbers)
+
+    def body(self, frame: int, joints: dict | None, numbers: dict):
+        """The fitted skeleton: joint centres [mm] by H-Anim name, bones to their parents;
+        None clears it (no fit on this frame)."""
+        self._frame(frame)
+        if not joints:
             rr.log("world/body", rr.Clear(recursive=True))
         else:
-            joints = np.array(m.joint_mm, dtype=np.float32).reshape(-1, 3)
-            names = JOINTS[:len(joints)]
-            rr.log("world/body/joints", rr.Points3D(joints[:len(names)], radii=JOINT_RADIUS_MM,
-                                                    labels=names, colors=[RED]))
-            bones = [joints[[a, b]] for a, b in BONES if b < len(joints)]
+            names = [n for n in JOINTS if n in joints] + [n for n in joints if n not in JOINTS]
+            pos = np.array([joints[n] for n in names], dtype=np.float32).reshape(-1, 3)
+            rr.log("world/body/joints", rr.Points3D(pos, radii=JOINT_RADIUS_MM, labels=names,
+                                                    colors=[RED]))
+            bones = [np.array([joints[PARENT[n]], joints[n]], dtype=np.float32)
+                     for n in JOINTS if n in joints and PARENT.get(n) in joints]
             rr.log("world/body/bones", rr.LineStrips3D(bones, colors=[RED]))
-        rr.log("plots/body/rms_mm", rr.Scalars(m.rms_mm))
-        rr.log("plots/body/fit_ms", rr.Scalars(m.fit_us / 1000.0))
-        rr.log("plots/body/points_kept", rr.Scalars(m.points_kept))
-        # sigma0 exists only where the .lcm files define it (added on main late 2026-11).
-        sigma0 = getattr(m, "sigma0", None)
-        if sigma0 is not None:
-            rr.log("plots/body/sigma0", rr.Scalars(sigma0))
+        for name, value in numbers.items():
+            if value is not None:
+                rr.log(f"plots/body/{name}", rr.Scalars(value))
+
+    def rigid_sets(self, frame: int, sets: list):
+        """Rigid marker sets' poses (JSON lines only: marker_frame_t does not carry them): axes
+        at world/rigid/<name>, world = R * set + t; cleared when the set was not found."""
+        self._frame(frame)
+        for s in sets:
+            path = f"world/rigid/{_entity_name(s.get('name', '?'))}"
+            if s.get("found") and s.get("rotation") and s.get("translation"):
+                rr.log(path, rr.Transform3D(
+                    translation=s["translation"],
+                    mat3x3=np.array(s["rotation"], dtype=np.float64).reshape(3, 3)),
+                       rr.TransformAxes3D(RIGID_AXES_MM))
+                rr.log(f"plots/rigid/{_entity_name(s.get('name', '?'))}/rms_mm",
+                       rr.Scalars(s.get("rms_mm") or 0.0))
+            else:
+                rr.log(path, rr.Clear(recursive=False))
+
+    # --- the host's JSON lines (syncap-host --out, host/src/io/frame_json.hpp) ---
+
+    def handle_group(self, line: str, where: str) -> None:
+        """Logs one frame group's line; a line that does not read is counted and reported."""
+        self._where, self._channel = where, "(JSON line)"
+        try:
+            group = json.loads(line)
+            if not isinstance(group, dict) or not isinstance(group.get("frame"), int):
+                raise ValueError('not an object with an integer "frame"')
+            self._group(group)
+            self.messages["frame group"] += 1
+        except StopInput:
+            raise
+        except Exception as e:
+            self.skip(where, "(JSON line)", f"does not read: {e}")
+
+    def _group(self, g: dict) -> None:
+        frame = g["frame"]
+        self._frame(frame)
+        for cid, rec in (g.get("cameras") or {}).items():
+            camera = int(cid)
+            if rec.get("blobs") is not None:
+                self.blobs(camera, frame, [(b["x"], b["y"], b.get("area") or 1.0)
+                                           for b in rec["blobs"] if _finite(b.get("x"), b.get("y"))],
+                           rec.get("processing_us") or 0)
+            sil = rec.get("silhouette")
+            if sil is not None:
+                contours = [Contour(bool(c.get("hole")), bool(c.get("complete", True)),
+                                    [tuple(p) for p in c.get("points", [])])
+                            for c in sil.get("contours", [])]
+                self.silhouette(camera, frame, contours, sil.get("width", 0), sil.get("height", 0))
+        if "markers" in g:
+            ms = [m for m in g["markers"] if _finite(m.get("x"), m.get("y"), m.get("z"))]
+            self.markers(frame, [m.get("id", -1) for m in ms], [(m["x"], m["y"], m["z"]) for m in ms],
+                         [bool(m.get("predicted")) for m in ms], None)
+        if "rigid_sets" in g:
+            self.rigid_sets(frame, g["rigid_sets"])
+        h = g.get("hull")
+        if h is not None:
+            failed = bool((h.get("flags") or 0) & 4) or "error" in h or not h.get("volume_mm3")
+            self.hull(frame, failed, h.get("min"), h.get("max"), {
+                "volume_l": (h.get("volume_mm3") or 0) / 1e6, "area_m2": (h.get("area_mm2") or 0) / 1e6,
+                "vertices": h.get("vertices"), "faces": h.get("faces"), "cameras": h.get("cameras"),
+                "hull_ms": (h.get("hull_us") or 0) / 1000.0})
+        b = g.get("body")
+        if b is not None:
+            no_fit = bool((b.get("flags") or 0) & (8 | 16)) or not b.get("joints")
+            joints = None if no_fit else {n: p for n, p in b["joints"].items() if _finite(*p)}
+            self.body(frame, joints, {"rms_mm": b.get("rms_mm"), "fit_ms": (b.get("fit_us") or 0) / 1000.0,
+                                      "points_kept": b.get("points_kept")})
 
     # --- the end ---
 

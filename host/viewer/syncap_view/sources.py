@@ -48,6 +48,21 @@ def log_events(path: str, channel_regex: str, errors: list) -> Iterator[tuple[st
         log.close()
 
 
+def group_lines(path: str) -> Iterator[tuple[str, str]]:
+    """The host's JSON lines, one frame group a line: (line, "FILE:N")."""
+    try:
+        f = open(path, encoding="utf-8", errors="replace")
+    except OSError as e:
+        raise InputError(f"{path}: cannot open: {e.strerror}") from None
+
+    def lines():
+        with f:
+            for number, line in enumerate(f, 1):
+                if line.strip():
+                    yield line, f"{path}:{number}"
+    return lines()
+
+
 def live_events(url: str | None, channel_regex: str, poll_ms: int = 100
                 ) -> Iterator[tuple[str, bytes, str] | None]:
     """Messages as they arrive; None every `poll_ms` without one, so that the caller can look

@@ -1,6 +1,7 @@
 """`syncap view --lcm-url` subscribed live: messages published on LCM multicast arrive in the
-.rrd; `--web` serves the recording on 127.0.0.1 only. Runs only inside a private network namespace (hil/netns-run; run_test.sh --netns sets
-SYNCAP_VIEWER_NETNS=1 there): multicast never leaves it."""
+.rrd; `--web` serves the recording on 127.0.0.1 only. Runs only inside a private network
+namespace (hil/netns-run; run_test.sh --netns sets SYNCAP_VIEWER_NETNS=1 there): multicast and
+the servers never leave it."""
 
 import os
 import select
