@@ -167,7 +167,7 @@ def main(argv=None) -> int:
         interrupted = True
     view.finish()
     for e in log_errors:
-        view.skip(e.split(" ")[0], "", e)
+        view.input_error(e)
     elapsed = time.monotonic() - start
     print(f"syncap view: {view.summary()}\nsyncap view: {elapsed:.2f} s, "
           f"{len(view.frames) / elapsed if elapsed > 0 else 0:.1f} frames/s", file=sys.stderr)

@@ -83,6 +83,7 @@ class ViewLogger:
         self.last_frame: int | None = None
         self.messages = Counter()          # logged messages by type
         self.skipped: list[Skip] = []
+        self.input_errors: list[str] = []  # the input's own framing (an LCM log cut short)
         self.ignored = 0                   # messages on other applications' channels
         self.incomplete = Counter()        # joined frames missing parts, by kind
         self.trails: dict[int, deque] = {}
@@ -158,6 +159,13 @@ class ViewLogger:
             print(f"syncap view: {where} channel {channel}: {reason}; skipped", file=sys.stderr)
         self._at(self.last_frame)
         rr.log("log/skipped", rr.TextLog(f"{where} {channel}: {reason}", level=rr.TextLogLevel.WARN))
+
+    def input_error(self, what: str) -> None:
+        """A fault of the input itself, not of one message: a log cut short or with bytes that
+        are not events (sources.log_events)."""
+        self.input_errors.append(what)
+        self._at(self.last_frame)
+        rr.log("log/input", rr.TextLog(what, level=rr.TextLogLevel.WARN))
 
     # --- time ---
 
@@ -468,6 +476,7 @@ class ViewLogger:
                     if self.messages else "")]
         for kind, n in sorted(self.incomplete.items()):
             lines.append(f"{n} {kind} frames with parts missing (shown with what arrived)")
+        lines += self.input_errors
         if self.ignored:
             lines.append(f"{self.ignored} messages of other applications ignored")
         if self.skipped:

@@ -19,31 +19,61 @@ class InputError(RuntimeError):
     """The input cannot be opened or read on (named in the message)."""
 
 
+# Every event of an LCM log starts with this word (then eventnum, timestamp, channel and data
+# lengths, channel, data): where the framing breaks, reading goes on at the next one.
+LOG_SYNC = b"\xed\xa1\xda\x01"
+
+
+def _next_sync(path: str, start: int) -> int | None:
+    """The offset of the first sync word at or after `start`, or None."""
+    with open(path, "rb") as f:
+        f.seek(start)
+        tail = f.read()
+    at = tail.find(LOG_SYNC)
+    return None if at < 0 else start + at
+
+
 def log_events(path: str, channel_regex: str, errors: list) -> Iterator[tuple[str, bytes, str]]:
-    """The events of an LCM log whose channel matches. A log that ends inside an event (a
-    recorder killed mid-write) or whose framing breaks ends here with an entry in `errors`: what
-    came before is still shown."""
+    """The events of an LCM log whose channel matches. Where the log's framing breaks (bytes
+    that are not an event: a disk error, a file cut and joined), reading resumes at the next
+    event and the bytes skipped go to `errors`; a log that ends inside an event (a recorder
+    killed mid-write) ends there with an entry in `errors`. A file with no event at all is an
+    InputError."""
     if not os.path.isfile(path):
         raise InputError(f"lcmlog:{path}: no such file")
+    size = os.path.getsize(path)
     try:
         log = lcm.EventLog(path, "r")
     except (IOError, OSError, ValueError) as e:
         raise InputError(f"lcmlog:{path}: cannot open: {e}") from None
     pattern = re.compile(channel_regex)
-    count = 0
+    count, good_end = 0, 0  # events read; the offset after the last one
     try:
         while True:
             try:
                 event = log.read_next_event()
-            except (IOError, OSError, ValueError) as e:  # framing broken mid-file
-                errors.append(f"lcmlog:{path} after event {count}: the log does not read on "
-                              f"({e}); the rest of the file is not shown")
+            except (IOError, OSError, ValueError):
+                event = None
+            if event is not None:
+                count += 1
+                good_end = log.tell()
+                if pattern.fullmatch(event.channel):
+                    yield event.channel, event.data, f"lcmlog:{path} event {event.eventnum}"
+                continue
+            if good_end >= size:
                 return
-            if event is None:
+            resume = _next_sync(path, good_end + 1)
+            if resume is None:
+                if count == 0:
+                    raise InputError(f"lcmlog:{path}: no LCM log event in its {size} bytes "
+                                     "(not an LCM log?)")
+                errors.append(f"lcmlog:{path} after event {count}: the log ends inside an "
+                              f"event (its last {size - good_end} bytes not shown)")
                 return
-            count += 1
-            if pattern.fullmatch(event.channel):
-                yield event.channel, event.data, f"lcmlog:{path} event {event.eventnum}"
+            errors.append(f"lcmlog:{path} after event {count}: bytes {good_end}..{resume - 1} "
+                          "are not an event; skipped to the next one")
+            log.seek(resume)
+            good_end = resume
     finally:
         log.close()
 

@@ -128,6 +128,28 @@ class ReplayTest(unittest.TestCase):
         self.assertNotIn("/world/body/joints", entities)
         self.assertFalse([e for e in entities if "/cameras/" in e])
 
+    def test_a_log_cut_short_or_garbled_shows_what_reads(self):
+        data = Path(self.log).read_bytes()
+        d = Path(self.dir.name)
+        (d / "cut.lcmlog").write_bytes(data[:len(data) // 2])
+        result = run("--input", f"lcmlog:{d / 'cut.lcmlog'}", "--save", str(d / "cut.rrd"))
+        self.assertRegex(result.stderr, r"cut.lcmlog after event \d+: the log ends inside an event")
+        _, frames = read_rrd(str(d / "cut.rrd"))
+        self.assertTrue(3 <= len(frames) < FRAMES, frames)
+        # 100 bytes of junk in the middle: skipped, the frames after it still shown
+        junk = bytes(range(100))
+        (d / "junk.lcmlog").write_bytes(data[:len(data) // 2] + junk + data[len(data) // 2:])
+        result = run("--input", f"lcmlog:{d / 'junk.lcmlog'}", "--save", str(d / "junk.rrd"))
+        self.assertRegex(result.stderr, r"junk.lcmlog after event \d+: bytes \d+\.\.\d+ are not "
+                                        r"an event; skipped to the next one")
+        _, frames = read_rrd(str(d / "junk.rrd"))
+        self.assertEqual(frames, set(range(FRAMES)))
+        (d / "text.lcmlog").write_text("not a log\n")
+        result = run("--input", f"lcmlog:{d / 'text.lcmlog'}", "--save", str(d / "t.rrd"),
+                     check=False)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("no LCM log event in its 10 bytes", result.stderr)
+
     def test_a_missing_log_is_a_usage_error_naming_it(self):
         result = run("--input", "lcmlog:/nonexistent/x.lcmlog", "--save", "/tmp/never.rrd",
                      check=False)
