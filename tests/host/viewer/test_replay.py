@@ -3,6 +3,7 @@ reader (rerun.chunk.RrdReader): which entities, how many frames on the frame tim
 joined frame holds, and the corrupt event named and skipped."""
 
 import collections
+import os
 import subprocess
 import sys
 import tempfile
@@ -149,6 +150,26 @@ class ReplayTest(unittest.TestCase):
                      check=False)
         self.assertEqual(result.returncode, 2)
         self.assertIn("no LCM log event in its 10 bytes", result.stderr)
+
+    def test_the_launcher_finds_the_venv_of_its_build_tree(self):
+        """build/bin/syncap-view (the link `syncap view` runs) uses build/py-venv."""
+        build = Path(self.dir.name) / "build"
+        (build / "bin").mkdir(parents=True)
+        (build / "py-venv").symlink_to(sys.prefix)
+        (build / "bin" / "syncap-view").symlink_to(support.VIEWER / "syncap-view")
+        rrd = str(Path(self.dir.name) / "launched.rrd")
+        env = {k: v for k, v in os.environ.items() if k not in ("SYNCAP_PY_VENV", "PYTHONPATH")}
+        result = subprocess.run([str(build / "bin" / "syncap-view"), "--input",
+                                 f"lcmlog:{self.log}", "--save", rrd, "--quiet"],
+                                capture_output=True, text=True, env=env, timeout=120)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(read_rrd(rrd)[1], set(range(FRAMES)))
+        env["SYNCAP_PY_VENV"] = str(Path(self.dir.name) / "no-venv")
+        result = subprocess.run([str(build / "bin" / "syncap-view"), "--help"],
+                                capture_output=True, text=True, env=env)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("make it with:", result.stderr)
+        self.assertIn("scripts/py-deps.sh", result.stderr)
 
     def test_a_missing_log_is_a_usage_error_naming_it(self):
         result = run("--input", "lcmlog:/nonexistent/x.lcmlog", "--save", "/tmp/never.rrd",
