@@ -6,6 +6,7 @@ Entity paths (docs/viewer.md lists them):
   world/cameras/NN/{blobs,silhouette,clip}   its 2D content, in its image
   cameras/NN/{sensor,blobs,silhouette,clip}  the same for a camera without calibration
   world/markers, world/markers/trails    3D markers (labels: their ids), their last frames
+  world/rigid/NAME                       rigid sets' poses (JSON lines only)
   world/hull/bbox                        the visual hull's bounding box
   world/body/joints, world/body/bones    the fitted skeleton
   plots/...                              scalars: the edges' status, the host's times
@@ -46,6 +47,15 @@ MARKER_RADIUS_MM = 12.0
 JOINT_RADIUS_MM = 25.0
 RIGID_AXES_MM = 150.0
 GREEN, ORANGE, GREY, RED = (60, 200, 90), (255, 150, 40), (150, 150, 150), (230, 60, 50)
+
+
+def _constant_name(cls, value: int, exclude=()) -> str:
+    """The name of a message type's constant with this value (edge_command_t.START), from the
+    generated class, so that a new code needs no change here."""
+    for name in dir(cls):
+        if name.isupper() and name not in exclude and getattr(cls, name) == value:
+            return name
+    return f"code {value}"
 
 
 def _finite(*values) -> bool:
@@ -293,10 +303,10 @@ class ViewLogger:
 
     def on_command(self, m):
         self._at(self.last_frame)
-        target = "all cameras" if m.camera_id == -1 else f"camera {m.camera_id}"
+        target = "all cameras" if m.camera_id == m.ALL_CAMERAS else f"camera {m.camera_id}"
         rr.log("log/commands", rr.TextLog(
-            f"command {m.command} to {target}: int {m.int_value} real {m.real_value} "
-            f"(sender {m.sender:x} sequence {m.sequence})"))
+            f"{_constant_name(type(m), m.command, ('ALL_CAMERAS',))} to {target}: int "
+            f"{m.int_value} real {m.real_value} (sender {m.sender:x} sequence {m.sequence})"))
 
     # --- the trigger ---
 

@@ -36,6 +36,16 @@ def write(path: str, cameras_json: str | None, proto_msg: str | None, frames: in
             w.hull(f, (-400, -400, 0), (400, 400, 1800))
         w.body(f, offset_mm=(10.0 * f, 0.0, 0.0))
         w.status(f % cameras, f, message="warming up" if f == 0 else "")
+        if f == 1:  # the host's clip polygon for camera 2 and a command to all cameras
+            clip = t.clip_polygon_t()
+            clip.camera_id, clip.image_width, clip.image_height = 2, 640, 480
+            clip.x, clip.y, clip.num_points = [10, 600, 300], [400, 400, 50], 3
+            clip.mac = [0] * 32
+            w.write("SYNCAP_EDGE_CLIP", clip)
+            cmd = t.edge_command_t()
+            cmd.camera_id, cmd.command, cmd.int_value = -1, t.edge_command_t.TRAIN_BACKGROUND, 60
+            cmd.mac = [0] * 32
+            w.write("SYNCAP_EDGE_CMD", cmd)
         if f == CORRUPT_FRAME:  # a blob frame cut short: its fingerprint, then 2 of 40 bytes
             w.write("SYNCAP_BLOBS_01", t.blob_frame_t._get_packed_fingerprint() + b"\x00\x01")
     w.close()

@@ -64,7 +64,8 @@ class ReplayTest(unittest.TestCase):
         want = {"/world", "/world/markers", "/world/markers/trails", "/world/hull/bbox",
                 "/world/body/joints", "/world/body/bones", "/world/cameras/00/silhouette",
                 "/plots/body/rms_mm", "/plots/hull/volume_l", "/plots/markers/count",
-                "/plots/trigger/interval_ms", "/log/skipped", "/log/cameras/00"}
+                "/plots/trigger/interval_ms", "/log/skipped", "/log/cameras/00",
+                "/world/cameras/02/clip", "/log/commands"}
         for cam in ("00", "01", "02"):
             want |= {f"/world/cameras/{cam}", f"/world/cameras/{cam}/blobs",
                      f"/plots/cameras/{cam}/fps", f"/plots/cameras/{cam}/frames_lost",
@@ -91,6 +92,11 @@ class ReplayTest(unittest.TestCase):
         self.assertEqual([list(p) for p in strips[0]],
                          [[202.5, 100.5], [300.5, 100.5], [300.5, 400.5], [202.5, 400.5],
                           [202.5, 100.5]])
+
+    def test_commands_are_named(self):
+        row = self.entities["/log/commands"][1][0]
+        self.assertTrue(row["TextLog:text"][0].startswith("TRAIN_BACKGROUND to all cameras: int 60"),
+                        row)
 
     def test_body_has_nineteen_joints_and_eighteen_bones(self):
         row = self.entities["/world/body/joints"][0][0]
