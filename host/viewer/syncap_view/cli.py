@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import os
+import re
 import shutil
 import signal
 import subprocess
@@ -62,7 +64,6 @@ def parse_args(argv):
         p.error("--max-frames must be at least 1")
     if args.trail < 0:
         p.error("--trail must be 0 or more")
-    import re
     try:
         re.compile(args.channel)
     except re.error as e:
@@ -86,7 +87,9 @@ def rerun_executable() -> str:
 def start_rerun(args: list[str], detach: bool) -> subprocess.Popen:
     """A `rerun` process bound to 127.0.0.1: the viewer is for this workstation, never for the
     camera network (rr.serve_web_viewer and rr.spawn listen on every interface)."""
-    return subprocess.Popen([rerun_executable(), "--bind", "127.0.0.1"] + args,
+    env = dict(os.environ)
+    env.setdefault("RUST_LOG", "warn")  # its errors, not its INFO lines
+    return subprocess.Popen([rerun_executable(), "--bind", "127.0.0.1"] + args, env=env,
                             stdout=subprocess.DEVNULL, start_new_session=detach)
 
 
@@ -116,34 +119,21 @@ def main(argv=None) -> int:
     args = parse_args(sys.argv[1:] if argv is None else argv)
     from . import bindings, cameras as cams, sources
 
+    # Everything that can be wrong with the inputs is found before any sink or viewer is made.
     try:
         types = bindings.types_by_fingerprint(bindings.load(args.proto_msg))
-    except bindings.BindingsError as e:
+        camera_list = cams.read_cameras(args.cameras) if args.cameras else []
+        log_errors: list[str] = []
+        events = open_input(args, log_errors)
+    except (bindings.BindingsError, sources.InputError) as e:
         print(f"syncap view: {e}", file=sys.stderr)
         return EXIT_USAGE
-    camera_list = []
-    if args.cameras:
-        try:
-            camera_list = cams.read_cameras(args.cameras)
-        except cams.CameraFileError as e:
-            print(f"syncap view: --cameras {e}", file=sys.stderr)
-            return EXIT_USAGE
-    log_errors: list[str] = []
-    try:
-        if args.groups:
-            events = sources.group_lines(args.groups)
-        elif args.input:
-            events = sources.log_events(args.input[len("lcmlog:"):], args.channel, log_errors)
-            # Open the file now, so that a missing one is an error before any sink is made.
-            events = _prime(events)
-        else:
-            events = sources.live_events(args.lcm_url, args.channel)
-    except sources.InputError as e:
-        print(f"syncap view: {e}", file=sys.stderr)
+    except cams.CameraFileError as e:
+        print(f"syncap view: --cameras {e}", file=sys.stderr)
         return EXIT_USAGE
 
     import rerun as rr
-    from .logger import StopInput, ViewLogger
+    from .logger import ViewLogger
 
     # SIGTERM ends the program as Ctrl-C does: what arrived is flushed, the children stopped.
     signal.signal(signal.SIGTERM, _interrupt)
@@ -152,37 +142,68 @@ def main(argv=None) -> int:
     view = ViewLogger(types, camera_list, trail_frames=args.trail, max_frames=args.max_frames,
                       image_plane_mm=args.frustum_mm, quiet=args.quiet)
     start = time.monotonic()
-    interrupted = False
-    try:
-        for event in events:
-            if event is None:
-                continue
-            if args.groups:
-                view.handle_group(*event)
-            else:
-                view.handle(*event)
-    except StopInput:
-        pass
-    except KeyboardInterrupt:
-        interrupted = True
-    view.finish()
+    interrupted = run(view, events, groups=bool(args.groups))
     for e in log_errors:
         view.input_error(e)
     elapsed = time.monotonic() - start
     print(f"syncap view: {view.summary()}\nsyncap view: {elapsed:.2f} s, "
           f"{len(view.frames) / elapsed if elapsed > 0 else 0:.1f} frames/s", file=sys.stderr)
     rr.disconnect()  # flushes the sinks (the .rrd's footer, the data to the web server)
-    if children and not interrupted:  # the web server holds the data: keep it until Ctrl-C
-        print("syncap view: input ended; the web viewer stays up until Ctrl-C", file=sys.stderr)
-        try:
-            while all(c.poll() is None for c in children):
-                time.sleep(0.5)
-        except KeyboardInterrupt:
-            pass
-        for c in children:
-            c.terminate()
-            c.wait()
-    return 0
+    failed = children and not interrupted and not serve_until_interrupted(children)
+    for c in children:
+        c.terminate()
+        c.wait()
+    return 1 if failed else 0
+
+
+def open_input(args, log_errors: list):
+    """The events of the input the options name; a file that cannot be read raises here."""
+    from . import sources
+
+    if args.groups:
+        return sources.group_lines(args.groups)
+    if args.input:
+        # Run to the first event now, so that a missing file or one without an event is an
+        # error before anything is shown.
+        return _prime(sources.log_events(args.input[len("lcmlog:"):], args.channel, log_errors))
+    return sources.live_events(args.lcm_url, args.channel)
+
+
+def run(view, events, groups: bool) -> bool:
+    """Logs every event until the input ends, --max-frames, or Ctrl-C (then returns True)."""
+    from .logger import StopInput
+
+    try:
+        for event in events:
+            if event is None:  # live, nothing arrived: look up
+                continue
+            if groups:
+                view.handle_group(*event)
+            else:
+                view.handle(*event)
+    except StopInput:
+        pass
+    except KeyboardInterrupt:
+        view.finish()
+        return True
+    view.finish()
+    return False
+
+
+def serve_until_interrupted(children: list) -> bool:
+    """After a recording, the web server holds the data: it stays until Ctrl-C. False when it
+    ended by itself (it could not listen)."""
+    print("syncap view: input ended; the web viewer stays up until Ctrl-C", file=sys.stderr)
+    try:
+        while all(c.poll() is None for c in children):
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        return True
+    for c in children:
+        if c.returncode is not None:
+            print(f"syncap view: rerun --serve-web exited with status {c.returncode} (a port in "
+                  "use? --web-port, --grpc-port)", file=sys.stderr)
+    return False
 
 
 def _interrupt(signum, frame):
