@@ -82,6 +82,10 @@ def generate(directory: Path) -> Path:
 def load(override: str | None = None):
     """The generated module `syncap` (its attributes are the message classes)."""
     root = generate(msg_dir(override))
+    loaded = sys.modules.get("syncap")
+    if loaded is not None and not str(getattr(loaded, "__file__", "")).startswith(str(root)):
+        # One process, one contract: a second set of definitions would shadow the first.
+        raise BindingsError(f"bindings of other definitions are loaded already ({loaded.__file__})")
     if str(root) not in sys.path:
         sys.path.insert(0, str(root))
     return importlib.import_module("syncap")
