@@ -175,7 +175,8 @@ def run(view, events, groups: bool) -> bool:
 
     try:
         for event in events:
-            if event is None:  # live, nothing arrived: look up
+            if event is None:  # live, nothing arrived for a moment
+                view.tick()
                 continue
             if groups:
                 view.handle_group(*event)

@@ -155,6 +155,11 @@ class ViewLogger:
         except Exception as e:
             self.skip(where, channel, f"{cls.__name__}: {e}")
 
+    def tick(self) -> None:
+        """Live, now and then: log the frames whose missing parts waited too long."""
+        self._where, self._channel = "live", "(parts that waited too long)"
+        self._log_all(self.joiner.expired())
+
     def finish(self) -> None:
         """The input ended: log what still waits for parts."""
         self._where, self._channel = "end of input", "(parts still waiting)"
