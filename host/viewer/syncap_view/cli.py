@@ -25,7 +25,8 @@ def parse_args(argv):
     src.add_argument("--input", metavar="lcmlog:FILE",
                      help="replay a recorded LCM log (syncap record, lcm-logger)")
     src.add_argument("--groups", metavar="FILE.jsonl",
-                     help="replay the host's JSON lines (syncap-host --out, syncap markers): "
+                     help="replay the host's JSON lines (syncap-host --out, syncap markers' "
+                          "markers.jsonl): "
                           "blobs, silhouettes, markers, rigid sets' poses, hull, body")
     src.add_argument("--lcm-url", metavar="URL",
                      help="live: subscribe on this LCM URL (default: $LCM_DEFAULT_URL or LCM's "
