@@ -24,7 +24,7 @@ PACKAGES=(
   libcmocka-dev libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing the SDL parser (scripts/fuzz-sdl.sh): clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
-  # the venv of scripts/py-deps.sh (C3D readers that check the trajectory exports)
+  # the venv of scripts/py-deps.sh (C3D readers that check the trajectory exports, the viewer)
   python3 python3-venv
   # private network namespaces (ip), unshare comes with util-linux
   iproute2 util-linux

@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
 # Installs the Python packages the tests use into a venv (Debian 12's system pip is "externally
 # managed", PEP 668): the independent C3D readers ezc3d and c3d and the BVH reader bvh from PyPI,
-# which read the trajectory and motion exports back (tests/host/io/check_exports.py). The venv is
-# $SYNCAP_PY_VENV, default <build dir>/py-venv, where the tests look for it.
+# which read the trajectory and motion exports back (tests/host/io/check_exports.py); the viewer
+# `syncap view` (host/viewer, docs/viewer.md): rerun-sdk, the lcm bindings, and what rerun-sdk
+# pulls in (numpy, pyarrow, attrs, pillow, psutil, typing_extensions), pinned too, so that every
+# venv holds the same versions. The venv is $SYNCAP_PY_VENV, default
+# <build dir>/py-venv, where the tests and host/viewer/syncap-view look for it.
 # Idempotent: nothing is done when the pinned versions are already there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=${SYNCAP_PY_VENV:-${SYNCAP_BUILD_DIR:-build}/py-venv}
-PACKAGES=(ezc3d==1.7.2 c3d==0.6.0 bvh==0.3)
+PACKAGES=(ezc3d==1.7.2 c3d==0.6.0 bvh==0.3
+  rerun-sdk==0.41.0 lcm==1.5.3 numpy==2.4.6 pyarrow==26.0.1 attrs==26.1.0 pillow==13.0.0
+  psutil==7.2.2 typing_extensions==4.16.0)
 
 installed() {
   "$venv/bin/python3" - "${PACKAGES[@]}" <<'PY' 2>/dev/null

@@ -61,7 +61,8 @@ constexpr std::array kSubcommands{
 };
 
 // Subcommands that are programs of their own, `syncap-NAME`, looked for beside this program,
-// then on PATH (as git does): they link libraries the log decoder has no business with.
+// then on PATH (as git does): they link libraries the log decoder has no business with
+// (syncap-view is Python: a link to host/viewer/syncap-view, host/CMakeLists.txt).
 struct ProgramSubcommand {
   std::string_view name;
   std::string_view summary;
@@ -70,6 +71,7 @@ struct ProgramSubcommand {
 constexpr std::array kProgramSubcommands{
     ProgramSubcommand{"sim", "render a scenario into camera images and ground truth"},
     ProgramSubcommand{"segment-eval", "score foreground masking on a CDnet 2014 folder"},
+    ProgramSubcommand{"view", "show the LCM traffic, live or recorded, in Rerun (Python)"},
 };
 
 void print_usage(std::ostream& out) {
