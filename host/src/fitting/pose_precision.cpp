@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <map>
 
 namespace syncap::fitting {
 
@@ -30,6 +31,29 @@ Eigen::MatrixXd joint_jacobian(const PoseParameters& parameters, const double* x
   return a;
 }
 
+// M = sum over patches of (sum psi J)^T (sum psi J), times G / (G - 1) for G patches (single rows
+// count as patches of their own) when there are patches.
+Eigen::MatrixXd patch_meat(const Observations& o, const Eigen::VectorXd& psi) {
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(kPoseParameterCount, kPoseParameterCount);
+  std::map<int, Eigen::RowVectorXd> patches;
+  double groups = 0;
+  for (Eigen::Index i = 0; i < psi.size(); ++i) {
+    const Eigen::RowVectorXd g = psi(i) * o.jacobian.row(i);
+    const int patch = o.patch.empty() ? -1 : o.patch[static_cast<std::size_t>(i)];
+    if (patch < 0) {
+      meat += g.transpose() * g;
+      ++groups;
+      continue;
+    }
+    const auto [at, fresh] = patches.try_emplace(patch, g);
+    if (!fresh) at->second += g;
+  }
+  if (patches.empty()) return meat;  // plain rows: n / (n - u) alone, as least squares
+  for (const auto& [patch, g] : patches) meat += g.transpose() * g;
+  groups += static_cast<double>(patches.size());
+  return groups > 1 ? Eigen::MatrixXd(meat * (groups / (groups - 1.0))) : meat;
+}
+
 }  // namespace
 
 PosePrecision pose_precision(const PoseParameters& parameters, const double* x,
@@ -47,7 +71,7 @@ PosePrecision pose_precision(const PoseParameters& parameters, const double* x,
   }
   out.sigma0 = std::sqrt(psi.squaredNorm() / out.redundancy);
   const Eigen::MatrixXd bread = o.jacobian.transpose() * slope.asDiagonal() * o.jacobian;
-  const Eigen::MatrixXd meat = o.jacobian.transpose() * psi.cwiseAbs2().asDiagonal() * o.jacobian;
+  const Eigen::MatrixXd meat = patch_meat(o, psi);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(bread);
   const Eigen::VectorXd& values = eigen.eigenvalues();  // ascending
   if (!(values(0) > kConditionFloor * values(values.size() - 1))) return out;

@@ -8,6 +8,12 @@
 // M = sum psi(z)^2 J^T J over the observations (z a row's normalized residual, J its derivatives),
 // not the least-squares sigma0^2 (J^T W J)^-1: that one, with the robust weights held fixed,
 // predicted sigmas 25-38 % below the scatter of repeated fits (tests/host/fitting).
+//
+// Neighbouring points share their error: a hull's facet lies off the body over a patch, not point
+// by point. M therefore sums psi(z) J over each patch before squaring (the cluster-robust
+// sandwich, G / (G - 1) for G patches); rows of independent errors (the prior's) stay single.
+// On the replay bench's hulls, independent rows predicted a joint's sigma 2.45 times too small,
+// the octants of each segment's ellipsoid as patches 1.04 times (docs/body-fit.md, "Precision").
 #pragma once
 
 #include <Eigen/Core>
@@ -39,6 +45,8 @@ struct Observations {
   Eigen::Matrix<double, Eigen::Dynamic, kPoseParameterCount, Eigen::RowMajor> jacobian;
   Eigen::VectorXd z;
   Eigen::VectorXd cauchy_scale;
+  // Per row, the patch whose error it shares (any number >= 0), or -1: independent of every row.
+  std::vector<int> patch;
 };
 
 PosePrecision pose_precision(const PoseParameters& parameters, const double* x,

@@ -107,6 +107,13 @@ double gate_of_round(const SurfaceFitOptions& options, int round, double sigma_m
                   std::max(options.gate_floor_mm, 8.0 * sigma_mm));
 }
 
+// Which of its ellipsoid's octants (its own axes) a point lies in, 0..7: the patch whose hull error
+// the point shares with its neighbours (pose_precision.hpp).
+int octant_of(const PosedEllipsoid<double>& e, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d u = e.axes.transpose() * (p - e.centre);
+  return (u.x() > 0 ? 1 : 0) + (u.y() > 0 ? 2 : 0) + (u.z() > 0 ? 4 : 0);
+}
+
 // The fit's observations at its solution, for its covariance (pose_precision.hpp): the points
 // within the final gate with their assignment (each residual over its sigma, unweighted: the
 // covariance applies the loss itself), then the prior's rows.
@@ -115,15 +122,21 @@ Observations observations_at(const PoseParameters& parameters, const PoseVector&
                              const std::vector<NearestSurface>& nearest, double gate_mm,
                              const SurfaceFitOptions& options) {
   SurfaceCost cost{&parameters, {}, {}, {}};
+  std::vector<PosedEllipsoid<double>> ellipsoids;
+  parameters.ellipsoids(x.data(), ellipsoids);
+  Observations o;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (std::abs(nearest[i].distance_mm) > gate_mm) continue;
+    const auto segment = static_cast<std::size_t>(nearest[i].segment);
+    o.patch.push_back(8 * nearest[i].segment +
+                      octant_of(ellipsoids[segment], points[i].position_mm));
     cost.points.push_back(points[i].position_mm);
     cost.segments.push_back(nearest[i].segment);
     cost.scales.push_back(1.0 / points[i].sigma_mm);
   }
   const auto point_rows = static_cast<Eigen::Index>(cost.points.size());
   const Eigen::Index prior_rows = options.prior_rad > 0 ? kPoseParameterCount - 6 : 0;
-  Observations o;
+  for (Eigen::Index i = 0; i < prior_rows; ++i) o.patch.push_back(-1);
   o.jacobian.setZero(point_rows + prior_rows, kPoseParameterCount);
   o.z.resize(point_rows + prior_rows);
   o.cauchy_scale.setConstant(point_rows + prior_rows, options.cauchy_sigmas);
