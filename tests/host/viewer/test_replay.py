@@ -184,30 +184,33 @@ class ReplayTest(unittest.TestCase):
         self.assertIn("lcmlog:/nonexistent/x.lcmlog: no such file", result.stderr)
         self.assertFalse(Path("/tmp/never.rrd").exists())
 
-    def test_body_fields_added_to_the_definition_are_taken(self):
-        """main's body_frame_t gains sigma0, parameter_sigmas[60] and joint_sigma_mm[19] at its
-        end: a log written with that definition, viewed with it, shows the body and sigma0."""
-        d = Path(self.dir.name) / "msg-extended"
+    def test_a_body_definition_without_the_sigmas_is_taken(self):
+        """body_frame_t gained sigma0, parameter_sigmas[60] and joint_sigma_mm[19] at its end: a
+        log written with the older definition, viewed with it, shows the body without sigma0;
+        the tree's definition cannot read it and names it."""
+        d = Path(self.dir.name) / "msg-older"
         d.mkdir()
         for f in (support.REPO / "proto" / "msg").glob("*.lcm"):
             text = f.read_text()
             if f.name == "body_frame_t.lcm":
-                end = text.rindex("}")
-                text = (text[:end] + "    float sigma0;\n    float parameter_sigmas[60];\n"
-                        "    float joint_sigma_mm[19];\n" + text[end:])
+                start = text.index("    // The fit's precision")
+                text = text[:start].rstrip() + "\n}\n"
+                self.assertNotIn("sigma0", text)
             (d / f.name).write_text(text)
-        log = str(Path(self.dir.name) / "extended.lcmlog")
+        log = str(Path(self.dir.name) / "older.lcmlog")
         subprocess.run([sys.executable, str(Path(__file__).with_name("make_log.py")), log,
                         "--proto-msg", str(d)], check=True, env=support.run_env())
-        rrd = str(Path(self.dir.name) / "extended.rrd")
-        result = run("--input", f"lcmlog:{log}", "--save", rrd, "--proto-msg", str(d), "--quiet")
+        rrd = str(Path(self.dir.name) / "older.rrd")
+        run("--input", f"lcmlog:{log}", "--save", rrd, "--proto-msg", str(d), "--quiet")
         entities, _ = read_rrd(rrd)
-        self.assertIn("/plots/body/sigma0", entities)
+        self.assertNotIn("/plots/body/sigma0", entities)
         self.assertEqual(len(entities["/world/body/joints"][0][0]["Points3D:positions"]), 19)
-        # The tree's definition cannot read the longer message: named and skipped, not fatal.
         result = run("--input", f"lcmlog:{log}", "--save", rrd, "--quiet")
         self.assertRegex(result.stderr, r"unknown message type .* SYNCAP_BODY")
 
+    def test_the_body_sigma0_is_plotted(self):
+        """The tree's body_frame_t carries sigma0: it is plotted beside the fit's RMS."""
+        self.assertIn("/plots/body/sigma0", self.entities)
 
 if __name__ == "__main__":
     unittest.main()
