@@ -64,8 +64,8 @@ TEST(CalibrateCommand, CsvWandRecordingGivesTheCalibrationFolder) {
             kExitOk)
       << err;
   EXPECT_NE(out.find("calibrated 3 cameras"), std::string::npos) << out;
-  for (const char* file :
-       {"cameras.json", "report.txt", "report.html", "cameras.opencv.yaml", "calibration.toml"}) {
+  for (const char* file : {"cameras.json", "report.txt", "report.html", "residuals.csv",
+                           "points.csv", "cameras.opencv.yaml", "calibration.toml"}) {
     EXPECT_TRUE(fs::exists(dir / "out" / file)) << file;
   }
   const sensor::CameraSet set = sensor::read_camera_set(dir / "out" / "cameras.json");

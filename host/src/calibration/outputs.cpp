@@ -52,6 +52,8 @@ std::vector<std::filesystem::path> write_calibration(const CalibrationResult& re
   put("cameras.json", sensor::format_camera_set({result.cameras, result.quality}));
   put("report.txt", format_report_text(result.report));
   put("report.html", format_report_html(result.report));
+  put("residuals.csv", format_residuals_csv(result.report));
+  put("points.csv", format_points_csv(result.report));
   put("cameras.opencv.yaml", format_opencv_yaml(result.cameras));
   put("calibration.toml", format_calibration_toml(result.cameras, result.quality.rms_px));
   put("scene.sdl", sdl::write(adjusted_network(result)));

@@ -343,4 +343,20 @@ std::string format_report_html(const CalibrationReport& report) {
   return out + "</body></html>\n";
 }
 
+std::string format_residuals_csv(const CalibrationReport& report) {
+  std::string out = "camera,frame,u_px,v_px,vu_px,vv_px,w,rejected\n";
+  for (const ReportResidual& r : report.residuals)
+    out += printf_string("%d,%lld,%.4f,%.4f,%.5f,%.5f,%.4f,%d\n", r.camera,
+                         static_cast<long long>(r.frame), r.u, r.v, r.vu, r.vv, r.w,
+                         r.rejected ? 1 : 0);
+  return out;
+}
+
+std::string format_points_csv(const CalibrationReport& report) {
+  std::string out = "x_mm,y_mm,z_mm\n";
+  for (const Eigen::Vector3d& p : report.points)
+    out += printf_string("%.4f,%.4f,%.4f\n", p.x(), p.y(), p.z());
+  return out;
+}
+
 }  // namespace syncap::calibration

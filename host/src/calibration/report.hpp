@@ -88,4 +88,10 @@ struct CalibrationReport {
 std::string format_report_text(const CalibrationReport& report);
 std::string format_report_html(const CalibrationReport& report);
 
+// The report's data as tables for other tools (`syncap view --calibration DIR`, spreadsheets):
+// residuals.csv, one image measurement a line ("camera,frame,u_px,v_px,vu_px,vv_px,w,rejected");
+// points.csv, one adjusted object point a line ("x_mm,y_mm,z_mm"). Each with its header line.
+std::string format_residuals_csv(const CalibrationReport& report);
+std::string format_points_csv(const CalibrationReport& report);
+
 }  // namespace syncap::calibration

@@ -73,6 +73,20 @@ TEST(CalibrationReportHtml, IsSelfContainedWithEveryFigure) {
   EXPECT_NE(html.find("rgb(189,189,255)"), std::string::npos);  // -0.42 in blue
 }
 
+TEST(CalibrationReportTables, HoldEveryResidualAndPointWithAHeader) {
+  const CalibrationReport r = two_camera_report();
+  const std::string residuals = format_residuals_csv(r);
+  EXPECT_EQ(residuals.rfind("camera,frame,u_px,v_px,vu_px,vv_px,w,rejected\n", 0), 0u);
+  EXPECT_EQ(count(residuals, "\n"), r.residuals.size() + 1);
+  // the eighth measurement: camera 1, frame 7, rejected
+  EXPECT_NE(residuals.find("\n1,7,70.0000,35.0000,0.10000,-0.20000,-1.2900,1\n"), std::string::npos)
+      << residuals;
+  const std::string points = format_points_csv(r);
+  EXPECT_EQ(points.rfind("x_mm,y_mm,z_mm\n0.0000,0.0000,1000.0000\n", 0), 0u) << points;
+  EXPECT_EQ(count(points, "\n"), r.points.size() + 1);
+  EXPECT_NE(points.find("\n10.0000,5.0000,1001.0000\n"), std::string::npos) << points;
+}
+
 TEST(CalibrationReportHtml, CopesWithAnEmptyReport) {
   const std::string html = format_report_html(CalibrationReport{});
   EXPECT_NE(html.find("</html>"), std::string::npos);
