@@ -33,6 +33,10 @@ def parse_args(argv):
                           "default, udpm://239.255.76.67:7667?ttl=0)")
     p.add_argument("--cameras", metavar="cameras.json",
                    help="the calibration's cameras: frusta in 3D, 2D content in their images")
+    p.add_argument("--calibration", metavar="DIR",
+                   help="a `syncap calibrate --out` folder: its cameras (unless --cameras), the "
+                        "adjusted wand points, each image's residual vectors and coverage; alone "
+                        "(no --input, --groups, --lcm-url) it shows just the calibration")
     p.add_argument("--save", metavar="FILE.rrd", help="write a Rerun recording")
     p.add_argument("--web", action="store_true",
                    help="serve Rerun's web viewer on 127.0.0.1 (--web-port, --grpc-port); it "
@@ -118,16 +122,22 @@ def open_sinks(args, rr) -> list[subprocess.Popen]:
 
 def main(argv=None) -> int:
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    from . import bindings, cameras as cams, sources
+    from . import bindings, calibration as calib, cameras as cams, sources
 
     # Everything that can be wrong with the inputs is found before any sink or viewer is made.
     try:
         types = bindings.types_by_fingerprint(bindings.load(args.proto_msg))
+        folder = calib.read_folder(args.calibration) if args.calibration else None
         camera_list = cams.read_cameras(args.cameras) if args.cameras else []
+        if folder and not args.cameras:
+            camera_list = folder.cameras
         log_errors: list[str] = []
         events = open_input(args, log_errors)
     except (bindings.BindingsError, sources.InputError) as e:
         print(f"syncap view: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    except calib.CalibrationFolderError as e:
+        print(f"syncap view: --calibration {e}", file=sys.stderr)
         return EXIT_USAGE
     except cams.CameraFileError as e:
         print(f"syncap view: --cameras {e}", file=sys.stderr)
@@ -142,6 +152,12 @@ def main(argv=None) -> int:
     children = open_sinks(args, rr)
     view = ViewLogger(types, camera_list, trail_frames=args.trail, max_frames=args.max_frames,
                       image_plane_mm=args.frustum_mm, quiet=args.quiet)
+    if folder:
+        shown = calib.log_folder(rr, folder, view.camera_path)
+        print(f"syncap view: calibration {args.calibration}: {len(folder.cameras)} cameras, "
+              f"{shown['points']} wand points, {sum(shown['residuals'].values())} residuals "
+              f"(drawn x {shown['scale']:.0f})"
+              + (f"; no {', '.join(folder.missing)}" if folder.missing else ""), file=sys.stderr)
     start = time.monotonic()
     interrupted = run(view, events, groups=bool(args.groups))
     for e in log_errors:
@@ -163,6 +179,8 @@ def open_input(args, log_errors: list):
 
     if args.groups:
         return sources.group_lines(args.groups)
+    if args.calibration and not args.input and not args.lcm_url:
+        return iter(())  # the calibration alone
     if args.input:
         # Run to the first event now, so that a missing file or one without an event is an
         # error before anything is shown.
