@@ -74,14 +74,36 @@ elif [ -s "$markers_out/traffic.lcmlog" ]; then
 fi
 [ "$markers_status" -eq 0 ] || status=$markers_status
 
+# The runs in Rerun (docs/viewer.md): hil/run replayed each run's traffic into RUN/view.rrd; the
+# ring's fitted body (syncap fit's frame lines) and its calibration go into one more.
+if [ -s "$ring_out/calibrated-body/body.jsonl" ] && [ -x "$build/py-venv/bin/python3" ]; then
+  "$build/bin/syncap" view --groups "$ring_out/calibrated-body/body.jsonl" \
+    --calibration "$ring_out/calibration" --save "$ring_out/body.rrd" --quiet > "$ring_out/body-view.log" 2>&1 ||
+    echo "demo: syncap view of the body failed, see $ring_out/body-view.log"
+fi
+recordings=()
+for rrd in "$ring_out/view.rrd" "$ring_out/body.rrd" "$markers_out/view.rrd"; do
+  [ ! -s "$rrd" ] || recordings+=("$rrd")
+done
+if [ ${#recordings[@]} -gt 0 ]; then
+  echo "demo: the runs in Rerun (${#recordings[@]} recordings): the cameras, blobs, silhouettes,"
+  echo "      markers, the hulls' boxes, the fitted skeleton and the calibration's residuals:"
+  echo "      $build/py-venv/bin/rerun ${recordings[*]}"
+  echo "      in a browser, replayed: $build/bin/syncap view --input lcmlog:$ring_out/traffic.lcmlog \\"
+  echo "        --calibration $ring_out/calibration --web    (then open the address it prints)"
+else
+  echo "demo: no Rerun recordings (the viewer's venv is missing: scripts/py-deps.sh)"
+fi
+
 echo "demo: [5/5] outputs in $out/:"
 echo "      groups.jsonl      one JSON line per frame group the host formed (thin slice)"
 echo "      traffic.lcmlog    all LCM traffic (decode: $build/bin/syncap log $out/traffic.lcmlog)"
 echo "      render/           the slice's rendered frames and truth"
 echo "      ring-6cam-person/ the bench run: render/ (images, truth), groups.jsonl, compare.json,"
 echo "                        hull/ (the person's hull of every frame, PLY), calibrated-body/"
-echo "                        (the fitted body: body.jsonl, body.bvh, joints.c3d, joints.trc), logs"
+echo "                        (the fitted body: body.jsonl, body.bvh, joints.c3d, joints.trc),"
+echo "                        view.rrd and body.rrd (Rerun), logs"
 echo "      markers-8cam-body/ the mocap run: offline/ and calibrated/ markers (.jsonl, .c3d, .trc),"
-echo "                        calibration/ (from the run's wand phase), traffic.lcmlog"
+echo "                        calibration/ (from the run's wand phase), traffic.lcmlog, view.rrd"
 echo "      *.log             each process' own output"
 exit "$status"
