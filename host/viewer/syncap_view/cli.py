@@ -148,6 +148,7 @@ def main(argv=None) -> int:
 
     # SIGTERM ends the program as Ctrl-C does: what arrived is flushed, the children stopped.
     signal.signal(signal.SIGTERM, _interrupt)
+    signal.signal(signal.SIGINT, _interrupt)
     rr.init("syncap_view", spawn=False)
     children = open_sinks(args, rr)
     view = ViewLogger(types, camera_list, trail_frames=args.trail, max_frames=args.max_frames,
@@ -185,7 +186,8 @@ def open_input(args, log_errors: list):
         # Run to the first event now, so that a missing file or one without an event is an
         # error before anything is shown.
         return _prime(sources.log_events(args.input[len("lcmlog:"):], args.channel, log_errors))
-    return sources.live_events(args.lcm_url, args.channel)
+    _Stop.polling_live = True
+    return sources.live_events(args.lcm_url, args.channel, stop=lambda: _Stop.requested)
 
 
 def run(view, events, groups: bool) -> bool:
@@ -207,7 +209,8 @@ def run(view, events, groups: bool) -> bool:
         view.finish()
         return True
     view.finish()
-    return False
+    _Stop.polling_live = False  # a Ctrl-C from here on (the web server's wait) raises again
+    return _Stop.requested
 
 
 def serve_until_interrupted(children: list) -> bool:
@@ -226,8 +229,17 @@ def serve_until_interrupted(children: list) -> bool:
     return False
 
 
+class _Stop:
+    """Ctrl-C or SIGTERM asked: live input polls `requested`; elsewhere the handler raises
+    KeyboardInterrupt as Python's own does."""
+    requested = False
+    polling_live = False
+
+
 def _interrupt(signum, frame):
-    raise KeyboardInterrupt
+    _Stop.requested = True
+    if not _Stop.polling_live:
+        raise KeyboardInterrupt
 
 
 def _prime(events):

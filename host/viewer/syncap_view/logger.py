@@ -489,6 +489,12 @@ class ViewLogger:
         lines = [f"{len(self.frames)} frames, {sum(self.messages.values())} messages logged"
                  + (f" ({', '.join(f'{n} {t}' for t, n in sorted(self.messages.items()))})"
                     if self.messages else "")]
+        if len(self.frames) > 1:
+            # Live, numbers missing between the first and the last were lost before the viewer
+            # (the network, the socket's buffer); in a recording, before the recorder.
+            lo, hi = min(self.frames), max(self.frames)
+            missing = hi - lo + 1 - len(self.frames)
+            lines.append(f"frame numbers {lo}..{hi}: {len(self.frames)} shown, {missing} missing")
         for kind, n in sorted(self.incomplete.items()):
             lines.append(f"{n} {kind} frames with parts missing (shown with what arrived)")
         lines += self.input_errors

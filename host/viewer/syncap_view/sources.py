@@ -93,10 +93,12 @@ def group_lines(path: str) -> Iterator[tuple[str, str]]:
     return lines()
 
 
-def live_events(url: str | None, channel_regex: str, poll_ms: int = 100
-                ) -> Iterator[tuple[str, bytes, str] | None]:
+def live_events(url: str | None, channel_regex: str, poll_ms: int = 100,
+                stop=lambda: False) -> Iterator[tuple[str, bytes, str] | None]:
     """Messages as they arrive; None every `poll_ms` without one, so that the caller can look
-    up. Ends on KeyboardInterrupt in the caller. LCM matches channel regexes whole, as here."""
+    up. Ends when `stop()` turns true (Ctrl-C, SIGTERM: the signal handler sets it rather than
+    raising inside LCM's C wait, which left the interpreter with an exception it could not
+    report). LCM matches channel regexes whole, as here."""
     try:
         lc = lcm.LCM(url) if url else lcm.LCM()
     except (IOError, OSError, RuntimeError) as e:
@@ -111,9 +113,14 @@ def live_events(url: str | None, channel_regex: str, poll_ms: int = 100
 
     lc.subscribe(channel_regex, on_message)
     print(f"syncap view: listening on {name} (Ctrl-C ends)", file=sys.stderr, flush=True)
-    while True:
+    while not stop():
         if not queue:
-            lc.handle_timeout(poll_ms)
+            try:
+                lc.handle_timeout(poll_ms)
+            except OSError:  # the wait interrupted by a signal
+                if stop():
+                    return
+                raise
         if queue:
             while queue:
                 yield queue.popleft()

@@ -48,6 +48,38 @@ class LiveTest(unittest.TestCase):
             self.assertIn("/world/markers", entities)
             self.assertIn("/cameras/01/blobs", entities)
 
+    def test_sigterm_or_ctrl_c_ends_a_live_view_with_its_recording(self):
+        """Stopped while it waits in LCM (idle) or while messages arrive: exit 0, the summary
+        printed with the frames shown and missing, the .rrd readable. (Raising inside LCM's
+        wait once left the interpreter with an exception it could not report, exit 1.)"""
+        import signal
+        t = bindings.load()
+        for sig in (signal.SIGTERM, signal.SIGINT):
+            with tempfile.TemporaryDirectory() as d:
+                rrd = str(Path(d) / "live.rrd")
+                viewer = subprocess.Popen(support.program() + ["--lcm-url", URL, "--save", rrd],
+                                          stderr=subprocess.PIPE, text=True,
+                                          env=support.run_env())
+                try:
+                    self.assertIn("listening", self._line(viewer, timeout=30))
+                    lc = lcm.LCM(URL)
+                    cams = synthetic.ring_cameras(2)
+                    for f in range(4):
+                        for msg, channel in self._frame_messages(t, cams, f):
+                            lc.publish(channel, msg.encode())
+                        time.sleep(0.02)
+                    time.sleep(0.5)
+                    viewer.send_signal(sig)
+                    viewer.wait(timeout=30)
+                finally:
+                    if viewer.poll() is None:
+                        viewer.kill()
+                err = viewer.stderr.read()
+                self.assertEqual(viewer.returncode, 0, f"{sig.name}: {err}")
+                self.assertIn("frame numbers 0..3: 4 shown, 0 missing", err)
+                _, frames = read_rrd(rrd)
+                self.assertEqual(frames, set(range(4)), err)
+
     def test_web_serves_on_localhost_what_was_logged(self):
         """--web: `rerun --serve-web` bound to 127.0.0.1 holds the replayed recording; a second
         rerun saving from its data server gets every frame; SIGTERM stops both."""
