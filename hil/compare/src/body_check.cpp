@@ -93,6 +93,14 @@ double BodyCheck::mean_angle_error_deg() const {
   return mean(all);
 }
 
+double BodyCheck::sigma_ratio() const {
+  double squares = 0;
+  for (const double z : normalized_errors) squares += z * z;
+  return normalized_errors.empty()
+             ? 0.0
+             : std::sqrt(squares / static_cast<double>(normalized_errors.size()));
+}
+
 BodyCheck check_body(const fs::path& truth_dir, const fs::path& groups_file,
                      const std::optional<Similarity>& to_truth) {
   std::map<long, Joints> truth;
@@ -154,16 +162,13 @@ std::string format_body_check(const BodyCheck& c) {
     out += util::printf_string(" %s %.1f", name.c_str(), error);
   out += " (mm)\n";
   if (!c.normalized_errors.empty()) {
-    double squares = 0;
-    for (const double z : c.normalized_errors) squares += z * z;
     const long within = std::count_if(c.normalized_errors.begin(), c.normalized_errors.end(),
                                       [](double z) { return z <= 3.0; });
     out += util::printf_string(
         "body: precision: joint sigma median %.1f mm (p95 %.1f), sigma0 median %.2f; error / "
         "predicted sigma RMS %.2f (1: honest), within 3 sigma %.1f %%\n",
         pipeline::quantile(c.joint_sigmas_mm, 0.5), pipeline::quantile(c.joint_sigmas_mm, 0.95),
-        pipeline::quantile(c.sigma0, 0.5),
-        std::sqrt(squares / static_cast<double>(c.normalized_errors.size())),
+        pipeline::quantile(c.sigma0, 0.5), c.sigma_ratio(),
         100.0 * static_cast<double>(within) / static_cast<double>(c.normalized_errors.size()));
   }
   if (c.starts_rms_mm.empty()) return out;

@@ -38,6 +38,8 @@ struct BodyCheck {
   std::vector<double> sigma0;
   double rms_mm() const;                // over every joint of every fitted frame
   double mean_angle_error_deg() const;  // over the hips, knees, shoulders and elbows
+  // RMS of normalized_errors (1: the sigmas are honest); 0 without sigmas.
+  double sigma_ratio() const;
 };
 
 // `to_truth`: for a body measured through a calibration, the motion of that calibration's frame

@@ -45,6 +45,8 @@ struct BodyLimits {
   double max_rms_mm = 20;
   double max_angle_deg = 4;
   long max_starts = 2;  // the first start and one restart
+  // The joints' errors over their predicted sigmas, RMS, at most this (records with sigmas).
+  double max_sigma_ratio = 2;
 };
 
 struct Options {
@@ -141,6 +143,9 @@ void add_body_options(CLI::App& app, BodyLimits& b) {
       ->group(group);
   app.add_option("--max-body-starts", b.max_starts,
                  "automatic starts, the first included (2: one restart)")
+      ->group(group);
+  cli::add_checked(app, "--max-body-sigma-ratio", b.max_sigma_ratio, "R", cli::non_negative(),
+                   "the joints' errors over the fit's predicted sigmas, RMS (2; 1 is honest)")
       ->group(group);
 }
 
@@ -243,11 +248,13 @@ bool check_body(const Options& o) {
   std::cout << syncap::compare::format_body_check(check);
   const bool pass =
       check.fitted > 0 && check.fitted == check.frames && check.rms_mm() <= o.body.max_rms_mm &&
-      check.mean_angle_error_deg() <= o.body.max_angle_deg && check.starts <= o.body.max_starts;
+      check.mean_angle_error_deg() <= o.body.max_angle_deg && check.starts <= o.body.max_starts &&
+      check.sigma_ratio() <= o.body.max_sigma_ratio;
   std::cout << (pass ? "PASS" : "FAIL")
             << ": body (every frame fitted, joint-centre RMS <= " << o.body.max_rms_mm
             << " mm, joint-angle error <= " << o.body.max_angle_deg
-            << " deg, starts <= " << o.body.max_starts << ")\n";
+            << " deg, starts <= " << o.body.max_starts
+            << ", errors / predicted sigmas <= " << o.body.max_sigma_ratio << ")\n";
   return pass;
 }
 

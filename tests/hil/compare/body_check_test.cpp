@@ -41,6 +41,7 @@ TEST(BodyCheck, SetsThePredictedSigmasAgainstTheErrors) {
   EXPECT_NEAR(c.rms_mm(), 3.0, 1e-9);
   ASSERT_EQ(c.normalized_errors.size(), 4u);
   for (const double z : c.normalized_errors) EXPECT_NEAR(z, 1.0, 1e-5);
+  EXPECT_NEAR(c.sigma_ratio(), 1.0, 1e-5);
   ASSERT_EQ(c.sigma0.size(), 2u);
   EXPECT_DOUBLE_EQ(c.sigma0[0], 1.1);
   const std::string text = format_body_check(c);
@@ -63,6 +64,7 @@ TEST(BodyCheck, RecordsWithoutSigmasLeaveThePrecisionLineOut) {
   const BodyCheck c = check_body(dir.path(), dir.path() / "groups.jsonl");
   EXPECT_EQ(c.fitted, 2);
   EXPECT_TRUE(c.normalized_errors.empty());
+  EXPECT_EQ(c.sigma_ratio(), 0.0);
   EXPECT_EQ(format_body_check(c).find("precision"), std::string::npos);
 }
 
