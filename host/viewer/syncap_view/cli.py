@@ -37,6 +37,9 @@ def parse_args(argv):
                    help="a `syncap calibrate --out` folder: its cameras (unless --cameras), the "
                         "adjusted wand points, each image's residual vectors and coverage; alone "
                         "(no --input, --groups, --lcm-url) it shows just the calibration")
+    p.add_argument("--hull-meshes", metavar="DIR",
+                   help="the hull's meshes, hull_<frame>.ply (syncap-host --hull-meshes, the "
+                        "replay bench's RUN/hull): each at its frame")
     p.add_argument("--save", metavar="FILE.rrd", help="write a Rerun recording")
     p.add_argument("--web", action="store_true",
                    help="serve Rerun's web viewer on 127.0.0.1 (--web-port, --grpc-port); it "
@@ -122,12 +125,13 @@ def open_sinks(args, rr) -> list[subprocess.Popen]:
 
 def main(argv=None) -> int:
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    from . import bindings, calibration as calib, cameras as cams, sources
+    from . import bindings, calibration as calib, cameras as cams, meshes, sources
 
     # Everything that can be wrong with the inputs is found before any sink or viewer is made.
     try:
         types = bindings.types_by_fingerprint(bindings.load(args.proto_msg))
         folder = calib.read_folder(args.calibration) if args.calibration else None
+        hulls = meshes.hull_files(args.hull_meshes) if args.hull_meshes else {}
         camera_list = cams.read_cameras(args.cameras) if args.cameras else []
         if folder and not args.cameras:
             camera_list = folder.cameras
@@ -139,12 +143,15 @@ def main(argv=None) -> int:
     except calib.CalibrationFolderError as e:
         print(f"syncap view: --calibration {e}", file=sys.stderr)
         return EXIT_USAGE
+    except meshes.MeshFileError as e:
+        print(f"syncap view: --hull-meshes {e}", file=sys.stderr)
+        return EXIT_USAGE
     except cams.CameraFileError as e:
         print(f"syncap view: --cameras {e}", file=sys.stderr)
         return EXIT_USAGE
 
     import rerun as rr
-    from .logger import ViewLogger
+    from .logger import TIMELINE, ViewLogger
 
     # SIGTERM ends the program as Ctrl-C does: what arrived is flushed, the children stopped.
     signal.signal(signal.SIGTERM, _interrupt)
@@ -159,6 +166,11 @@ def main(argv=None) -> int:
               f"{shown['points']} wand points, {sum(shown['residuals'].values())} residuals "
               f"(drawn x {shown['scale']:.0f})"
               + (f"; no {', '.join(folder.missing)}" if folder.missing else ""), file=sys.stderr)
+    if hulls:
+        shown, unreadable = meshes.log_hull_meshes(rr, args.hull_meshes, TIMELINE)
+        print(f"syncap view: {shown} hull meshes from {args.hull_meshes}", file=sys.stderr)
+        for e in unreadable:  # named in the summary; the other meshes are shown
+            view.input_error(f"--hull-meshes {e}")
     start = time.monotonic()
     interrupted = run(view, events, groups=bool(args.groups))
     for e in log_errors:
@@ -180,8 +192,8 @@ def open_input(args, log_errors: list):
 
     if args.groups:
         return sources.group_lines(args.groups)
-    if args.calibration and not args.input and not args.lcm_url:
-        return iter(())  # the calibration alone
+    if (args.calibration or args.hull_meshes) and not args.input and not args.lcm_url:
+        return iter(())  # the calibration or the meshes alone
     if args.input:
         # Run to the first event now, so that a missing file or one without an event is an
         # error before anything is shown.
