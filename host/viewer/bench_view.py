@@ -25,7 +25,8 @@ sys.path.insert(0, str(HERE))
 from syncap_view import bindings, synthetic  # noqa: E402
 
 
-def write_log(path: str, cameras_json: str, frames: int, n_cameras: int, n_markers: int) -> None:
+def write_log(path: str, cameras_json: str, frames: int, n_cameras: int, n_markers: int,
+              with_hull: bool = False) -> None:
     t = bindings.load()
     cams = synthetic.ring_cameras(n_cameras)
     synthetic.write_cameras(cameras_json, cams)
@@ -36,6 +37,9 @@ def write_log(path: str, cameras_json: str, frames: int, n_cameras: int, n_marke
         for cam in cams:
             w.blobs(cam["id"], f, [p for p in (synthetic.project(cam, x) for x in markers) if p])
         w.markers(f, markers)
+        if with_hull:  # the hull's message and a body a frame, as syncap-host --body sends
+            w.hull(f, markers.min(axis=0), markers.max(axis=0))
+            w.body(f)
     w.close()
 
 
@@ -75,13 +79,15 @@ def main() -> int:
     p.add_argument("--cameras", type=int, default=8)
     p.add_argument("--markers", type=int, default=32)
     p.add_argument("--runs", type=int, default=3)
+    p.add_argument("--hull", action="store_true",
+                   help="a hull_frame_t and a body_frame_t every frame too")
     p.add_argument("--live", type=float, metavar="HZ",
                    help="publish the frames live at HZ to `syncap view --lcm-url` instead "
                         "(inside a network namespace: hil/netns-run)")
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as d:
         log, cams, rrd = f"{d}/bench.lcmlog", f"{d}/cameras.json", f"{d}/bench.rrd"
-        write_log(log, cams, a.frames, a.cameras, a.markers)
+        write_log(log, cams, a.frames, a.cameras, a.markers, a.hull)
         if a.live:
             print(f"bench_view: live, {a.cameras} cameras x {a.markers} markers: "
                   + replay_live(log, cams, rrd, a.live))
