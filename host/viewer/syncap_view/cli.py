@@ -80,8 +80,11 @@ def parse_args(argv):
 
 
 def rerun_executable() -> str:
-    """The `rerun` binary rerun-sdk ships (package rerun_cli). The venv's bin/rerun is a Python
-    wrapper that runs it as a child: stopping the wrapper would leave the binary running."""
+    """The `rerun` binary rerun-sdk ships (package rerun_cli), or $SYNCAP_RERUN. The venv's
+    bin/rerun is a Python wrapper that runs it as a child: stopping the wrapper would leave the
+    binary running."""
+    if os.environ.get("SYNCAP_RERUN"):
+        return os.environ["SYNCAP_RERUN"]
     try:
         import rerun_cli
         path = Path(rerun_cli.__file__).parent / "rerun"
@@ -117,7 +120,7 @@ def open_sinks(args, rr) -> list[subprocess.Popen]:
     if args.spawn:
         # The desktop viewer outlives this program (its own session), as rr.spawn's does.
         port = args.grpc_port + (1 if args.web else 0)
-        start_rerun(["--port", str(port)], detach=True)
+        args.spawned = start_rerun(["--port", str(port)], detach=True)
         sinks.append(rr.GrpcSink(f"rerun+http://127.0.0.1:{port}/proxy"))
     rr.set_sinks(*sinks)
     return children
@@ -180,6 +183,14 @@ def main(argv=None) -> int:
           f"{len(view.frames) / elapsed if elapsed > 0 else 0:.1f} frames/s", file=sys.stderr)
     rr.disconnect()  # flushes the sinks (the .rrd's footer, the data to the web server)
     failed = children and not interrupted and not serve_until_interrupted(children)
+    spawned = getattr(args, "spawned", None)
+    if spawned is not None and spawned.poll() not in (None, 0):
+        # The desktop viewer could not start (e.g. a software OpenGL without the texture formats
+        # Rerun needs): what was sent to it is lost, which must not look like success.
+        print(f"syncap view: --spawn: the desktop viewer ({rerun_executable()}) exited with status "
+              f"{spawned.returncode} (its message above); nothing was shown there. --save or --web "
+              "instead", file=sys.stderr)
+        failed = True
     for c in children:
         c.terminate()
         c.wait()

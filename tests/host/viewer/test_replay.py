@@ -184,6 +184,20 @@ class ReplayTest(unittest.TestCase):
         self.assertIn("lcmlog:/nonexistent/x.lcmlog: no such file", result.stderr)
         self.assertFalse(Path("/tmp/never.rrd").exists())
 
+    def test_a_desktop_viewer_that_cannot_start_is_an_error(self):
+        """--spawn whose viewer exits at once (here `false` as the rerun binary; on a display
+        without the GPU features Rerun needs, its own error): exit 1, said, not success."""
+        env = support.run_env()
+        env["SYNCAP_RERUN"] = "/bin/false"
+        rrd = str(Path(self.dir.name) / "spawn.rrd")
+        result = subprocess.run(support.program() + ["--input", f"lcmlog:{self.log}", "--spawn",
+                                                     "--save", rrd, "--quiet"],
+                                capture_output=True, text=True, env=env, timeout=120)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("--spawn: the desktop viewer (/bin/false) exited with status 1",
+                      result.stderr)
+        self.assertTrue(Path(rrd).stat().st_size > 0, "the --save recording is still written")
+
     def test_a_body_definition_without_the_sigmas_is_taken(self):
         """body_frame_t gained sigma0, parameter_sigmas[60] and joint_sigma_mm[19] at its end: a
         log written with the older definition, viewed with it, shows the body without sigma0;
