@@ -1,7 +1,7 @@
 // syncap-segment-eval: scores a foreground method on a CDnet 2014 folder, or medi-picture on a
 // scene rendered by syncap-sim.
 //   syncap-segment-eval --cdnet DIR --method medipicture|mog2|knn [--train-frames N] ...
-//   syncap-segment-eval --scene DIR [--person] [medi-picture options]
+//   syncap-segment-eval --scene DIR [--thesis] [medi-picture options]
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -23,7 +23,7 @@ constexpr int kExitUsage = cli::kExitUsage;  // bad arguments or bad input, as i
 
 constexpr const char* kDescription =
     "usage: syncap segment-eval --cdnet DIR --method medipicture|mog2|knn [options]\n"
-    "       syncap segment-eval --scene DIR [--person] [medi-picture options]\n"
+    "       syncap segment-eval --scene DIR [--thesis] [medi-picture options]\n"
     "Scores the method on a CDnet 2014 folder (frames of temporalROI.txt, pixels of\n"
     "ROI.bmp; ground truth 255 foreground, 0 and 50 background, 85 and 170 not scored),\n"
     "or medi-picture on a syncap-sim scene: per camera, trained on the room phase, IoU\n"
@@ -37,8 +37,8 @@ struct Arguments {
   std::string cdnet, scene_dir, method;
   std::string folder;
   bool scene = false;  // --scene DIR rather than --cdnet DIR
-  bool person = false, no_shadows = false;
-  std::map<std::string, std::string> masking;  // by name: applied after --person's base
+  bool thesis = false, no_shadows = false;
+  std::map<std::string, std::string> masking;  // by name: applied after --thesis' base
   syncap::edge::CdnetEvalOptions options;
 };
 
@@ -49,16 +49,17 @@ void add_options(CLI::App& app, Arguments& a) {
       ->excludes(cdnet);
   app.add_option("--method", a.method, "the foreground method (--cdnet)")
       ->option_text("medipicture|mog2|knn");
-  app.add_flag("--person", a.person,
-               "start from the options syncap-edge masks with (k 1, common-\n"
-               "ratio shadow test at 3 sigmas, closing 5, holes up to 100 px)");
+  app.add_flag("--thesis", a.thesis,
+               "start from the thesis' parameters (k 3, correlation shadow test,\n"
+               "closing 9, no hole filling, no illumination correction) instead of\n"
+               "the defaults, which syncap-edge masks with too");
   cli::add_checked(app, "--train-frames", a.options.train_frames, "N", cli::whole_in(1, 1 << 24),
                    "medi-picture: train on the last N frames before the scored\n"
                    "range (default: all of them)");
   cli::add_checked(app, "--frame-step", a.options.frame_step, "N", cli::whole_in(1, 1 << 24),
                    "score every N-th frame (default 1)");
   // The medi-picture options, checked by apply_masking_option as syncap-edge's --mask-* are;
-  // their defaults are medi-picture's own (--person changes them).
+  // their defaults are medi-picture's own, syncap-edge's too (--thesis changes them).
   for (const auto& [name, metavar, meaning] : syncap::edge::kMaskingOptions) {
     const std::string fallback =
         syncap::edge::masking_option_value(syncap::edge::MediPictureOptions{}, name);
@@ -70,10 +71,10 @@ void add_options(CLI::App& app, Arguments& a) {
   app.add_flag("--no-shadows", a.no_shadows, "skip the shadow test");
 }
 
-// After parsing: --person is the base the medi-picture options change, wherever it stands.
+// After parsing: --thesis is the base the medi-picture options change, wherever it stands.
 void apply_options(Arguments& a) {
   auto& m = a.options.medi_picture;
-  if (a.person) m = syncap::edge::person_masking_options();
+  if (a.thesis) m = syncap::edge::thesis_masking_options();
   for (const auto& [name, value] : a.masking) {
     try {
       syncap::edge::apply_masking_option(m, name, value);

@@ -180,7 +180,7 @@ void Parser::add_mask_options() {
   cli::add_checked(app_, "--contour-tolerance", o.contour_tolerance_px, "PX",
                    cli::number_in(0, 100),
                    "mask: polygon simplification, pixels" + by_default(o.contour_tolerance_px));
-  // --mask-NAME: the medi-picture option NAME, from the person preset (docs/segmentation.md),
+  // --mask-NAME: the medi-picture option NAME, from the defaults (docs/segmentation.md),
   // checked by apply_masking_option as segment-eval's are.
   for (const MaskingOptionHelp& m : kMaskingOptions) {
     const std::string option = std::string("--mask-") + m.name;

@@ -28,8 +28,8 @@ struct EdgeOptions {
   // see the model at once).
   bool train_in_background = true;
   double contour_tolerance_px = 0.5;  // 1 px costs ~1 % IoU on a 300 px tall person
-  // mask: the medi-picture classification (--mask-* options change the person preset).
-  MediPictureOptions masking = person_masking_options();
+  // mask: the medi-picture classification (--mask-* options change its defaults).
+  MediPictureOptions masking;
   cv::Rect roi;  // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;
   std::string command_key_path;  // the installation's key; empty: every command is refused

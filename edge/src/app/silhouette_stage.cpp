@@ -36,10 +36,12 @@ bool SilhouetteStage::in_training_range(int64_t frame_number) const {
 
 void SilhouetteStage::finish_training() {
   if (training_.size() >= 2 && train_in_background_) {
-    training_result_ = std::async(
-        std::launch::async, [frames = std::move(training_)] { return train_medi_picture(frames); });
+    training_result_ =
+        std::async(std::launch::async, [frames = std::move(training_), options = options_] {
+          return train_medi_picture(frames, options);
+        });
   } else if (training_.size() >= 2) {
-    model_.emplace(train_medi_picture(training_), options_);
+    model_.emplace(train_medi_picture(training_, options_), options_);
     paused_.clear();
     clip_pending_ = !clip_.empty();
   } else {

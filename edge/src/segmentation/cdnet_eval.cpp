@@ -108,7 +108,7 @@ class MediPictureSegmenter : public Segmenter {
     for (int frame = first_scored - count; frame < first_scored; ++frame) {
       frames.push_back(read_input(folder, frame, cv::IMREAD_GRAYSCALE));
     }
-    return train_medi_picture(frames);
+    return train_medi_picture(frames, options.medi_picture);
   }
 
   std::filesystem::path folder_;

@@ -24,6 +24,7 @@ std::string masking_option_value(const MediPictureOptions& m, std::string_view n
   if (name == "closing") return shortest(m.closing_diameter);
   if (name == "min-area") return shortest(m.min_component_area);
   if (name == "update-rate") return shortest(m.update_rate);
+  if (name == "illumination") return m.correct_illumination ? "lsm" : "off";
   return {};
 }
 
@@ -49,6 +50,9 @@ bool apply_masking_option(MediPictureOptions& m, std::string_view name, const st
     m.min_component_area = parse_number<int>(v, 0, 1 << 24);
   } else if (name == "update-rate") {
     m.update_rate = parse_number<float>(v, 0.0f, 1.0f);
+  } else if (name == "illumination") {
+    if (v != "lsm" && v != "off") throw BadValue("'" + v + "': expected lsm or off");
+    m.correct_illumination = v == "lsm";
   } else {
     return false;
   }

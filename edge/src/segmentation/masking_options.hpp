@@ -39,7 +39,7 @@ struct MaskingOptionHelp {
   const char* meaning;
 };
 
-inline constexpr std::array<MaskingOptionHelp, 9> kMaskingOptions{{
+inline constexpr std::array<MaskingOptionHelp, 10> kMaskingOptions{{
     {"k", "K", "interval width in units of d"},
     {"min-difference", "D", "floor of d, DN"},
     {"ncc", "L", "shadow threshold L_NCC (correlation test)"},
@@ -49,6 +49,7 @@ inline constexpr std::array<MaskingOptionHelp, 9> kMaskingOptions{{
     {"closing", "D", "elliptical closing diameter, pixels, 0 = none"},
     {"min-area", "A", "smallest component kept, pixels"},
     {"update-rate", "R", "slow model update where background, per frame, 0 = frozen"},
+    {"illumination", "M", "lsm (correct each frame's illumination, eqs 5.12-5.20) or off"},
 }};
 
 // The value the option `name` (of kMaskingOptions) has in `m`, as the option takes it ("3",
@@ -56,7 +57,8 @@ inline constexpr std::array<MaskingOptionHelp, 9> kMaskingOptions{{
 std::string masking_option_value(const MediPictureOptions& m, std::string_view name);
 
 // One medi-picture option by its name without dashes or prefix ("k", "min-difference",
-// "shadow-test", "shadow-sigmas", "ncc", "fill-holes", "closing", "min-area", "update-rate"):
+// "shadow-test", "shadow-sigmas", "ncc", "fill-holes", "closing", "min-area", "update-rate",
+// "illumination"):
 // false for another name; throws BadValue for a value out of range.
 bool apply_masking_option(MediPictureOptions& m, std::string_view name, const std::string& value);
 

@@ -386,13 +386,14 @@ void fill_holes_in(cv::Mat& mask, cv::Rect box, int max_area, detail::PackedMask
 
 }  // namespace
 
-MediPictureOptions person_masking_options() {
+MediPictureOptions thesis_masking_options() {
   MediPictureOptions options;
-  options.k = 1.0f;
-  options.shadow_test = ShadowTest::kCommonRatio;
-  options.shadow_ratio_sigmas = 3.0f;
-  options.closing_diameter = 5;
-  options.max_hole_area = 100;
+  options.k = 3.0f;
+  options.shadow_test = ShadowTest::kCorrelation;
+  options.shadow_ratio_sigmas = 4.0f;
+  options.closing_diameter = 9;
+  options.max_hole_area = 0;
+  options.correct_illumination = false;
   return options;
 }
 
@@ -422,6 +423,14 @@ MediPictureModel train_medi_picture(std::span<const cv::Mat> frames) {
     }
   });
   return model;
+}
+
+MediPictureModel train_medi_picture(std::span<const cv::Mat> frames,
+                                    const MediPictureOptions& options) {
+  if (!options.correct_illumination) return train_medi_picture(frames);
+  check_training_frames(frames);
+  const std::vector<cv::Mat> copies(frames.begin(), frames.end());
+  return train_medi_picture(normalise_training_frames(copies, options.illumination));
 }
 
 cv::Mat classify_against_model(const MediPictureModel& model, const cv::Mat& frame,
@@ -480,6 +489,9 @@ MediPicture::MediPicture(const MediPictureModel& model, MediPictureOptions optio
             model.max_difference.clone()};
   set_clip_polygon(options_.clip_polygon);
   derive_thresholds();
+  if (options_.correct_illumination) {
+    illumination_ = std::make_unique<RadiometricCorrection>(background_, options_.illumination);
+  }
 }
 
 void MediPicture::set_clip_polygon(std::vector<cv::Point> polygon) {
@@ -506,11 +518,13 @@ void MediPicture::derive_thresholds() {
                cv::countNonZero(background_ > upper_) == 0;
 }
 
-cv::Mat MediPicture::apply(const cv::Mat& frame) {
-  if (frame.type() != CV_8UC1 || frame.size() != model_.median.size()) {
+cv::Mat MediPicture::apply(const cv::Mat& captured) {
+  if (captured.type() != CV_8UC1 || captured.size() != model_.median.size()) {
     throw std::invalid_argument("MediPicture::apply needs a CV_8UC1 frame of the model's size");
   }
-  if (!fast_path_) return apply_whole_frame(frame);
+  // The last mask's foreground does not observe the illumination: it is the person, not light.
+  const cv::Mat frame = illumination_ ? illumination_->correct(captured, mask_) : captured;
+  if (!fast_path_) return mask_ = apply_whole_frame(frame);
   const int rows = frame.rows, cols = frame.cols;
   // A new image only when the caller still holds the previous one.
   if (mask_.empty() || mask_.u == nullptr || mask_.u->refcount != 1) {

@@ -9,7 +9,10 @@
 
 #include <opencv2/core.hpp>
 
+#include <memory>
+
 #include "segmentation/packed_mask.hpp"
+#include "segmentation/radiometric_lsm.hpp"
 
 namespace syncap::edge {
 
@@ -40,35 +43,48 @@ enum class ShadowTest {
   kCommonRatio,
 };
 
+// The defaults are the one setting measured best on both a real scene (CDnet highway) and the
+// replay bench's person (docs/segmentation.md "The default"): a narrow interval (k 1.5), the
+// common-ratio shadow test at 3 sigmas, a closing of 5 px, holes up to 100 px filled and each
+// frame's illumination corrected by least-squares matching. thesis_masking_options() gives the
+// parameters the thesis' text suggests, for comparison.
 struct MediPictureOptions {
   // A pixel is foreground outside [m - k d', n + k d'] with d' = max(d, min_difference).
-  float k = 3.0f;
+  float k = 1.5f;
   float min_difference = 6.0f;  // DN: d of a pixel still in training is not its noise
-  // Shadow test (eqs 5.6-5.11) on a (2 ncc_half_window + 1)^2 window.
+  // Shadow test on the pixels darker than the interval.
   bool remove_shadows = true;
-  ShadowTest shadow_test = ShadowTest::kCorrelation;
-  float shadow_ratio_sigmas = 4.0f;  // kCommonRatio: tolerance in the pixel's training sigmas
-  int ncc_half_window = 2;
-  float ncc_threshold = 0.98f;  // L_NCC
-  // Our addition: a shadow keeps at least this share of the background's energy (E_T / E_B);
-  // without it a uniform dark object on a uniform floor passes eqs 5.10/5.11.
+  ShadowTest shadow_test = ShadowTest::kCommonRatio;
+  float shadow_ratio_sigmas = 3.0f;  // kCommonRatio: tolerance in the pixel's training sigmas
+  int ncc_half_window = 2;           // kCorrelation: N of the (2N + 1)^2 window
+  float ncc_threshold = 0.98f;       // kCorrelation: L_NCC
+  // kCorrelation, our addition: a shadow keeps at least this share of the background's energy
+  // (E_T / E_B); without it a uniform dark object on a uniform floor passes eqs 5.10/5.11.
   float min_shadow_energy_ratio = 0.5f;
-  int closing_diameter = 9;     // elliptical element, pixels; 0 disables the closing
+  int closing_diameter = 5;     // elliptical element, pixels; 0 disables the closing
   int min_component_area = 40;  // smaller 8-connected components are noise, pixels
   // Holes of the foreground (4-connected background not reaching the image border) up to this
   // area are filled, pixels; 0 keeps every hole. A person's silhouette has few true holes that
   // small; pixels of the body that match the background leave many.
-  int max_hole_area = 0;
+  int max_hole_area = 100;
   float update_rate = 0.0f;  // slow update where the mask is background, 0 = frozen model
+  // Least-squares matching (eqs 5.12-5.20, radiometric_lsm.hpp) of each frame against the
+  // background before classification: the frame is brought to the training's illumination
+  // (gain and offset per window of a grid), so lamps drifting or flickering do not fill the mask.
+  // Training frames are then normalised too (train_medi_picture with these options).
+  bool correct_illumination = true;
+  RadiometricOptions illumination;
   std::vector<cv::Point> clip_polygon;  // when not empty, pixels outside it are background
 };
 
-// The options syncap-edge masks a person with (the indoor capture scene of the thesis, one light,
-// the person darker than a textured floor in places and casting a shadow on it): a narrow
-// interval (k = 1: a pixel 6 DN outside its training range is foreground), the common-ratio
-// shadow test at 3 sigmas, a closing of 5 px (9 px bridges the gaps between limbs) and holes up
-// to 100 px filled. Measured on the replay bench's ring-6cam-person (docs/segmentation.md).
-MediPictureOptions person_masking_options();
+// The parameters of the thesis' text (k 3, the correlation shadow test of eqs 5.6-5.11 with
+// L_NCC 0.98, a closing of 9 px, no hole filling, no illumination correction).
+MediPictureOptions thesis_masking_options();
+
+// The same after bringing the frames to one illumination (normalise_training_frames) when
+// options.correct_illumination is set.
+MediPictureModel train_medi_picture(std::span<const cv::Mat> frames,
+                                    const MediPictureOptions& options);
 
 // Classifies frames against a trained model; holds the thresholds derived from it.
 class MediPicture {
@@ -89,6 +105,8 @@ class MediPicture {
 
   const MediPictureModel& model() const { return model_; }
   const MediPictureOptions& options() const { return options_; }
+  // The illumination correction of the last frame; nullptr when correct_illumination is off.
+  const RadiometricCorrection* illumination() const { return illumination_.get(); }
 
  private:
   void derive_thresholds();
@@ -122,6 +140,7 @@ class MediPicture {
   std::vector<int> window_cross_, window_frame_;  // per pixel of a row: the same, whole window
   cv::Mat work_, labels_, stats_, centroids_;     // clean_inside
   detail::PackedMask packed_;                     // clean_inside
+  std::unique_ptr<RadiometricCorrection> illumination_;
 };
 
 // The steps of MediPicture::apply, each usable on its own.

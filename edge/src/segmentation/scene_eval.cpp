@@ -77,7 +77,7 @@ SceneCameraScore score_camera(const std::filesystem::path& dir, int camera,
   std::vector<cv::Mat> training;
   for (int frame : phases.room)
     training.push_back(read_grey(numbered(images, "frame_", frame, ".pgm")));
-  MediPicture medi(train_medi_picture(training), options);
+  MediPicture medi(train_medi_picture(training, options), options);
   SceneCameraScore score;
   score.camera = camera;
   score.iou_min = 1;

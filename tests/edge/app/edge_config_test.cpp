@@ -71,16 +71,17 @@ TEST_F(EdgeConfigTest, CommandLineOverridesTheFile) {
   EXPECT_TRUE(o.quiet);
 }
 
-// The masking starts from the person preset; --mask-* options (or their keys) change it.
-TEST_F(EdgeConfigTest, MaskOptionsChangeThePersonPreset) {
+// The masking starts from medi-picture's defaults; --mask-* options (or their keys) change them.
+TEST_F(EdgeConfigTest, MaskOptionsChangeTheDefaults) {
   write("camera-id: 1\nsource: replay:/tmp/a\nmode: mask\nmask-fill-holes: 0\n");
   const EdgeOptions preset = parse_edge_options({"--camera-id", "1", "--source", "replay:/x"});
-  EXPECT_EQ(preset.masking.k, person_masking_options().k);
+  EXPECT_EQ(preset.masking.k, MediPictureOptions{}.k);
   EXPECT_EQ(preset.masking.shadow_test, ShadowTest::kCommonRatio);
-  const EdgeOptions o =
-      parse_edge_options({"--config", file_.string(), "--mask-k", "2.5", "--mask-shadow-test",
-                          "correlation", "--mask-ncc", "0.95", "--mask-no-shadows",
-                          "--mask-closing", "9", "--mask-update-rate", "0.01"});
+  EXPECT_TRUE(preset.masking.correct_illumination);
+  const EdgeOptions o = parse_edge_options(
+      {"--config", file_.string(), "--mask-k", "2.5", "--mask-shadow-test", "correlation",
+       "--mask-ncc", "0.95", "--mask-no-shadows", "--mask-closing", "9", "--mask-update-rate",
+       "0.01", "--mask-illumination", "off"});
   EXPECT_FLOAT_EQ(o.masking.k, 2.5f);
   EXPECT_EQ(o.masking.shadow_test, ShadowTest::kCorrelation);
   EXPECT_FLOAT_EQ(o.masking.ncc_threshold, 0.95f);
@@ -88,7 +89,8 @@ TEST_F(EdgeConfigTest, MaskOptionsChangeThePersonPreset) {
   EXPECT_EQ(o.masking.closing_diameter, 9);
   EXPECT_EQ(o.masking.max_hole_area, 0);  // from the file
   EXPECT_FLOAT_EQ(o.masking.update_rate, 0.01f);
-  EXPECT_EQ(o.masking.min_component_area, person_masking_options().min_component_area);
+  EXPECT_FALSE(o.masking.correct_illumination);
+  EXPECT_EQ(o.masking.min_component_area, MediPictureOptions{}.min_component_area);
   write("camera-id: 1\nsource: replay:/x\nmask-shadow-test: ratio\n");
   EXPECT_NE(error_of().find(":3:1: key 'mask-shadow-test': 'ratio': expected correlation or "
                             "common-ratio"),

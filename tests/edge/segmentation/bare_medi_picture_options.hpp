@@ -1,5 +1,6 @@
 // Medi-picture options with every step after classification off (no shadow test, no closing, no
-// component filter), so that a test sees the classification itself.
+// component filter, no illumination correction), so that a test sees the classification itself
+// (k 3, the thesis' interval).
 #pragma once
 
 #include "segmentation/medi_picture.hpp"
@@ -7,7 +8,7 @@
 namespace syncap::edge::testing {
 
 inline MediPictureOptions bare_options() {
-  MediPictureOptions options;
+  MediPictureOptions options = thesis_masking_options();
   options.remove_shadows = false;
   options.closing_diameter = 0;
   options.min_component_area = 0;

@@ -133,7 +133,7 @@ TEST(MediPicture, BrightSquareOnNoisyBackgroundIsForeground) {
   const cv::Rect square(50, 30, 40, 40);
   frame(square).setTo(200);
 
-  MediPicture medi(model, MediPictureOptions{});
+  MediPicture medi(model, thesis_masking_options());
   const cv::Mat mask = medi.apply(frame);
   EXPECT_EQ(cv::countNonZero(mask(square)), square.area());
   // Noise is not foreground: nothing beyond a pixel or two of the square's border.
@@ -149,7 +149,7 @@ TEST(MediPicture, DarkenedTexturedPatchIsShadow) {
   cv::Mat candidates = cv::Mat::zeros(frame.size(), CV_8UC1);
   candidates(patch).setTo(255);
 
-  const cv::Mat shadow = shadow_pixels(background, frame, candidates, MediPictureOptions{});
+  const cv::Mat shadow = shadow_pixels(background, frame, candidates, thesis_masking_options());
   // Windows reaching over the patch border mix lit and shaded pixels; the interior is shadow.
   const cv::Rect interior(patch.x + 2, patch.y + 2, patch.width - 4, patch.height - 4);
   EXPECT_EQ(cv::countNonZero(shadow(interior)), interior.area());
@@ -160,7 +160,7 @@ TEST(MediPicture, DarkenedTexturedPatchIsShadow) {
   const MediPictureModel model = train_medi_picture(frames);
   MediPictureOptions without = bare_options();
   EXPECT_EQ(cv::countNonZero(MediPicture(model, without).apply(frame)), patch.area());
-  EXPECT_LT(cv::countNonZero(MediPicture(model, MediPictureOptions{}).apply(frame)),
+  EXPECT_LT(cv::countNonZero(MediPicture(model, thesis_masking_options()).apply(frame)),
             patch.area() / 4);
 }
 
@@ -174,7 +174,7 @@ TEST(MediPicture, DarkObjectWithOtherTextureIsNotShadow) {
   cv::Mat candidates = cv::Mat::zeros(frame.size(), CV_8UC1);
   candidates(patch).setTo(255);
 
-  const cv::Mat shadow = shadow_pixels(background, frame, candidates, MediPictureOptions{});
+  const cv::Mat shadow = shadow_pixels(background, frame, candidates, thesis_masking_options());
   EXPECT_LT(cv::countNonZero(shadow), patch.area() / 20);
 }
 
@@ -280,7 +280,7 @@ TEST(MediPicture, CommonRatioTestEqualsItsDefinitionPixelByPixel) {
       candidates = percent < density;
       const float ratio = shadow_ratio(model, frame, candidates);
       ASSERT_EQ(ratio, plain_ratio(model, frame, candidates)) << size << " trial " << trial;
-      MediPictureOptions options;
+      MediPictureOptions options;  // the default tolerance, 3 sigmas
       options.shadow_ratio_sigmas = 3.0f;
       for (const float r : {ratio, 0.5f, 0.93f}) {
         const cv::Mat shadow = common_ratio_shadow_pixels(model, frame, candidates, r, options);
@@ -299,7 +299,7 @@ TEST(MediPicture, CommonRatioFindsTheShadowsFactorAndSparesTheBody) {
   EXPECT_NEAR(shadow_ratio(scene.model, scene.frame, candidates), 0.55, 0.011);
   const cv::Mat shadow = common_ratio_shadow_pixels(
       scene.model, scene.frame, candidates, shadow_ratio(scene.model, scene.frame, candidates),
-      person_masking_options());
+      MediPictureOptions{});
   // Per pixel, so the shadow's border band is shadow too (the correlation test keeps it).
   EXPECT_GT(cv::countNonZero(shadow(scene.shadow)), scene.shadow.area() * 98 / 100);
   EXPECT_EQ(cv::countNonZero(shadow(scene.body)), 0);
@@ -309,11 +309,11 @@ TEST(MediPicture, CommonRatioFindsTheShadowsFactorAndSparesTheBody) {
   // The whole pipeline: the body stays (its brightest rows are near the floor's), the shadow goes;
   // the thesis' correlation test takes the smooth body for shadow and keeps the shadow's border
   // band.
-  MediPicture person(scene.model, person_masking_options());
+  MediPicture person(scene.model, MediPictureOptions{});
   const cv::Mat mask = person.apply(scene.frame);
   EXPECT_GE(cv::countNonZero(mask(scene.body)), scene.body.area() * 99 / 100);
   EXPECT_LT(cv::countNonZero(mask), scene.body.area() * 11 / 10);
-  MediPictureOptions correlation = person_masking_options();
+  MediPictureOptions correlation;
   correlation.shadow_test = ShadowTest::kCorrelation;
   const cv::Mat thesis = MediPicture(scene.model, correlation).apply(scene.frame);
   EXPECT_LT(cv::countNonZero(thesis(scene.body)), scene.body.area() * 9 / 10);
@@ -473,7 +473,7 @@ TEST(MediPicture, FastApplyMatchesTheStepByStepReference) {
   const MediPictureModel model = train_medi_picture(training);
   const std::vector<cv::Mat> frames = test_frames(background, rng);
 
-  std::vector<MediPictureOptions> variants(9);
+  std::vector<MediPictureOptions> variants(9, thesis_masking_options());
   variants[1].remove_shadows = false;
   variants[2].ncc_half_window = 1;
   variants[2].closing_diameter = 4;  // even: the anchor is off centre
@@ -485,13 +485,17 @@ TEST(MediPicture, FastApplyMatchesTheStepByStepReference) {
   variants[7] = bare_options();
   variants[8].closing_diameter = 15;
   variants[8].min_component_area = 200;
-  variants.push_back(person_masking_options());
-  variants.push_back(person_masking_options());
+  // The defaults, without the illumination correction the step-by-step reference does not know
+  // (checked on its own below).
+  MediPictureOptions defaults;
+  defaults.correct_illumination = false;
+  variants.push_back(defaults);
+  variants.push_back(defaults);
   variants.back().clip_polygon = variants[6].clip_polygon;
-  variants.push_back(person_masking_options());
+  variants.push_back(defaults);
   variants.back().shadow_ratio_sigmas = 8;
   variants.back().max_hole_area = 0;
-  variants.push_back(MediPictureOptions{});
+  variants.push_back(thesis_masking_options());
   variants.back().max_hole_area = 400;
   int foreground = 0;
   for (std::size_t v = 0; v < variants.size(); ++v) {
@@ -506,7 +510,7 @@ TEST(MediPicture, FastApplyMatchesTheStepByStepReference) {
   EXPECT_GT(foreground, 10000);  // the frames do hold foreground and shadow
 
   // With the slow update, frame after frame against the model as it then is.
-  MediPictureOptions updating;
+  MediPictureOptions updating = thesis_masking_options();
   updating.update_rate = 0.05f;
   MediPicture medi(model, updating);
   for (int round = 0; round < 3; ++round) {

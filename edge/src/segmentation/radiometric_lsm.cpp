@@ -1,0 +1,354 @@
+#include "segmentation/radiometric_lsm.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "segmentation/medi_picture.hpp"
+
+namespace syncap::edge {
+namespace {
+
+constexpr int kParameters = 8;  // a0 a1 a2 b0 b1 b2 r0 r1
+constexpr int kGain = 7;
+constexpr int kOffset = 6;
+// Below this mean squared gradient (DN^2 per pixel^2, Sobel / 8) in both directions a window has
+// too little texture to locate; below this grey-value variance (DN^2) gain and offset cannot be
+// told apart and the offset alone is estimated.
+constexpr double kMinStructure = 1.0;
+constexpr double kMinVariance = 16.0;
+constexpr double kMinScaleDn = 0.5;  // floor of the robust scale (noise-free synthetic images)
+
+// One observing pixel of a window: its place relative to the centre, the background's value and
+// the frame's gradient there (taken at the integer pixel: the shifts are sub-pixel).
+struct Observation {
+  float u, v;
+  float background;
+  float gx, gy;
+};
+
+double median_of(std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+float bilinear(const cv::Mat& image, double x, double y) {
+  const int x0 = static_cast<int>(std::floor(x));
+  const int y0 = static_cast<int>(std::floor(y));
+  const double fx = x - x0, fy = y - y0;
+  const uchar* r0 = image.ptr<uchar>(y0) + x0;
+  const uchar* r1 = image.ptr<uchar>(y0 + 1) + x0;
+  return static_cast<float>((1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) +
+                            fy * ((1 - fx) * r1[0] + fx * r1[1]));
+}
+
+void check_inputs(const cv::Mat& background, const cv::Mat& frame, cv::Rect window,
+                  const cv::Mat& exclude) {
+  if (frame.type() != CV_8UC1 || (background.type() != CV_8UC1 && background.type() != CV_32FC1))
+    throw std::invalid_argument("match_window: frame CV_8UC1, background CV_8UC1 or CV_32FC1");
+  if (background.size() != frame.size() || (!exclude.empty() && exclude.size() != frame.size()))
+    throw std::invalid_argument("match_window: background, frame and exclude differ in size");
+  if (exclude.type() != CV_8UC1 && !exclude.empty())
+    throw std::invalid_argument("match_window: exclude must be CV_8UC1");
+  const cv::Rect inner(2, 2, frame.cols - 4, frame.rows - 4);
+  if (window.area() <= 0 || (window & inner) != window)
+    throw std::invalid_argument("match_window: window " + std::to_string(window.width) + "x" +
+                                std::to_string(window.height) + "+" + std::to_string(window.x) +
+                                "+" + std::to_string(window.y) +
+                                " is empty or within 2 px of the image border");
+}
+
+// The window's observing pixels; sets `textured` when its background can locate the geometry
+// and `varied` when its grey values can separate gain from offset.
+std::vector<Observation> observations_of(const cv::Mat& background, const cv::Mat& frame,
+                                         cv::Rect window, const cv::Mat& exclude, int step,
+                                         bool& textured, bool& varied) {
+  cv::Mat bg;
+  background(window).convertTo(bg, CV_32F);
+  cv::Mat gx, gy;
+  const cv::Rect grown(window.x - 1, window.y - 1, window.width + 2, window.height + 2);
+  cv::Sobel(frame(grown), gx, CV_32F, 1, 0, 3, 1.0 / 8);
+  cv::Sobel(frame(grown), gy, CV_32F, 0, 1, 3, 1.0 / 8);
+  const double cx = window.x + (window.width - 1) / 2.0, cy = window.y + (window.height - 1) / 2.0;
+  std::vector<Observation> obs;
+  double sxx = 0, syy = 0, sum = 0, sum2 = 0;
+  for (int r = 0; r < window.height; r += step) {
+    const uchar* ex = exclude.empty() ? nullptr : exclude.ptr<uchar>(window.y + r) + window.x;
+    for (int c = 0; c < window.width; c += step) {
+      if (ex && ex[c]) continue;
+      const Observation o{static_cast<float>(window.x + c - cx),
+                          static_cast<float>(window.y + r - cy), bg.at<float>(r, c),
+                          gx.at<float>(r + 1, c + 1), gy.at<float>(r + 1, c + 1)};
+      sxx += o.gx * o.gx;
+      syy += o.gy * o.gy;
+      sum += o.background;
+      sum2 += o.background * o.background;
+      obs.push_back(o);
+    }
+  }
+  const double n = std::max<double>(1, static_cast<double>(obs.size()));
+  textured = std::min(sxx, syy) / n >= kMinStructure;
+  varied = sum2 / n - (sum / n) * (sum / n) >= kMinVariance;
+  return obs;
+}
+
+// Position of an observation in the frame under the affine parameters.
+cv::Point2d transformed(const std::array<double, kParameters>& p, const Observation& o, double cx,
+                        double cy) {
+  return {cx + p[0] + p[1] * o.u + p[2] * o.v, cy + p[3] + p[4] * o.u + p[5] * o.v};
+}
+
+// The row of the design matrix (eq 5.15 with the gain column) for one observation.
+std::array<double, kParameters> design_row(const std::array<double, kParameters>& p,
+                                           const Observation& o, double resampled) {
+  const double gx = p[kGain] * o.gx, gy = p[kGain] * o.gy;
+  return {gx, gx * o.u, gx * o.v, gy, gy * o.u, gy * o.v, 1.0, resampled};
+}
+
+struct Iteration {
+  cv::Matx<double, kParameters, kParameters> normal =
+      cv::Matx<double, kParameters, kParameters>::zeros();
+  cv::Vec<double, kParameters> rhs = cv::Vec<double, kParameters>::all(0);
+  double weighted_square_sum = 0.0;
+  int observations = 0;
+};
+
+// Accumulates the weighted normal equations at the current parameters.
+Iteration accumulate(const std::vector<Observation>& obs, const cv::Mat& frame,
+                     const std::array<double, kParameters>& p, double cx, double cy,
+                     double tukey_c) {
+  std::vector<double> residuals(obs.size(), std::nan(""));
+  std::vector<double> resampled(obs.size(), 0.0);
+  std::vector<double> absolute;
+  absolute.reserve(obs.size());
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    const cv::Point2d at = transformed(p, obs[i], cx, cy);
+    if (at.x < 0 || at.y < 0 || at.x >= frame.cols - 1 || at.y >= frame.rows - 1) continue;
+    resampled[i] = bilinear(frame, at.x, at.y);
+    residuals[i] = obs[i].background - (p[kOffset] + p[kGain] * resampled[i]);
+    absolute.push_back(std::abs(residuals[i]));
+  }
+  const double scale = std::max(kMinScaleDn, 1.4826 * median_of(absolute));
+  const double limit = tukey_c * scale;
+  Iteration it;
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    const double v = residuals[i];
+    if (!(std::abs(v) < limit)) continue;  // NaN (outside) or an outlier
+    const double t = v / limit;
+    const double w = (1 - t * t) * (1 - t * t);
+    const auto row = design_row(p, obs[i], resampled[i]);
+    for (int a = 0; a < kParameters; ++a) {
+      it.rhs[a] += w * row[a] * v;
+      for (int b = a; b < kParameters; ++b) it.normal(a, b) += w * row[a] * row[b];
+    }
+    it.weighted_square_sum += w * v * v;
+    ++it.observations;
+  }
+  for (int a = 0; a < kParameters; ++a)
+    for (int b = 0; b < a; ++b) it.normal(a, b) = it.normal(b, a);
+  return it;
+}
+
+// Solves for the active parameters only (the others fixed): their rows and columns of the normal
+// matrix, the rest replaced by identity rows with a zero right-hand side.
+bool solve_active(Iteration& it, const std::array<bool, kParameters>& active,
+                  cv::Vec<double, kParameters>& step,
+                  cv::Matx<double, kParameters, kParameters>& inverse) {
+  for (int a = 0; a < kParameters; ++a) {
+    if (active[a]) continue;
+    for (int b = 0; b < kParameters; ++b) it.normal(a, b) = it.normal(b, a) = 0.0;
+    it.normal(a, a) = 1.0;
+    it.rhs[a] = 0.0;
+  }
+  if (!cv::invert(it.normal, inverse, cv::DECOMP_CHOLESKY)) return false;
+  step = inverse * it.rhs;
+  return true;
+}
+
+double initial_offset(const std::vector<Observation>& obs, const cv::Mat& frame, double cx,
+                      double cy) {
+  std::vector<double> differences;
+  differences.reserve(obs.size());
+  for (const Observation& o : obs)
+    differences.push_back(o.background - frame.at<uchar>(static_cast<int>(std::lround(cy + o.v)),
+                                                         static_cast<int>(std::lround(cx + o.u))));
+  return median_of(differences);
+}
+
+}  // namespace
+
+LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv::Rect window,
+                             const cv::Mat& exclude, const LsmOptions& options) {
+  check_inputs(background, frame, window, exclude);
+  bool textured = false, varied = false;
+  const std::vector<Observation> obs = observations_of(
+      background, frame, window, exclude, std::max(1, options.pixel_step), textured, varied);
+  LsmWindowResult result;
+  result.geometry_estimated = options.estimate_geometry && textured;
+  std::array<bool, kParameters> active{};
+  for (int a = 0; a < 6; ++a) active[a] = result.geometry_estimated;
+  active[kOffset] = true;
+  active[kGain] = varied;
+  const int unknowns = static_cast<int>(std::count(active.begin(), active.end(), true));
+  if (static_cast<int>(obs.size()) < 2 * unknowns + 8) return result;
+
+  const double cx = window.x + (window.width - 1) / 2.0, cy = window.y + (window.height - 1) / 2.0;
+  std::array<double, kParameters> p{0, 1, 0, 0, 0, 1, initial_offset(obs, frame, cx, cy), 1};
+  const double half_w = window.width / 2.0, half_h = window.height / 2.0;
+  bool converged = false;
+  Iteration it;
+  cv::Matx<double, kParameters, kParameters> inverse;
+  for (result.iterations = 1; result.iterations <= options.max_iterations; ++result.iterations) {
+    it = accumulate(obs, frame, p, cx, cy, options.tukey_c);
+    cv::Vec<double, kParameters> step;
+    if (it.observations < 2 * unknowns + 8 || !solve_active(it, active, step, inverse))
+      return result;
+    for (int a = 0; a < kParameters; ++a) p[a] += step[a];
+    const double corner_shift =
+        std::max(std::abs(step[0]) + std::abs(step[1]) * half_w + std::abs(step[2]) * half_h,
+                 std::abs(step[3]) + std::abs(step[4]) * half_w + std::abs(step[5]) * half_h);
+    if (corner_shift < options.convergence_px &&
+        std::abs(step[kGain]) < 1e-3 * std::abs(p[kGain]) && std::abs(step[kOffset]) < 0.05) {
+      converged = true;
+      break;
+    }
+  }
+  result.iterations = std::min(result.iterations, options.max_iterations);
+  // Eq 5.20 at the solution: sigma0 from the weighted residuals, Q = sigma0^2 (A'WA)^-1.
+  it = accumulate(obs, frame, p, cx, cy, options.tukey_c);
+  cv::Vec<double, kParameters> unused;
+  if (it.observations <= unknowns || !solve_active(it, active, unused, inverse)) return result;
+  result.sigma0 = std::sqrt(it.weighted_square_sum / (it.observations - unknowns));
+  for (int a = 0; a < kParameters; ++a)
+    result.sigmas[a] = active[a] ? result.sigma0 * std::sqrt(inverse(a, a)) : 0.0;
+  std::copy(p.begin(), p.begin() + 6, result.affine.begin());
+  result.offset = p[kOffset];
+  result.gain = p[kGain];
+  result.observations = it.observations;
+  double sum = 0;
+  for (const Observation& o : obs) sum += o.background;
+  result.background_mean = sum / static_cast<double>(obs.size());
+  result.valid = converged && std::isfinite(result.gain) && result.gain > 0;
+  return result;
+}
+
+RadiometricCorrection::RadiometricCorrection(cv::Mat background, RadiometricOptions options)
+    : background_(std::move(background)), options_(options) {
+  if (background_.type() != CV_8UC1 || background_.empty())
+    throw std::invalid_argument("RadiometricCorrection: background must be a CV_8UC1 image");
+  if (options_.grid_columns < 1 || options_.grid_rows < 1 ||
+      background_.cols / options_.grid_columns < 16 || background_.rows / options_.grid_rows < 16)
+    throw std::invalid_argument("RadiometricCorrection: the grid's cells must be >= 16 px");
+  gain_grid_.create(options_.grid_rows, options_.grid_columns, CV_32F);
+  offset_grid_.create(options_.grid_rows, options_.grid_columns, CV_32F);
+}
+
+// The median gain over the valid windows with the offset of the same window (a consistent line,
+// not the gain of one window and the offset of another), and the other figures of the summary.
+void RadiometricCorrection::summarise_valid_windows() {
+  std::vector<double> gains, sigma0s;
+  summary_.valid_windows = 0;
+  summary_.max_shift_px = 0.0;
+  for (const LsmWindowResult& w : windows_) {
+    if (!w.valid) continue;
+    gains.push_back(w.gain);
+    sigma0s.push_back(w.sigma0);
+    summary_.max_shift_px =
+        std::max({summary_.max_shift_px, std::abs(w.affine[0]), std::abs(w.affine[3])});
+  }
+  summary_.valid_windows = static_cast<int>(gains.size());
+  summary_.median_gain = 1.0;
+  summary_.median_offset = 0.0;
+  summary_.median_sigma0 = 0.0;
+  if (gains.empty()) return;
+  summary_.median_gain = median_of(gains);
+  summary_.median_sigma0 = median_of(sigma0s);
+  for (const LsmWindowResult& w : windows_) {
+    if (w.valid && w.gain == summary_.median_gain) {
+      summary_.median_offset = w.offset;
+      break;
+    }
+  }
+}
+
+// The middle 60 % of a grid cell, kept 2 px from the border for the resampling.
+cv::Rect RadiometricCorrection::window_of(int row, int column) const {
+  const int x0 = column * background_.cols / options_.grid_columns;
+  const int x1 = (column + 1) * background_.cols / options_.grid_columns;
+  const int y0 = row * background_.rows / options_.grid_rows;
+  const int y1 = (row + 1) * background_.rows / options_.grid_rows;
+  const int mx = (x1 - x0) / 5, my = (y1 - y0) / 5;
+  const cv::Rect inner(2, 2, background_.cols - 4, background_.rows - 4);
+  return cv::Rect(x0 + mx, y0 + my, x1 - x0 - 2 * mx, y1 - y0 - 2 * my) & inner;
+}
+
+const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Mat& exclude) {
+  if (frame.size() != background_.size() || frame.type() != CV_8UC1)
+    throw std::invalid_argument(
+        "RadiometricCorrection::correct: frame not CV_8UC1 of the background's size");
+  windows_.clear();
+  summary_ = RadiometricSummary{};
+  for (int r = 0; r < options_.grid_rows; ++r) {
+    for (int c = 0; c < options_.grid_columns; ++c) {
+      const cv::Rect window = window_of(r, c);
+      LsmWindowResult w = match_window(background_, frame, window, exclude, options_.lsm);
+      const int step = std::max(1, options_.lsm.pixel_step);
+      const double possible =
+          std::ceil(window.width / double(step)) * std::ceil(window.height / double(step));
+      w.valid = w.valid && w.observations >= options_.min_observed_share * possible;
+      windows_.push_back(w);
+    }
+  }
+  summary_.windows = static_cast<int>(windows_.size());
+  summarise_valid_windows();
+  // A window the foreground fills converges to a wrong line; it disagrees with the others.
+  for (LsmWindowResult& w : windows_) {
+    if (!w.valid) continue;
+    const double level = w.background_mean;
+    const double shift = w.offset + w.gain * level;
+    const double expected = summary_.median_offset + summary_.median_gain * level;
+    if (std::abs(shift - expected) > options_.max_disagreement_dn) {
+      w.valid = false;
+      ++summary_.disagreeing_windows;
+    }
+  }
+  if (summary_.disagreeing_windows > 0) summarise_valid_windows();
+  for (int r = 0, i = 0; r < options_.grid_rows; ++r) {
+    for (int c = 0; c < options_.grid_columns; ++c, ++i) {
+      const LsmWindowResult& w = windows_[static_cast<std::size_t>(i)];
+      gain_grid_.at<float>(r, c) = static_cast<float>(w.valid ? w.gain : summary_.median_gain);
+      offset_grid_.at<float>(r, c) =
+          static_cast<float>(w.valid ? w.offset : summary_.median_offset);
+    }
+  }
+  cv::resize(gain_grid_, gain_map_, frame.size(), 0, 0, cv::INTER_LINEAR);
+  cv::resize(offset_grid_, offset_map_, frame.size(), 0, 0, cv::INTER_LINEAR);
+  corrected_.create(frame.size(), CV_8UC1);
+  for (int y = 0; y < frame.rows; ++y) {
+    const uchar* in = frame.ptr<uchar>(y);
+    const float* g = gain_map_.ptr<float>(y);
+    const float* o = offset_map_.ptr<float>(y);
+    uchar* out = corrected_.ptr<uchar>(y);
+    for (int x = 0; x < frame.cols; ++x) out[x] = cv::saturate_cast<uchar>(o[x] + g[x] * in[x]);
+  }
+  return corrected_;
+}
+
+std::vector<cv::Mat> normalise_training_frames(const std::vector<cv::Mat>& frames,
+                                               const RadiometricOptions& options) {
+  const MediPictureModel raw = train_medi_picture(frames);
+  cv::Mat reference;
+  raw.median.convertTo(reference, CV_8U);
+  RadiometricCorrection correction(reference, options);
+  std::vector<cv::Mat> out;
+  out.reserve(frames.size());
+  for (const cv::Mat& f : frames) out.push_back(correction.correct(f).clone());
+  return out;
+}
+
+}  // namespace syncap::edge

@@ -1,0 +1,113 @@
+// Least-squares matching of the current frame against the background model (thesis 5.1.2,
+// eqs 5.12-5.20; Gruen 1985): per image window an affine geometric transformation and a linear
+// radiometric one (gain and offset, the thesis has the offset only) so that
+//
+//   B(u, v) = r0 + r1 I(a0 + a1 u + a2 v, b0 + b1 u + b2 v) + e(u, v)
+//
+// with B the background (lambda), I the frame resampled bilinearly, (u, v) the window's pixels
+// relative to its centre. Solved by Gauss-Newton on the linearised observation equations
+// (eq 5.15 with the gain column), with robust weights so that a person inside the window is an
+// outlier, not a change of light. Used to bring a frame (and the training frames) to the
+// background's radiometry before classification, so that lamps warming up or flickering do not
+// fill the mask (docs/segmentation.md "Changed illumination").
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace syncap::edge {
+
+struct LsmOptions {
+  int max_iterations = 8;
+  // Iterations stop when no affine shift moves a window corner more than this, pixels, and the
+  // radiometric step is below 1e-3 of the gain.
+  double convergence_px = 0.01;
+  // Estimate the affine geometry too (a camera nudged by a few tenths of a pixel); off: gain and
+  // offset only. Geometry is kept at the identity in a window without texture either way.
+  bool estimate_geometry = true;
+  // Tukey's biweight constant in units of the residuals' robust scale (1.4826 MAD): residuals
+  // beyond it (the person, its shadow) get weight 0.
+  double tukey_c = 4.685;
+  int pixel_step = 2;  // every pixel_step-th row and column of the window observes
+};
+
+// The estimate of one window, eq 5.20.
+struct LsmWindowResult {
+  std::array<double, 6> affine{0, 1, 0, 0, 0, 1};  // a0 a1 a2 b0 b1 b2 (window-centred)
+  double offset = 0.0;                             // r0, DN
+  double gain = 1.0;                               // r1
+  double sigma0 = 0.0;                             // a posteriori sigma of unit weight, DN
+  std::array<double, 8> sigmas{};  // of a0 a1 a2 b0 b1 b2 r0 r1 (Q = sigma0^2 (A'WA)^-1)
+  int iterations = 0;
+  int observations = 0;          // pixels with a non-zero weight at the end
+  double background_mean = 0.0;  // of the window's observing pixels, DN
+  bool geometry_estimated = false;
+  bool valid = false;  // converged with enough observations
+};
+
+// Matches `frame` (CV_8UC1) to `background` (CV_8UC1 or CV_32FC1, the same size) in `window`.
+// Pixels where `exclude` (CV_8UC1, optional) is non-zero do not observe (the last frame's
+// foreground). Throws std::invalid_argument on mismatched images or a window outside them.
+LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv::Rect window,
+                             const cv::Mat& exclude = {}, const LsmOptions& options = {});
+
+struct RadiometricOptions {
+  int grid_columns = 4;  // windows across the frame (each the centre part of one grid cell)
+  int grid_rows = 3;
+  LsmOptions lsm;
+  // A window observed by fewer than this share of its pixels (the rest excluded or outliers)
+  // takes its gain and offset from the valid windows (their median).
+  double min_observed_share = 0.3;
+  // A window whose correction moves its mean grey value by more than this from what the median
+  // window's correction would, DN, is taken for one the foreground fills (a person standing over
+  // the whole window matches the background with a wrong gain) and gets the median's.
+  double max_disagreement_dn = 8.0;
+};
+
+// What the last correction did, for the log and for telling an implausible result.
+struct RadiometricSummary {
+  int windows = 0;
+  int valid_windows = 0;
+  int disagreeing_windows = 0;  // converged, but rejected by max_disagreement_dn
+  double median_gain = 1.0;
+  double median_offset = 0.0;
+  double max_shift_px = 0.0;  // largest a0 / b0 of a valid window
+  double median_sigma0 = 0.0;
+};
+
+// Brings frames to the radiometry of a background: a grid of windows matched by match_window,
+// gain and offset interpolated bilinearly between the windows' centres, I' = r0 + r1 I per pixel.
+class RadiometricCorrection {
+ public:
+  // `background` CV_8UC1 (lambda rounded).
+  RadiometricCorrection(cv::Mat background, RadiometricOptions options = {});
+
+  // The frame in the background's radiometry (CV_8UC1, saturated). `exclude` as in match_window.
+  // The returned image is reused by the next call.
+  const cv::Mat& correct(const cv::Mat& frame, const cv::Mat& exclude = {});
+
+  const RadiometricSummary& summary() const { return summary_; }
+  // The windows' estimates of the last call, row by row.
+  const std::vector<LsmWindowResult>& windows() const { return windows_; }
+
+ private:
+  cv::Rect window_of(int row, int column) const;
+  void summarise_valid_windows();
+
+  cv::Mat background_;
+  RadiometricOptions options_;
+  std::vector<LsmWindowResult> windows_;
+  RadiometricSummary summary_;
+  cv::Mat gain_grid_, offset_grid_;  // CV_32FC1 grid_rows x grid_columns
+  cv::Mat gain_map_, offset_map_;    // CV_32FC1 frame-sized
+  cv::Mat corrected_;
+};
+
+// The training frames brought to one radiometry (that of their per-pixel median), so that a lamp
+// flickering during training does not widen the model's intervals. Frames as train_medi_picture.
+std::vector<cv::Mat> normalise_training_frames(const std::vector<cv::Mat>& frames,
+                                               const RadiometricOptions& options = {});
+
+}  // namespace syncap::edge
