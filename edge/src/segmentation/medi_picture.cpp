@@ -460,7 +460,8 @@ cv::Mat common_ratio_shadow_pixels(const MediPictureModel& model, const cv::Mat&
                                    const cv::Mat& candidates, float ratio,
                                    const MediPictureOptions& options) {
   cv::Mat shadow = cv::Mat::zeros(frame.size(), CV_8UC1);
-  mark_common_ratio_shadow(model.median, model.sigma, frame, candidates, ratio,
+  mark_common_ratio_shadow(model.median, model.sigma, frame, candidates,
+                           ratio >= options.min_shadow_ratio ? ratio : 0.0f,
                            options.shadow_ratio_sigmas, shadow);
   return shadow;
 }
@@ -581,7 +582,8 @@ void MediPicture::resolve_common_ratio_shadows(const cv::Mat& frame, cv::Mat& ma
   const cv::Mat candidates = inside == kBelow;
   const float ratio = common_ratio(model_.median(box), frame(box), candidates);
   cv::Mat shadow = cv::Mat::zeros(box.size(), CV_8UC1);
-  mark_common_ratio_shadow(model_.median(box), model_.sigma(box), frame(box), candidates, ratio,
+  mark_common_ratio_shadow(model_.median(box), model_.sigma(box), frame(box), candidates,
+                           ratio >= options_.min_shadow_ratio ? ratio : 0.0f,
                            options_.shadow_ratio_sigmas, shadow);
   inside.setTo(255, candidates);
   inside.setTo(0, shadow);

@@ -56,6 +56,11 @@ struct MediPictureOptions {
   bool remove_shadows = true;
   ShadowTest shadow_test = ShadowTest::kCommonRatio;
   float shadow_ratio_sigmas = 3.0f;  // kCommonRatio: tolerance in the pixel's training sigmas
+  // kCommonRatio: a darkening factor below this is not a shadow (a room's ambient light keeps a
+  // shadow above ~0.4 of the lit floor) but a dark object of the frame, which alone makes the
+  // mode when there is no shadow; with a low factor the tolerance of a few DN spans a wide range
+  // of floor brightness and would take much of the object for shadow.
+  float min_shadow_ratio = 0.3f;
   int ncc_half_window = 2;           // kCorrelation: N of the (2N + 1)^2 window
   float ncc_threshold = 0.98f;       // kCorrelation: L_NCC
   // kCorrelation, our addition: a shadow keeps at least this share of the background's energy
@@ -159,7 +164,7 @@ cv::Mat shadow_pixels(const cv::Mat& background, const cv::Mat& frame, const cv:
 float shadow_ratio(const MediPictureModel& model, const cv::Mat& frame, const cv::Mat& candidates);
 
 // kCommonRatio: 255 where a pixel of `candidates` is the background darkened by `ratio` within
-// options.shadow_ratio_sigmas x max(sigma, 1).
+// options.shadow_ratio_sigmas x max(sigma, 1); none when ratio < options.min_shadow_ratio.
 cv::Mat common_ratio_shadow_pixels(const MediPictureModel& model, const cv::Mat& frame,
                                    const cv::Mat& candidates, float ratio,
                                    const MediPictureOptions& options);
