@@ -719,6 +719,8 @@ void MediPicture::update_model(const cv::Mat& frame, const cv::Mat& mask) {
   model_.minimum += shift;
   model_.maximum += shift;
   derive_thresholds();
+  // background_ was rewritten in place: the correction shares its pixels.
+  if (illumination_) illumination_->background_changed();
 }
 
 }  // namespace syncap::edge

@@ -61,8 +61,8 @@ struct MediPictureOptions {
   // mode when there is no shadow; with a low factor the tolerance of a few DN spans a wide range
   // of floor brightness and would take much of the object for shadow.
   float min_shadow_ratio = 0.3f;
-  int ncc_half_window = 2;           // kCorrelation: N of the (2N + 1)^2 window
-  float ncc_threshold = 0.98f;       // kCorrelation: L_NCC
+  int ncc_half_window = 2;      // kCorrelation: N of the (2N + 1)^2 window
+  float ncc_threshold = 0.98f;  // kCorrelation: L_NCC
   // kCorrelation, our addition: a shadow keeps at least this share of the background's energy
   // (E_T / E_B); without it a uniform dark object on a uniform floor passes eqs 5.10/5.11.
   float min_shadow_energy_ratio = 0.5f;

@@ -27,11 +27,7 @@ constexpr double kMinScaleDn = 0.5;  // floor of the robust scale (noise-free sy
 // background's (a median of many frames) is nearly noise-free, where the frame's noise enters
 // both the gradient and the residual and biases the shift (by 15 % in the test of 0.3 px). With
 // I(T(u)) = (B(u) - r0) / r1, r1 grad I = grad B.
-struct Observation {
-  float u, v;
-  float background;
-  float gx, gy;
-};
+using Observation = detail::LsmObservation;
 
 double median_of(std::vector<double>& values) {
   if (values.empty()) return 0.0;
@@ -66,39 +62,6 @@ void check_inputs(const cv::Mat& background, const cv::Mat& frame, cv::Rect wind
                                 " is empty or within 2 px of the image border");
 }
 
-// The window's observing pixels; sets `textured` when its background can locate the geometry
-// and `varied` when its grey values can separate gain from offset.
-std::vector<Observation> observations_of(const cv::Mat& background, cv::Rect window, const cv::Mat& exclude, int step,
-                                         bool& textured, bool& varied) {
-  cv::Mat bg;
-  background(window).convertTo(bg, CV_32F);
-  cv::Mat gx, gy;
-  const cv::Rect grown(window.x - 1, window.y - 1, window.width + 2, window.height + 2);
-  cv::Sobel(background(grown), gx, CV_32F, 1, 0, 3, 1.0 / 8);
-  cv::Sobel(background(grown), gy, CV_32F, 0, 1, 3, 1.0 / 8);
-  const double cx = window.x + (window.width - 1) / 2.0, cy = window.y + (window.height - 1) / 2.0;
-  std::vector<Observation> obs;
-  double sxx = 0, syy = 0, sum = 0, sum2 = 0;
-  for (int r = 0; r < window.height; r += step) {
-    const uchar* ex = exclude.empty() ? nullptr : exclude.ptr<uchar>(window.y + r) + window.x;
-    for (int c = 0; c < window.width; c += step) {
-      if (ex && ex[c]) continue;
-      const Observation o{static_cast<float>(window.x + c - cx),
-                          static_cast<float>(window.y + r - cy), bg.at<float>(r, c),
-                          gx.at<float>(r + 1, c + 1), gy.at<float>(r + 1, c + 1)};
-      sxx += o.gx * o.gx;
-      syy += o.gy * o.gy;
-      sum += o.background;
-      sum2 += o.background * o.background;
-      obs.push_back(o);
-    }
-  }
-  const double n = std::max<double>(1, static_cast<double>(obs.size()));
-  textured = std::min(sxx, syy) / n >= kMinStructure;
-  varied = sum2 / n - (sum / n) * (sum / n) >= kMinVariance;
-  return obs;
-}
-
 // Position of an observation in the frame under the affine parameters.
 cv::Point2d transformed(const std::array<double, kParameters>& p, const Observation& o, double cx,
                         double cy) {
@@ -121,36 +84,47 @@ struct Iteration {
   int observations = 0;
 };
 
-// Accumulates the weighted normal equations at the current parameters.
+// Scratch of one window's solution, kept between iterations so they allocate nothing.
+struct Workspace {
+  std::vector<double> residuals, resampled, absolute;
+};
+
+// Accumulates the weighted normal equations at the current parameters, over the active
+// parameters only (their rows and columns; the rest stay zero); the sandwich's meat when asked.
 Iteration accumulate(const std::vector<Observation>& obs, const cv::Mat& frame,
-                     const std::array<double, kParameters>& p, double cx, double cy,
-                     double tukey_c) {
-  std::vector<double> residuals(obs.size(), std::nan(""));
-  std::vector<double> resampled(obs.size(), 0.0);
-  std::vector<double> absolute;
-  absolute.reserve(obs.size());
+                     const std::array<double, kParameters>& p, double cx, double cy, double tukey_c,
+                     const std::array<bool, kParameters>& active, bool with_meat, Workspace& ws) {
+  ws.residuals.assign(obs.size(), std::nan(""));
+  ws.resampled.assign(obs.size(), 0.0);
+  ws.absolute.clear();
   for (std::size_t i = 0; i < obs.size(); ++i) {
     const cv::Point2d at = transformed(p, obs[i], cx, cy);
     if (at.x < 0 || at.y < 0 || at.x >= frame.cols - 1 || at.y >= frame.rows - 1) continue;
-    resampled[i] = bilinear(frame, at.x, at.y);
-    residuals[i] = obs[i].background - (p[kOffset] + p[kGain] * resampled[i]);
-    absolute.push_back(std::abs(residuals[i]));
+    ws.resampled[i] = bilinear(frame, at.x, at.y);
+    ws.residuals[i] = obs[i].background - (p[kOffset] + p[kGain] * ws.resampled[i]);
+    ws.absolute.push_back(std::abs(ws.residuals[i]));
   }
-  const double scale = std::max(kMinScaleDn, 1.4826 * median_of(absolute));
+  const double scale = std::max(kMinScaleDn, 1.4826 * median_of(ws.absolute));
   const double limit = tukey_c * scale;
+  std::array<int, kParameters> index{};
+  int count = 0;
+  for (int a = 0; a < kParameters; ++a)
+    if (active[a]) index[count++] = a;
   Iteration it;
   for (std::size_t i = 0; i < obs.size(); ++i) {
-    const double v = residuals[i];
+    const double v = ws.residuals[i];
     if (!(std::abs(v) < limit)) continue;  // NaN (outside) or an outlier
     const double t = v / limit;
     const double w = (1 - t * t) * (1 - t * t);
-    const auto row = design_row(obs[i], resampled[i]);
+    const auto row = design_row(obs[i], ws.resampled[i]);
     const double wv2 = (w * v) * (w * v);
-    for (int a = 0; a < kParameters; ++a) {
+    for (int ia = 0; ia < count; ++ia) {
+      const int a = index[ia];
       it.rhs[a] += w * row[a] * v;
-      for (int b = a; b < kParameters; ++b) {
+      for (int ib = ia; ib < count; ++ib) {
+        const int b = index[ib];
         it.normal(a, b) += w * row[a] * row[b];
-        it.meat(a, b) += wv2 * row[a] * row[b];
+        if (with_meat) it.meat(a, b) += wv2 * row[a] * row[b];
       }
     }
     ++it.observations;
@@ -168,8 +142,7 @@ Iteration accumulate(const std::vector<Observation>& obs, const cv::Mat& frame,
 // Solves for the active parameters only (the others fixed): their rows and columns of the normal
 // matrix, the rest replaced by identity rows with a zero right-hand side.
 bool solve_active(Iteration& it, const std::array<bool, kParameters>& active,
-                  cv::Vec<double, kParameters>& step,
-                  Matrix8& inverse) {
+                  cv::Vec<double, kParameters>& step, Matrix8& inverse) {
   for (int a = 0; a < kParameters; ++a) {
     if (active[a]) continue;
     for (int b = 0; b < kParameters; ++b) it.normal(a, b) = it.normal(b, a) = 0.0;
@@ -193,29 +166,89 @@ double initial_offset(const std::vector<Observation>& obs, const cv::Mat& frame,
 
 }  // namespace
 
+namespace detail {
+
+LsmWindow observe_window(const cv::Mat& background, cv::Rect window, int step) {
+  cv::Mat bg;
+  background(window).convertTo(bg, CV_32F);
+  cv::Mat gx, gy;
+  const cv::Rect grown(window.x - 1, window.y - 1, window.width + 2, window.height + 2);
+  cv::Sobel(background(grown), gx, CV_32F, 1, 0, 3, 1.0 / 8);
+  cv::Sobel(background(grown), gy, CV_32F, 0, 1, 3, 1.0 / 8);
+  LsmWindow out;
+  out.window = window;
+  out.cx = window.x + (window.width - 1) / 2.0;
+  out.cy = window.y + (window.height - 1) / 2.0;
+  double sxx = 0, syy = 0, sum = 0, sum2 = 0;
+  for (int r = 0; r < window.height; r += step) {
+    for (int c = 0; c < window.width; c += step) {
+      const Observation o{static_cast<float>(window.x + c - out.cx),
+                          static_cast<float>(window.y + r - out.cy), bg.at<float>(r, c),
+                          gx.at<float>(r + 1, c + 1), gy.at<float>(r + 1, c + 1)};
+      sxx += o.gx * o.gx;
+      syy += o.gy * o.gy;
+      sum += o.background;
+      sum2 += o.background * o.background;
+      out.observations.push_back(o);
+    }
+  }
+  const double n = std::max<double>(1, static_cast<double>(out.observations.size()));
+  out.textured = std::min(sxx, syy) / n >= kMinStructure;
+  out.varied = sum2 / n - (sum / n) * (sum / n) >= kMinVariance;
+  out.background_mean = sum / n;
+  return out;
+}
+
+}  // namespace detail
+
+int pixel_step_for(cv::Rect window, const LsmOptions& options) {
+  const double per_observation = window.area() / std::max(1.0, double(options.max_observations));
+  return std::max({1, options.pixel_step, static_cast<int>(std::ceil(std::sqrt(per_observation)))});
+}
+
 LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv::Rect window,
                              const cv::Mat& exclude, const LsmOptions& options) {
   check_inputs(background, frame, window, exclude);
-  bool textured = false, varied = false;
-  const std::vector<Observation> obs = observations_of(
-      background, window, exclude, std::max(1, options.pixel_step), textured, varied);
+  return detail::solve_window(
+      detail::observe_window(background, window, pixel_step_for(window, options)), frame, exclude,
+      options);
+}
+
+namespace detail {
+
+LsmWindowResult solve_window(const LsmWindow& observed, const cv::Mat& frame,
+                             const cv::Mat& exclude, const LsmOptions& options) {
+  const cv::Rect window = observed.window;
+  const double cx = observed.cx, cy = observed.cy;
+  // The last frame's foreground does not observe.
+  std::vector<Observation> kept;
+  if (!exclude.empty()) {
+    kept.reserve(observed.observations.size());
+    for (const Observation& o : observed.observations) {
+      const int x = static_cast<int>(std::lround(cx + o.u)),
+                y = static_cast<int>(std::lround(cy + o.v));
+      if (exclude.at<uchar>(y, x) == 0) kept.push_back(o);
+    }
+  }
+  const std::vector<Observation>& obs = exclude.empty() ? observed.observations : kept;
   LsmWindowResult result;
-  result.geometry_estimated = options.estimate_geometry && textured;
+  result.background_mean = observed.background_mean;
+  result.geometry_estimated = options.estimate_geometry && observed.textured;
   std::array<bool, kParameters> active{};
   for (int a = 0; a < 6; ++a) active[a] = result.geometry_estimated;
   active[kOffset] = true;
-  active[kGain] = varied;
+  active[kGain] = observed.varied;
   const int unknowns = static_cast<int>(std::count(active.begin(), active.end(), true));
   if (static_cast<int>(obs.size()) < 2 * unknowns + 8) return result;
 
-  const double cx = window.x + (window.width - 1) / 2.0, cy = window.y + (window.height - 1) / 2.0;
   std::array<double, kParameters> p{0, 1, 0, 0, 0, 1, initial_offset(obs, frame, cx, cy), 1};
   const double half_w = window.width / 2.0, half_h = window.height / 2.0;
   bool converged = false;
+  Workspace ws;
   Iteration it;
   Matrix8 inverse;
   for (result.iterations = 1; result.iterations <= options.max_iterations; ++result.iterations) {
-    it = accumulate(obs, frame, p, cx, cy, options.tukey_c);
+    it = accumulate(obs, frame, p, cx, cy, options.tukey_c, active, false, ws);
     cv::Vec<double, kParameters> step;
     if (it.observations < 2 * unknowns + 8 || !solve_active(it, active, step, inverse))
       return result;
@@ -234,7 +267,7 @@ LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv
   // understates the scatter (by ~40 % in the test); the sandwich
   // n / (n - u) (A'WA)^-1 (sum (w v)^2 a a') (A'WA)^-1 matches it. sigma0 is the residuals'
   // robust scale (the weighted sum of squares understates it too).
-  it = accumulate(obs, frame, p, cx, cy, options.tukey_c);
+  it = accumulate(obs, frame, p, cx, cy, options.tukey_c, active, true, ws);
   cv::Vec<double, kParameters> unused;
   if (it.observations <= unknowns || !solve_active(it, active, unused, inverse)) return result;
   result.sigma0 = it.scale;
@@ -246,12 +279,11 @@ LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv
   result.offset = p[kOffset];
   result.gain = p[kGain];
   result.observations = it.observations;
-  double sum = 0;
-  for (const Observation& o : obs) sum += o.background;
-  result.background_mean = sum / static_cast<double>(obs.size());
   result.valid = converged && std::isfinite(result.gain) && result.gain > 0;
   return result;
 }
+
+}  // namespace detail
 
 RadiometricCorrection::RadiometricCorrection(cv::Mat background, RadiometricOptions options)
     : background_(std::move(background)), options_(options) {
@@ -262,6 +294,18 @@ RadiometricCorrection::RadiometricCorrection(cv::Mat background, RadiometricOpti
     throw std::invalid_argument("RadiometricCorrection: the grid's cells must be >= 16 px");
   gain_grid_.create(options_.grid_rows, options_.grid_columns, CV_32F);
   offset_grid_.create(options_.grid_rows, options_.grid_columns, CV_32F);
+  background_changed();
+}
+
+void RadiometricCorrection::background_changed() {
+  observed_.clear();
+  for (int r = 0; r < options_.grid_rows; ++r) {
+    for (int c = 0; c < options_.grid_columns; ++c) {
+      const cv::Rect window = window_of(r, c);
+      observed_.push_back(
+          detail::observe_window(background_, window, pixel_step_for(window, options_.lsm)));
+    }
+  }
 }
 
 // The median gain over the valid windows with the offset of the same window (a consistent line,
@@ -313,7 +357,7 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
     for (int c = 0; c < options_.grid_columns; ++c) {
       const cv::Rect window = window_of(r, c);
       LsmWindowResult w = match_window(background_, frame, window, exclude, options_.lsm);
-      const int step = std::max(1, options_.lsm.pixel_step);
+      const int step = pixel_step_for(window, options_.lsm);
       const double possible =
           std::ceil(window.width / double(step)) * std::ceil(window.height / double(step));
       w.valid = w.valid && w.observations >= options_.min_observed_share * possible;
@@ -342,15 +386,33 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
           static_cast<float>(w.valid ? w.offset : summary_.median_offset);
     }
   }
-  cv::resize(gain_grid_, gain_map_, frame.size(), 0, 0, cv::INTER_LINEAR);
-  cv::resize(offset_grid_, offset_map_, frame.size(), 0, 0, cv::INTER_LINEAR);
+  // Bilinear between the cells' centres (clamped at the border), as cv::resize of the grid would
+  // give, without frame-sized maps: the grid is first spread along x (one row per grid row),
+  // then each image row blends the two nearest.
+  cv::resize(gain_grid_, gain_rows_, cv::Size(frame.cols, options_.grid_rows), 0, 0,
+             cv::INTER_LINEAR);
+  cv::resize(offset_grid_, offset_rows_, cv::Size(frame.cols, options_.grid_rows), 0, 0,
+             cv::INTER_LINEAR);
   corrected_.create(frame.size(), CV_8UC1);
+  row_.create(1, frame.cols, CV_32F);
+  const double cell = double(frame.rows) / options_.grid_rows;
   for (int y = 0; y < frame.rows; ++y) {
+    const double at = std::clamp((y + 0.5) / cell - 0.5, 0.0, options_.grid_rows - 1.0);
+    const int r0 = std::min(static_cast<int>(at), options_.grid_rows - 1);
+    const int r1 = std::min(r0 + 1, options_.grid_rows - 1);
+    const float t = static_cast<float>(at - r0);
+    const float* g0 = gain_rows_.ptr<float>(r0);
+    const float* g1 = gain_rows_.ptr<float>(r1);
+    const float* o0 = offset_rows_.ptr<float>(r0);
+    const float* o1 = offset_rows_.ptr<float>(r1);
     const uchar* in = frame.ptr<uchar>(y);
-    const float* g = gain_map_.ptr<float>(y);
-    const float* o = offset_map_.ptr<float>(y);
-    uchar* out = corrected_.ptr<uchar>(y);
-    for (int x = 0; x < frame.cols; ++x) out[x] = cv::saturate_cast<uchar>(o[x] + g[x] * in[x]);
+    float* __restrict value = row_.ptr<float>();
+    for (int x = 0; x < frame.cols; ++x) {  // vectorised; OpenCV rounds and saturates below
+      const float g = g0[x] + t * (g1[x] - g0[x]);
+      const float o = o0[x] + t * (o1[x] - o0[x]);
+      value[x] = o + g * static_cast<float>(in[x]);
+    }
+    row_.convertTo(corrected_.row(y), CV_8U);
   }
   return corrected_;
 }

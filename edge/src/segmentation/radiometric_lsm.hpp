@@ -30,7 +30,12 @@ struct LsmOptions {
   // Tukey's biweight constant in units of the residuals' robust scale (1.4826 MAD): residuals
   // beyond it (the person, its shadow) get weight 0.
   double tukey_c = 4.685;
-  int pixel_step = 2;  // every pixel_step-th row and column of the window observes
+  // Every pixel_step-th row and column of the window observes (from 2 on, neighbouring
+  // observations share no pixel of the bilinear resampling, so their errors are independent)...
+  int pixel_step = 2;
+  // ...and more sparsely in a large window, so that at most about this many observe: the cost
+  // is per observation and iteration, and ~1000 pixels fix a gain to ~1e-3.
+  int max_observations = 1024;
 };
 
 // The estimate of one window, eq 5.20.
@@ -47,11 +52,41 @@ struct LsmWindowResult {
   bool valid = false;  // converged with enough observations
 };
 
+namespace detail {
+
+// One observing pixel of a window: its place relative to the window's centre, the background's
+// value and the background's gradient there.
+struct LsmObservation {
+  float u, v;
+  float background;
+  float gx, gy;
+};
+
+// A window's observing pixels and what its background can estimate; depends on the background
+// only, so a correction keeps it from frame to frame.
+struct LsmWindow {
+  cv::Rect window;
+  double cx = 0, cy = 0;  // the centre, image pixels
+  std::vector<LsmObservation> observations;
+  bool textured = false;  // enough gradient in both directions to locate the geometry
+  bool varied = false;    // enough spread of grey values to tell gain from offset
+  double background_mean = 0;
+};
+
+LsmWindow observe_window(const cv::Mat& background, cv::Rect window, int step);
+LsmWindowResult solve_window(const LsmWindow& observed, const cv::Mat& frame,
+                             const cv::Mat& exclude, const LsmOptions& options);
+
+}  // namespace detail
+
 // Matches `frame` (CV_8UC1) to `background` (CV_8UC1 or CV_32FC1, the same size) in `window`.
 // Pixels where `exclude` (CV_8UC1, optional) is non-zero do not observe (the last frame's
 // foreground). Throws std::invalid_argument on mismatched images or a window outside them.
 LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv::Rect window,
                              const cv::Mat& exclude = {}, const LsmOptions& options = {});
+
+// The step between observing rows and columns match_window takes in `window`.
+int pixel_step_for(cv::Rect window, const LsmOptions& options);
 
 struct RadiometricOptions {
   int grid_columns = 4;  // windows across the frame (each the centre part of one grid cell)
@@ -88,6 +123,10 @@ class RadiometricCorrection {
   // The returned image is reused by the next call.
   const cv::Mat& correct(const cv::Mat& frame, const cv::Mat& exclude = {});
 
+  // To be called when the background's pixels changed (the slow update of the model): the
+  // windows' observations are kept between frames.
+  void background_changed();
+
   const RadiometricSummary& summary() const { return summary_; }
   // The windows' estimates of the last call, row by row.
   const std::vector<LsmWindowResult>& windows() const { return windows_; }
@@ -98,10 +137,12 @@ class RadiometricCorrection {
 
   cv::Mat background_;
   RadiometricOptions options_;
+  std::vector<detail::LsmWindow> observed_;  // per window, row by row
   std::vector<LsmWindowResult> windows_;
   RadiometricSummary summary_;
   cv::Mat gain_grid_, offset_grid_;  // CV_32FC1 grid_rows x grid_columns
-  cv::Mat gain_map_, offset_map_;    // CV_32FC1 frame-sized
+  cv::Mat gain_rows_, offset_rows_;  // CV_32FC1 grid_rows x frame width: the grid along x
+  cv::Mat row_;                      // CV_32FC1, one corrected row before rounding
   cv::Mat corrected_;
 };
 

@@ -285,8 +285,8 @@ TEST(MediPicture, CommonRatioTestEqualsItsDefinitionPixelByPixel) {
       options.min_shadow_ratio = 0.0f;  // the definition has no lower bound
       MediPictureOptions bounded = options;
       bounded.min_shadow_ratio = 0.6f;
-      ASSERT_EQ(cv::countNonZero(common_ratio_shadow_pixels(model, frame, candidates, 0.5f, bounded)),
-                0);
+      ASSERT_EQ(
+          cv::countNonZero(common_ratio_shadow_pixels(model, frame, candidates, 0.5f, bounded)), 0);
       for (const float r : {ratio, 0.5f, 0.93f}) {
         const cv::Mat shadow = common_ratio_shadow_pixels(model, frame, candidates, r, options);
         ASSERT_EQ(cv::countNonZero(shadow != plain_shadow(model, frame, candidates, r, 3.0f)), 0)

@@ -93,7 +93,8 @@ TEST(RadiometricLsm, PredictedSigmasMatchTheScatterOfRepeatedEstimates) {
   const LsmOptions options;
   for (int t = 0; t < kTrials; ++t) {
     const cv::Mat frame = smooth_scene({160, 120}, 0.9, 8, 0.25, 0.0, 3.0, rng);
-    const LsmWindowResult r = match_window(background, frame, cv::Rect(48, 36, 64, 48), {}, options);
+    const LsmWindowResult r =
+        match_window(background, frame, cv::Rect(48, 36, 64, 48), {}, options);
     ASSERT_TRUE(r.valid);
     gains.push_back(r.gain);
     shifts.push_back(r.affine[0]);
