@@ -97,10 +97,16 @@ Iteration accumulate(const std::vector<Observation>& obs, const cv::Mat& frame,
   ws.residuals.assign(obs.size(), std::nan(""));
   ws.resampled.assign(obs.size(), 0.0);
   ws.absolute.clear();
+  const bool geometry = active[0];
   for (std::size_t i = 0; i < obs.size(); ++i) {
-    const cv::Point2d at = transformed(p, obs[i], cx, cy);
-    if (at.x < 0 || at.y < 0 || at.x >= frame.cols - 1 || at.y >= frame.rows - 1) continue;
-    ws.resampled[i] = bilinear(frame, at.x, at.y);
+    if (!geometry) {  // the identity: the observation's own pixel, no resampling
+      ws.resampled[i] = frame.at<uchar>(static_cast<int>(std::lround(cy + obs[i].v)),
+                                        static_cast<int>(std::lround(cx + obs[i].u)));
+    } else {
+      const cv::Point2d at = transformed(p, obs[i], cx, cy);
+      if (at.x < 0 || at.y < 0 || at.x >= frame.cols - 1 || at.y >= frame.rows - 1) continue;
+      ws.resampled[i] = bilinear(frame, at.x, at.y);
+    }
     ws.residuals[i] = obs[i].background - (p[kOffset] + p[kGain] * ws.resampled[i]);
     ws.absolute.push_back(std::abs(ws.residuals[i]));
   }

@@ -85,13 +85,25 @@ LsmWindowResult solve_window(const LsmWindow& observed, const cv::Mat& frame,
 LsmWindowResult match_window(const cv::Mat& background, const cv::Mat& frame, cv::Rect window,
                              const cv::Mat& exclude = {}, const LsmOptions& options = {});
 
+// Gain and offset only, from at most ~256 pixels a window (two unknowns: the gain to ~2e-3 at
+// 2 DN of noise).
+inline LsmOptions radiometric_only() {
+  LsmOptions options;
+  options.estimate_geometry = false;
+  options.max_observations = 256;
+  return options;
+}
+
 // The step between observing rows and columns match_window takes in `window`.
 int pixel_step_for(cv::Rect window, const LsmOptions& options);
 
 struct RadiometricOptions {
   int grid_columns = 4;  // windows across the frame (each the centre part of one grid cell)
   int grid_rows = 3;
-  LsmOptions lsm;
+  // Gain and offset only: the correction does not apply a shift (a capture room's cameras are
+  // fixed), and the six geometric parameters cost ~4x the time per frame (more unknowns, more
+  // iterations). Set lsm.estimate_geometry to have the windows' shifts reported in the summary.
+  LsmOptions lsm = radiometric_only();
   // A window observed by fewer than this share of its pixels (the rest excluded or outliers)
   // takes its gain and offset from the valid windows (their median).
   double min_observed_share = 0.3;
