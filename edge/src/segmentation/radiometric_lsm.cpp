@@ -314,6 +314,26 @@ void RadiometricCorrection::background_changed() {
   }
 }
 
+// Row y of the corrected frame: gain and offset blended between the two nearest grid rows.
+void RadiometricCorrection::correct_row(const cv::Mat& frame, int y, double cell, cv::Mat& buffer) {
+  const double at = std::clamp((y + 0.5) / cell - 0.5, 0.0, options_.grid_rows - 1.0);
+  const int r0 = std::min(static_cast<int>(at), options_.grid_rows - 1);
+  const int r1 = std::min(r0 + 1, options_.grid_rows - 1);
+  const float t = static_cast<float>(at - r0);
+  const float* g0 = gain_rows_.ptr<float>(r0);
+  const float* g1 = gain_rows_.ptr<float>(r1);
+  const float* o0 = offset_rows_.ptr<float>(r0);
+  const float* o1 = offset_rows_.ptr<float>(r1);
+  const uchar* in = frame.ptr<uchar>(y);
+  float* __restrict value = buffer.ptr<float>();
+  for (int x = 0; x < frame.cols; ++x) {  // vectorised; OpenCV rounds and saturates below
+    const float g = g0[x] + t * (g1[x] - g0[x]);
+    const float o = o0[x] + t * (o1[x] - o0[x]);
+    value[x] = o + g * static_cast<float>(in[x]);
+  }
+  buffer.convertTo(corrected_.row(y), CV_8U);
+}
+
 // The median gain over the valid windows with the offset of the same window (a consistent line,
 // not the gain of one window and the offset of another), and the other figures of the summary.
 void RadiometricCorrection::summarise_valid_windows() {
@@ -400,26 +420,18 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
   cv::resize(offset_grid_, offset_rows_, cv::Size(frame.cols, options_.grid_rows), 0, 0,
              cv::INTER_LINEAR);
   corrected_.create(frame.size(), CV_8UC1);
-  row_.create(1, frame.cols, CV_32F);
+  // Rows split over OpenCV's threads like the classification pass; each stripe its own buffer.
+  const int stripes = std::clamp(4 * cv::getNumThreads(), 1, frame.rows);
+  rows_.create(stripes, frame.cols, CV_32F);
   const double cell = double(frame.rows) / options_.grid_rows;
-  for (int y = 0; y < frame.rows; ++y) {
-    const double at = std::clamp((y + 0.5) / cell - 0.5, 0.0, options_.grid_rows - 1.0);
-    const int r0 = std::min(static_cast<int>(at), options_.grid_rows - 1);
-    const int r1 = std::min(r0 + 1, options_.grid_rows - 1);
-    const float t = static_cast<float>(at - r0);
-    const float* g0 = gain_rows_.ptr<float>(r0);
-    const float* g1 = gain_rows_.ptr<float>(r1);
-    const float* o0 = offset_rows_.ptr<float>(r0);
-    const float* o1 = offset_rows_.ptr<float>(r1);
-    const uchar* in = frame.ptr<uchar>(y);
-    float* __restrict value = row_.ptr<float>();
-    for (int x = 0; x < frame.cols; ++x) {  // vectorised; OpenCV rounds and saturates below
-      const float g = g0[x] + t * (g1[x] - g0[x]);
-      const float o = o0[x] + t * (o1[x] - o0[x]);
-      value[x] = o + g * static_cast<float>(in[x]);
+  cv::parallel_for_(cv::Range(0, stripes), [&](const cv::Range& range) {
+    for (int s = range.start; s < range.end; ++s) {
+      cv::Mat buffer = rows_.row(s);
+      for (int y = frame.rows * s / stripes; y < frame.rows * (s + 1) / stripes; ++y) {
+        correct_row(frame, y, cell, buffer);
+      }
     }
-    row_.convertTo(corrected_.row(y), CV_8U);
-  }
+  });
   return corrected_;
 }
 

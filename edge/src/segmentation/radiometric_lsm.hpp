@@ -146,6 +146,7 @@ class RadiometricCorrection {
  private:
   cv::Rect window_of(int row, int column) const;
   void summarise_valid_windows();
+  void correct_row(const cv::Mat& frame, int y, double cell, cv::Mat& buffer);
 
   cv::Mat background_;
   RadiometricOptions options_;
@@ -154,7 +155,7 @@ class RadiometricCorrection {
   RadiometricSummary summary_;
   cv::Mat gain_grid_, offset_grid_;  // CV_32FC1 grid_rows x grid_columns
   cv::Mat gain_rows_, offset_rows_;  // CV_32FC1 grid_rows x frame width: the grid along x
-  cv::Mat row_;                      // CV_32FC1, one corrected row before rounding
+  cv::Mat rows_;  // CV_32FC1, per stripe of rows one corrected row before rounding
   cv::Mat corrected_;
 };
 
