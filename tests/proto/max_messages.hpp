@@ -127,6 +127,9 @@ inline clip_polygon_t max_clip_polygon() {
   clip_polygon_t c{};
   c.camera_id = 99;
   c.sequence = (int64_t{1} << 50) + 3;
+  c.region = clip_polygon_t::REGION_SEARCH;
+  c.frame_number = (int64_t{1} << 40) + 7;
+  c.valid_frames = 30;
   c.image_width = 1280;
   c.image_height = 1024;
   c.num_points = clip_polygon_t::MAX_POINTS;

@@ -81,11 +81,14 @@ TEST(MessageBudget, EdgeCommandFitsAndRoundTrips) {
 
 TEST(MessageBudget, ClipPolygonWithMostPointsFitsAndRoundTrips) {
   const clip_polygon_t clip = test::max_clip_polygon();
-  expect_fits_and_round_trips(clip, 8 + 64 + 4 * clip_polygon_t::MAX_POINTS);
-  EXPECT_EQ(8 + 16 + 4 * clip_polygon_t::MAX_POINTS, 1048);  // as documented in the .lcm file
+  expect_fits_and_round_trips(clip, 8 + 75 + 4 * clip_polygon_t::MAX_POINTS);
+  EXPECT_EQ(8 + 75 + 4 * clip_polygon_t::MAX_POINTS, 1107);  // as documented in the .lcm file
   const clip_polygon_t back = decode<clip_polygon_t>(encode(clip));
   EXPECT_EQ(back.x, clip.x);
   EXPECT_EQ(back.y, clip.y);
+  EXPECT_EQ(back.region, clip_polygon_t::REGION_SEARCH);
+  EXPECT_EQ(back.frame_number, clip.frame_number);
+  EXPECT_EQ(back.valid_frames, clip.valid_frames);
 }
 
 TEST(MessageBudget, HullFrameIsItsDocumentedFixedSize) {

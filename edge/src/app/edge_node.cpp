@@ -264,10 +264,21 @@ void EdgeNode::on_clip(const clip_polygon_t& clip) {
                " sensor (0, or at least 3, and a sensor size)");
     return;
   }
+  if (clip.region < clip_polygon_t::REGION_CLIP || clip.region > clip_polygon_t::REGION_SEARCH ||
+      (clip.region == clip_polygon_t::REGION_SEARCH && clip.num_points > 0 &&
+       clip.valid_frames < 1)) {
+    note_error("clip polygon " + std::to_string(clip.sequence) + " refused: region " +
+               std::to_string(clip.region) + " with valid_frames " +
+               std::to_string(clip.valid_frames) +
+               " (0 clip, 1 floor, 2 search with valid_frames >= 1)");
+    return;
+  }
   if (!silhouettes_) return;  // blobs only: nothing to clip
   std::vector<cv::Point> polygon;
   for (std::size_t i = 0; i < points; ++i) polygon.emplace_back(clip.x[i], clip.y[i]);
-  silhouettes_->set_clip_polygon(std::move(polygon), {clip.image_width, clip.image_height});
+  silhouettes_->set_region(static_cast<SilhouetteStage::Region>(clip.region), std::move(polygon),
+                           {clip.image_width, clip.image_height}, clip.frame_number,
+                           clip.valid_frames);
 }
 
 void EdgeNode::follow_windows(cv::Size sensor) {

@@ -43,7 +43,7 @@ void SilhouetteStage::finish_training() {
   } else if (training_.size() >= 2) {
     model_.emplace(train_medi_picture(training_, options_), options_);
     paused_.clear();
-    clip_pending_ = !clip_.empty();
+    for (RegionState& r : regions_) r.applied.clear();  // a new model has none
   } else {
     paused_ = "training failed: " + std::to_string(training_.size()) + " frame(s) of " +
               std::to_string(training_from_) + ".." +
@@ -60,7 +60,7 @@ void SilhouetteStage::collect_trained_model() {
   if (!ready && model_) return;
   model_.emplace(training_result_.get(), options_);
   paused_.clear();
-  clip_pending_ = !clip_.empty();
+  for (RegionState& r : regions_) r.applied.clear();  // a new model has none
 }
 
 std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, int camera_id,
@@ -90,7 +90,7 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
     return {};
   }
   paused_.clear();
-  apply_clip(origin, sensor_size.empty() ? image.size() : sensor_size);
+  apply_regions(origin, sensor_size.empty() ? image.size() : sensor_size, frame_number);
   const cv::Mat mask = model_->apply(image);
   auto contours = silhouette_contours(mask, tolerance_px_);
   for (proto::Contour& contour : contours) {
@@ -100,28 +100,36 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
   return proto::encode_silhouette(camera_id, frame_number, size.width, size.height, contours);
 }
 
-void SilhouetteStage::set_clip_polygon(std::vector<cv::Point> sensor_polygon,
-                                       cv::Size sensor_size) {
-  clip_ = std::move(sensor_polygon);
-  clip_sensor_ = sensor_size;
-  clip_pending_ = true;
-  clip_note_.clear();
+void SilhouetteStage::set_region(Region kind, std::vector<cv::Point> sensor_polygon,
+                                 cv::Size sensor_size, int64_t first_frame, int frames) {
+  RegionState& r = regions_[static_cast<std::size_t>(kind)];
+  r.polygon = std::move(sensor_polygon);
+  r.sensor = sensor_size;
+  r.first_frame = first_frame;
+  r.frames = frames;
+  r.note.clear();
 }
 
-void SilhouetteStage::apply_clip(cv::Point origin, cv::Size sensor_size) {
-  if (!clip_pending_ && origin == clip_origin_) return;
-  if (!clip_.empty() && clip_sensor_ != sensor_size) {
-    clip_note_ = "clip polygon for a " + size_text(clip_sensor_) + " sensor, this one is " +
-                 size_text(sensor_size) + ": not applied";
-    model_->set_clip_polygon({});
-  } else {
-    std::vector<cv::Point> shifted = clip_;
-    for (cv::Point& p : shifted) p -= origin;
-    model_->set_clip_polygon(std::move(shifted));
-    clip_note_.clear();
+void SilhouetteStage::apply_regions(cv::Point origin, cv::Size sensor_size, int64_t frame_number) {
+  static constexpr const char* kNames[] = {"clip polygon", "floor polygon", "search region"};
+  for (std::size_t kind = 0; kind < regions_.size(); ++kind) {
+    RegionState& r = regions_[kind];
+    std::vector<cv::Point> wanted;
+    const bool current = kind != static_cast<std::size_t>(Region::kSearch) ||
+                         (frame_number >= r.first_frame && frame_number < r.first_frame + r.frames);
+    if (!r.polygon.empty() && r.sensor != sensor_size) {
+      r.note = std::string(kNames[kind]) + " for a " + size_text(r.sensor) +
+               " sensor, this one is " + size_text(sensor_size) + ": not applied";
+    } else if (current) {
+      wanted = r.polygon;
+      for (cv::Point& p : wanted) p -= origin;
+    }
+    if (wanted == r.applied) continue;
+    if (kind == static_cast<std::size_t>(Region::kClip)) model_->set_clip_polygon(wanted);
+    if (kind == static_cast<std::size_t>(Region::kFloor)) model_->set_floor_polygon(wanted);
+    if (kind == static_cast<std::size_t>(Region::kSearch)) model_->set_search_region(wanted);
+    r.applied = std::move(wanted);
   }
-  clip_pending_ = false;
-  clip_origin_ = origin;
 }
 
 std::string SilhouetteStage::state() const {
@@ -135,8 +143,15 @@ std::string SilhouetteStage::state() const {
   }
   if (!paused_.empty()) return paused_;
   if (!model_) return "no background model";
-  if (!clip_note_.empty()) return "masking; " + clip_note_;
-  return clip_.empty() ? "masking" : "masking inside the clip polygon";
+  std::string state = "masking";
+  for (const RegionState& r : regions_) {
+    if (!r.note.empty()) return state + "; " + r.note;
+  }
+  const auto& [clip, floor, search] = regions_;
+  if (!clip.applied.empty()) state += " inside the clip polygon";
+  if (!floor.applied.empty()) state += ", shadows on the floor only";
+  if (!search.applied.empty()) state += ", in the tracked body's search region";
+  return state;
 }
 
 }  // namespace syncap::edge

@@ -4,6 +4,7 @@
 // silhouette_part_t messages.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <future>
 #include <optional>
@@ -39,10 +40,18 @@ class SilhouetteStage {
   // sensor position of image(0, 0), in a sensor of `sensor_size` (empty: the image's).
   std::vector<silhouette_part_t> process(const cv::Mat& image, int camera_id, int64_t frame_number,
                                          cv::Point origin = {}, cv::Size sensor_size = {});
-  // The host's clip polygon (clip_polygon_t): sensor pixels of a sensor of `sensor_size`; pixels
-  // outside it are background from the next frame on. Empty: no clip. A polygon for another
-  // sensor size is not applied (state() says so).
-  void set_clip_polygon(std::vector<cv::Point> sensor_polygon, cv::Size sensor_size);
+  // The host's regions (clip_polygon_t, docs/segmentation.md "Regions from the host").
+  enum class Region { kClip = 0, kFloor = 1, kSearch = 2 };
+  // Replaces the region of a kind: sensor pixels of a sensor of `sensor_size`, applied from the
+  // next frame on; an empty polygon removes it. A kSearch region applies to the frames
+  // first_frame .. first_frame + frames - 1 only. A polygon for another sensor size is not
+  // applied (state() says so).
+  void set_region(Region kind, std::vector<cv::Point> sensor_polygon, cv::Size sensor_size,
+                  int64_t first_frame = 0, int frames = 0);
+  // The clip polygon: pixels outside it are background.
+  void set_clip_polygon(std::vector<cv::Point> sensor_polygon, cv::Size sensor_size) {
+    set_region(Region::kClip, std::move(sensor_polygon), sensor_size);
+  }
   // "no background model", "training background 12/60", "waiting for frame 40 to train",
   // "masking" or why masking is paused, with the clip's state.
   std::string state() const;
@@ -53,8 +62,18 @@ class SilhouetteStage {
   // Takes the model the training thread computed: once it is ready, or at once (waiting for it)
   // when there is no model to mask with meanwhile.
   void collect_trained_model();
-  // Hands the clip polygon to the model, shifted into the frame's window.
-  void apply_clip(cv::Point origin, cv::Size sensor_size);
+  // Hands the regions to the model, shifted into the frame's window, when they changed (a new
+  // region, a new model or window, a search region starting or expiring).
+  void apply_regions(cv::Point origin, cv::Size sensor_size, int64_t frame_number);
+
+  struct RegionState {
+    std::vector<cv::Point> polygon;  // sensor pixels
+    cv::Size sensor;                 // the sensor size it refers to
+    int64_t first_frame = 0;         // kSearch: the frames it applies to
+    int frames = 0;
+    std::vector<cv::Point> applied;  // what the model has, in the frame's window
+    std::string note;                // why it is not applied
+  };
 
   double tolerance_px_;
   MediPictureOptions options_;
@@ -65,11 +84,7 @@ class SilhouetteStage {
   bool train_in_background_;
   std::future<MediPictureModel> training_result_;  // valid while the thread computes
   std::string paused_;                             // why the last frame was not masked
-  std::vector<cv::Point> clip_;                    // sensor pixels
-  cv::Size clip_sensor_;                           // the sensor size the clip refers to
-  bool clip_pending_ = false;  // not yet given to the model (new clip, new model or window)
-  cv::Point clip_origin_;      // the window origin the model's clip was shifted by
-  std::string clip_note_;      // why the clip is not applied
+  std::array<RegionState, 3> regions_;             // by Region
 };
 
 }  // namespace syncap::edge

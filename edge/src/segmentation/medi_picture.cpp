@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -489,18 +490,53 @@ MediPicture::MediPicture(const MediPictureModel& model, MediPictureOptions optio
   model_ = {model.median.clone(), model.sigma.clone(), model.minimum.clone(), model.maximum.clone(),
             model.max_difference.clone()};
   set_clip_polygon(options_.clip_polygon);
+  set_floor_polygon(options_.floor_polygon);
+  set_search_region(options_.search_polygon);
   derive_thresholds();
   if (options_.correct_illumination) {
     illumination_ = std::make_unique<RadiometricCorrection>(background_, options_.illumination);
   }
 }
 
+namespace {
+
+// 255 inside `polygon` on an image of `size`; empty when the polygon is.
+cv::Mat polygon_mask(const std::vector<cv::Point>& polygon, cv::Size size) {
+  if (polygon.empty()) return {};
+  cv::Mat inside = cv::Mat::zeros(size, CV_8UC1);
+  cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
+  return inside;
+}
+
+}  // namespace
+
 void MediPicture::set_clip_polygon(std::vector<cv::Point> polygon) {
   options_.clip_polygon = std::move(polygon);
-  clip_.release();
-  if (options_.clip_polygon.empty()) return;
-  clip_ = cv::Mat::zeros(model_.median.size(), CV_8UC1);
-  cv::fillPoly(clip_, std::vector<std::vector<cv::Point>>{options_.clip_polygon}, cv::Scalar(255));
+  clip_ = polygon_mask(options_.clip_polygon, model_.median.size());
+  combine_regions();
+}
+
+void MediPicture::set_floor_polygon(std::vector<cv::Point> polygon) {
+  options_.floor_polygon = std::move(polygon);
+  floor_ = polygon_mask(options_.floor_polygon, model_.median.size());
+}
+
+void MediPicture::set_search_region(std::vector<cv::Point> polygon) {
+  options_.search_polygon = std::move(polygon);
+  search_ = polygon_mask(options_.search_polygon, model_.median.size());
+  const cv::Rect image(cv::Point(), model_.median.size());
+  search_box_ = search_.empty() ? image : (cv::boundingRect(options_.search_polygon) & image);
+  combine_regions();
+}
+
+// Where pixels may be foreground: inside the clip polygon and the search region (either may be
+// absent: the whole image).
+void MediPicture::combine_regions() {
+  if (clip_.empty() || search_.empty()) {
+    allowed_ = clip_.empty() ? search_ : clip_;
+  } else {
+    cv::bitwise_and(clip_, search_, allowed_);
+  }
 }
 
 void MediPicture::derive_thresholds() {
@@ -542,16 +578,27 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   column_below_.assign(static_cast<std::size_t>(stripes) * cols_size, 0);
   column_any_.assign(static_cast<std::size_t>(stripes) * cols_size, 0);
   const uchar below_value = options_.remove_shadows ? kBelow : 255;
-  const bool clipped = !clip_.empty();
+  const bool clipped = !allowed_.empty();
+  // Only the search region's bounding box is classified; the rest of the mask is background.
+  const cv::Rect box = search_box_.empty() ? cv::Rect() : search_box_;
+  const bool whole = box.width == cols;
   cv::parallel_for_(cv::Range(0, stripes), [&](const cv::Range& range) {
     for (int s = range.start; s < range.end; ++s) {
       uchar* column_below = column_below_.data() + static_cast<std::size_t>(s) * cols_size;
       uchar* column_any = column_any_.data() + static_cast<std::size_t>(s) * cols_size;
       for (int y = rows * s / stripes; y < rows * (s + 1) / stripes; ++y) {
+        uchar* out = mask.ptr<uchar>(y);
+        if (y < box.y || y >= box.y + box.height) {
+          std::memset(out, 0, cols_size);
+          row_below_[static_cast<std::size_t>(y)] = row_any_[static_cast<std::size_t>(y)] = 0;
+          continue;
+        }
+        if (!whole) std::memset(out, 0, cols_size);
+        const int x = box.x;
         const int found =
-            classify_row(frame.ptr<uchar>(y), lower_.ptr<uchar>(y), upper_.ptr<uchar>(y),
-                         clipped ? clip_.ptr<uchar>(y) : nullptr, below_value, cols,
-                         mask.ptr<uchar>(y), column_below, column_any);
+            classify_row(frame.ptr<uchar>(y) + x, lower_.ptr<uchar>(y) + x,
+                         upper_.ptr<uchar>(y) + x, clipped ? allowed_.ptr<uchar>(y) + x : nullptr,
+                         below_value, box.width, out + x, column_below + x, column_any + x);
         row_below_[static_cast<std::size_t>(y)] = (found & 1) != 0 ? 1 : 0;
         row_any_[static_cast<std::size_t>(y)] = (found & 2) != 0 ? 1 : 0;
       }
@@ -560,6 +607,11 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
 
   if (options_.remove_shadows) {
     const cv::Rect below_box = flagged_box(row_below_, column_below_, cols);
+    if (!below_box.empty() && !floor_.empty()) {
+      // Off the floor nothing is shadow: candidates there are foreground at once.
+      cv::Mat inside = mask(below_box);
+      inside.setTo(255, (inside == kBelow) & ~floor_(below_box));
+    }
     if (!below_box.empty() && options_.shadow_test == ShadowTest::kCommonRatio) {
       resolve_common_ratio_shadows(frame, mask, below_box);
     } else if (!below_box.empty()) {
@@ -571,7 +623,7 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   if (options_.max_hole_area > 0 && !any_box.empty()) {
     // The bounding box of what the cleaning kept (scattered specks are gone by then).
     fill_holes_in(mask, cv::boundingRect(mask), options_.max_hole_area, packed_);
-    if (!clip_.empty()) mask &= clip_;
+    if (!allowed_.empty()) mask &= allowed_;
   }
   if (options_.update_rate > 0) update_model(frame, mask);
   return mask;
@@ -685,14 +737,15 @@ void MediPicture::clean_inside(cv::Mat& mask, cv::Rect box) {
                     centroids_);
     work_.copyTo(target);
   }
-  if (!clip_.empty()) cv::bitwise_and(target, clip_(region), target);
+  if (!allowed_.empty()) cv::bitwise_and(target, allowed_(region), target);
 }
 
 cv::Mat MediPicture::apply_whole_frame(const cv::Mat& frame) {
   cv::Mat mask = outside_interval(frame, lower_, upper_);
-  if (!clip_.empty()) mask &= clip_;
+  if (!allowed_.empty()) mask &= allowed_;
   if (options_.remove_shadows) {
-    const cv::Mat darker = mask & (frame < background_);
+    cv::Mat darker = mask & (frame < background_);
+    if (!floor_.empty()) darker &= floor_;  // off the floor nothing is shadow
     if (options_.shadow_test == ShadowTest::kCommonRatio) {
       mask.setTo(0, common_ratio_shadow_pixels(model_, frame, darker,
                                                shadow_ratio(model_, frame, darker), options_));
@@ -703,7 +756,7 @@ cv::Mat MediPicture::apply_whole_frame(const cv::Mat& frame) {
   }
   clean_mask(mask, options_.closing_diameter, options_.min_component_area);
   fill_holes(mask, options_.max_hole_area);
-  if (!clip_.empty()) mask &= clip_;
+  if (!allowed_.empty()) mask &= allowed_;
   if (options_.update_rate > 0) update_model(frame, mask);
   return mask;
 }

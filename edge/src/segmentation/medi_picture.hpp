@@ -80,6 +80,12 @@ struct MediPictureOptions {
   bool correct_illumination = true;
   RadiometricOptions illumination;
   std::vector<cv::Point> clip_polygon;  // when not empty, pixels outside it are background
+  // When not empty, only pixels inside can be shadow (thesis 5.1.3: the ground plane; the host
+  // sends the floor's polygon): a dark part of the person against a wall stays foreground.
+  std::vector<cv::Point> floor_polygon;
+  // When not empty, only pixels inside are classified (the tracked body's projection, thesis
+  // Fig 5.8); the rest is background, and the classification visits only its bounding box.
+  std::vector<cv::Point> search_polygon;
 };
 
 // The parameters of the thesis' text (k 3, the correlation shadow test of eqs 5.6-5.11 with
@@ -107,6 +113,10 @@ class MediPicture {
 
   // Replaces the clip polygon (pixels of the model's image; empty: no clip).
   void set_clip_polygon(std::vector<cv::Point> polygon);
+  // Replaces the floor polygon (MediPictureOptions::floor_polygon; empty: all is floor).
+  void set_floor_polygon(std::vector<cv::Point> polygon);
+  // Replaces the search region (MediPictureOptions::search_polygon; empty: the whole frame).
+  void set_search_region(std::vector<cv::Point> polygon);
 
   const MediPictureModel& model() const { return model_; }
   const MediPictureOptions& options() const { return options_; }
@@ -115,6 +125,7 @@ class MediPicture {
 
  private:
   void derive_thresholds();
+  void combine_regions();
   void update_model(const cv::Mat& frame, const cv::Mat& mask);
   // The steps one after the other over the whole frame (the free functions); used when the
   // options rule out the fast path.
@@ -133,6 +144,10 @@ class MediPicture {
   cv::Mat background_;         // CV_8UC1 median, the B of the NCC test
   cv::Mat background_energy_;  // CV_32FC1 window sums of B^2
   cv::Mat clip_;               // CV_8UC1 255 inside the clip polygon, empty when none
+  cv::Mat floor_;              // CV_8UC1 255 inside the floor polygon, empty when none
+  cv::Mat search_;             // CV_8UC1 255 inside the search region, empty when none
+  cv::Mat allowed_;            // clip_ and search_ combined, empty when neither
+  cv::Rect search_box_;        // the search region's bounding box, or the whole image
   // lower <= background <= upper everywhere: then the candidates of the shadow test are exactly
   // the pixels below the interval. False (odd options) selects apply_whole_frame.
   bool fast_path_ = false;

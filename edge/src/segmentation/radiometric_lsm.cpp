@@ -202,6 +202,8 @@ LsmWindow observe_window(const cv::Mat& background, cv::Rect window, int step) {
   out.textured = std::min(sxx, syy) / n >= kMinStructure;
   out.varied = sum2 / n - (sum / n) * (sum / n) >= kMinVariance;
   out.background_mean = sum / n;
+  out.background_spread =
+      std::sqrt(std::max(0.0, sum2 / n - out.background_mean * out.background_mean));
   return out;
 }
 
@@ -239,6 +241,7 @@ LsmWindowResult solve_window(const LsmWindow& observed, const cv::Mat& frame,
   const std::vector<Observation>& obs = exclude.empty() ? observed.observations : kept;
   LsmWindowResult result;
   result.background_mean = observed.background_mean;
+  result.background_spread = observed.background_spread;
   result.geometry_estimated = options.estimate_geometry && observed.textured;
   std::array<bool, kParameters> active{};
   for (int a = 0; a < 6; ++a) active[a] = result.geometry_estimated;
@@ -392,13 +395,19 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
   }
   summary_.windows = static_cast<int>(windows_.size());
   summarise_valid_windows();
-  // A window the foreground fills converges to a wrong line; it disagrees with the others.
+  // A window the foreground fills converges to a wrong line; it disagrees with the others. The
+  // lines are compared over the window's grey values (mean +- one standard deviation): at the
+  // mean alone a flat line (a uniform object over a textured floor: gain ~0) would agree.
   for (LsmWindowResult& w : windows_) {
     if (!w.valid) continue;
-    const double level = w.background_mean;
-    const double shift = w.offset + w.gain * level;
-    const double expected = summary_.median_offset + summary_.median_gain * level;
-    if (std::abs(shift - expected) > options_.max_disagreement_dn) {
+    double disagreement = 0;
+    for (const double level :
+         {w.background_mean - w.background_spread, w.background_mean + w.background_spread}) {
+      const double corrected = w.offset + w.gain * level;
+      const double expected = summary_.median_offset + summary_.median_gain * level;
+      disagreement = std::max(disagreement, std::abs(corrected - expected));
+    }
+    if (disagreement > options_.max_disagreement_dn) {
       w.valid = false;
       ++summary_.disagreeing_windows;
     }

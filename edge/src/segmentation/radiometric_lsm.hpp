@@ -46,8 +46,9 @@ struct LsmWindowResult {
   double sigma0 = 0.0;                             // a posteriori sigma of unit weight, DN
   std::array<double, 8> sigmas{};  // of a0 a1 a2 b0 b1 b2 r0 r1 (Q = sigma0^2 (A'WA)^-1)
   int iterations = 0;
-  int observations = 0;          // pixels with a non-zero weight at the end
-  double background_mean = 0.0;  // of the window's observing pixels, DN
+  int observations = 0;            // pixels with a non-zero weight at the end
+  double background_mean = 0.0;    // of the window's observing pixels, DN
+  double background_spread = 0.0;  // their standard deviation, DN
   bool geometry_estimated = false;
   bool valid = false;  // converged with enough observations
 };
@@ -71,6 +72,7 @@ struct LsmWindow {
   bool textured = false;  // enough gradient in both directions to locate the geometry
   bool varied = false;    // enough spread of grey values to tell gain from offset
   double background_mean = 0;
+  double background_spread = 0;
 };
 
 LsmWindow observe_window(const cv::Mat& background, cv::Rect window, int step);
@@ -107,9 +109,10 @@ struct RadiometricOptions {
   // A window observed by fewer than this share of its pixels (the rest excluded or outliers)
   // takes its gain and offset from the valid windows (their median).
   double min_observed_share = 0.3;
-  // A window whose correction moves its mean grey value by more than this from what the median
-  // window's correction would, DN, is taken for one the foreground fills (a person standing over
-  // the whole window matches the background with a wrong gain) and gets the median's.
+  // A window whose correction moves its grey values (mean +- one standard deviation) by more
+  // than this from what the median window's correction would, DN, is taken for one the foreground
+  // fills (a person standing over the whole window matches the background with a wrong gain) and
+  // gets the median's.
   double max_disagreement_dn = 8.0;
 };
 

@@ -192,6 +192,12 @@ void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg) {
       {"sender", msg.sender},
       {"sequence", msg.sequence},
       {"sent_realtime_ns", msg.sent_realtime_ns},
+      {"region", msg.region == clip_polygon_t::REGION_FLOOR    ? "floor"
+                 : msg.region == clip_polygon_t::REGION_SEARCH ? "search"
+                 : msg.region == clip_polygon_t::REGION_CLIP   ? "clip"
+                                                               : "unknown"},
+      {"frame_number", msg.frame_number},
+      {"valid_frames", msg.valid_frames},
       {"image_width", msg.image_width},
       {"image_height", msg.image_height},
       {"num_points", msg.num_points},

@@ -3,8 +3,8 @@
 Entity paths (docs/viewer.md lists them):
   world                                  the calibration's frame: Z up, mm
   world/cameras/NN                       a calibrated camera: Transform3D + Pinhole
-  world/cameras/NN/{blobs,silhouette,clip}   its 2D content, in its image
-  cameras/NN/{sensor,blobs,silhouette,clip}  the same for a camera without calibration
+  world/cameras/NN/{blobs,silhouette,clip,floor,search}   its 2D content, in its image
+  cameras/NN/{sensor,blobs,silhouette,clip,floor,search}  the same for a camera without calibration
   world/markers, world/markers/trails    3D markers (labels: their ids), their last frames
   world/rigid/NAME                       rigid sets' poses (JSON lines only)
   world/hull/bbox                        the visual hull's bounding box
@@ -299,12 +299,16 @@ class ViewLogger:
             level = rr.TextLogLevel.ERROR if m.state == 2 else rr.TextLogLevel.INFO
             rr.log(f"log/cameras/{m.camera_id:02d}", rr.TextLog(m.message, level=level))
 
+    # clip_polygon_t's region kinds (REGION_CLIP, REGION_FLOOR, REGION_SEARCH) as entity names.
+    REGION_NAMES = {0: "clip", 1: "floor", 2: "search"}
+
     def on_clip(self, m):
-        """The latest clip polygon a camera was sent, in its image."""
+        """The latest region of each kind a camera was sent (clip, floor, search), in its image."""
         self._at(self.last_frame)
         pts = np.stack([np.asarray(m.x, dtype=np.float32), np.asarray(m.y, dtype=np.float32)], 1)
         strips = [np.vstack([pts, pts[:1]]) + cams.PIXEL_OFFSET] if len(pts) else []
-        rr.log(f"{self.camera_path(m.camera_id)}/clip", rr.LineStrips2D(strips, colors=[RED]))
+        name = self.REGION_NAMES.get(getattr(m, "region", 0), "clip")
+        rr.log(f"{self.camera_path(m.camera_id)}/{name}", rr.LineStrips2D(strips, colors=[RED]))
 
     def on_command(self, m):
         self._at(self.last_frame)

@@ -325,6 +325,49 @@ TEST(MediPicture, CommonRatioFindsTheShadowsFactorAndSparesTheBody) {
   EXPECT_GT(cv::countNonZero(thesis(scene.shadow)), scene.shadow.area() / 10);
 }
 
+// Thesis 5.1.3: with the floor's polygon only the floor can hold a shadow. A dark part of the
+// person against the wall, darkened exactly as the shadow, is shadow by the common ratio alone
+// and stays foreground with the floor given.
+TEST(MediPicture, OffTheFloorNothingIsShadow) {
+  ShadowAndBody scene = shadow_and_body();
+  const cv::Rect wall_part(scene.body.x, 5, scene.body.width, 15);  // above the body, on the wall
+  cv::Mat frame = scene.frame.clone();
+  scene.model.median(wall_part).convertTo(frame(wall_part), CV_8U, 0.55);
+  MediPictureOptions options;
+  options.correct_illumination = false;
+  const cv::Mat everywhere = MediPicture(scene.model, options).apply(frame);
+  EXPECT_LT(cv::countNonZero(everywhere(wall_part)), wall_part.area() / 10);
+  // The floor: the image below row 30, where the shadow falls.
+  options.floor_polygon = {
+      {0, 30}, {frame.cols - 1, 30}, {frame.cols - 1, frame.rows - 1}, {0, frame.rows - 1}};
+  const cv::Mat with_floor = MediPicture(scene.model, options).apply(frame);
+  EXPECT_EQ(cv::countNonZero(with_floor(wall_part)), wall_part.area());
+  EXPECT_LT(cv::countNonZero(with_floor(scene.shadow)), scene.shadow.area() / 50);
+  EXPECT_GE(cv::countNonZero(with_floor(scene.body)), scene.body.area() * 99 / 100);
+}
+
+// Outside the search region nothing is foreground, and inside the mask is the whole frame's
+// (the region holds the body and its shadow, so the shadow's factor is found alike).
+TEST(MediPicture, SearchRegionLimitsTheClassification) {
+  const ShadowAndBody scene = shadow_and_body();
+  cv::Mat frame = scene.frame.clone();
+  const cv::Rect outside(2, 2, 6, 10);
+  frame(outside).setTo(250);  // an object outside the region
+  MediPictureOptions options;
+  const cv::Mat whole = MediPicture(scene.model, options).apply(frame).clone();
+  ASSERT_EQ(cv::countNonZero(whole(outside)), outside.area());
+  const cv::Rect around = (scene.body | scene.shadow) + cv::Point(-5, -5) + cv::Size(10, 10);
+  options.search_polygon = {
+      around.tl(), {around.br().x, around.y}, around.br(), {around.x, around.br().y}};
+  MediPicture searching(scene.model, options);
+  const cv::Mat mask = searching.apply(frame);
+  EXPECT_EQ(cv::countNonZero(mask(outside)), 0);
+  EXPECT_EQ(cv::countNonZero(mask(around) != whole(around)), 0);
+  // Removing the region classifies the whole frame again.
+  searching.set_search_region({});
+  EXPECT_EQ(cv::countNonZero(searching.apply(frame)(outside)), outside.area());
+}
+
 TEST(MediPicture, FillHolesFillsOnlySmallEnclosedHoles) {
   cv::Mat mask = cv::Mat::zeros(60, 80, CV_8UC1);
   mask(cv::Rect(10, 10, 60, 40)).setTo(255);
@@ -396,10 +439,12 @@ cv::Mat reference_apply(const MediPictureModel& model, const MediPictureOptions&
                         const cv::Mat& frame) {
   cv::Mat mask = classify_against_model(model, frame, options);
   clip_to_polygon(mask, options.clip_polygon);
+  clip_to_polygon(mask, options.search_polygon);
   if (options.remove_shadows) {
     cv::Mat background;
     model.median.convertTo(background, CV_8U);
-    const cv::Mat candidates = mask & (frame < background);
+    cv::Mat candidates = mask & (frame < background);
+    clip_to_polygon(candidates, options.floor_polygon);  // off the floor nothing is shadow
     if (options.shadow_test == ShadowTest::kCommonRatio) {
       const float ratio = shadow_ratio(model, frame, candidates);
       mask.setTo(0, common_ratio_shadow_pixels(model, frame, candidates, ratio, options));
@@ -410,6 +455,7 @@ cv::Mat reference_apply(const MediPictureModel& model, const MediPictureOptions&
   clean_mask(mask, options.closing_diameter, options.min_component_area);
   fill_holes(mask, options.max_hole_area);
   clip_to_polygon(mask, options.clip_polygon);
+  clip_to_polygon(mask, options.search_polygon);
   return mask;
 }
 
@@ -502,6 +548,19 @@ TEST(MediPicture, FastApplyMatchesTheStepByStepReference) {
   variants.back().max_hole_area = 0;
   variants.push_back(thesis_masking_options());
   variants.back().max_hole_area = 400;
+  // The host's regions: a floor for the shadow tests, a search region (with and without a clip).
+  const std::vector<cv::Point> floor{{0, 60}, {170, 50}, {170, 130}, {0, 130}};
+  const std::vector<cv::Point> search{{20, 10}, {110, 15}, {120, 110}, {30, 120}};
+  variants.push_back(defaults);
+  variants.back().floor_polygon = floor;
+  variants.push_back(thesis_masking_options());
+  variants.back().floor_polygon = floor;
+  variants.push_back(defaults);
+  variants.back().search_polygon = search;
+  variants.push_back(thesis_masking_options());
+  variants.back().search_polygon = search;
+  variants.back().clip_polygon = variants[6].clip_polygon;
+  variants.back().floor_polygon = floor;
   int foreground = 0;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     MediPicture medi(model, variants[v]);

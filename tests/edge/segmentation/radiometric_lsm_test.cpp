@@ -193,6 +193,19 @@ TEST(RadiometricCorrection, WindowFilledByTheForegroundTakesTheOthersCorrection)
   const cv::Mat& corrected = correction.correct(frame);
   EXPECT_EQ(correction.summary().disagreeing_windows, 1);
   EXPECT_NEAR(cv::mean(corrected(object))[0], cv::mean(background(object))[0] + 60, 2.0);
+  // A uniform object: gain and offset cannot both be fitted to one grey value (the window is
+  // not valid, or, with a little texture, its flat line disagrees over the window's spread of
+  // grey values where it would agree at their mean).
+  frame(object).setTo(230);
+  const cv::Mat& flat = correction.correct(frame);
+  EXPECT_EQ(correction.summary().valid_windows, 11);
+  EXPECT_NEAR(cv::mean(flat(object))[0], 230, 2.0);
+  cv::Mat grain(object.size(), CV_8UC1);
+  cv::RNG(10).fill(grain, cv::RNG::NORMAL, 230, 3);
+  grain.copyTo(frame(object));
+  const cv::Mat& grainy = correction.correct(frame);
+  EXPECT_EQ(correction.summary().disagreeing_windows, 1);
+  EXPECT_NEAR(cv::mean(grainy(object))[0], 230, 2.0);
 }
 
 TEST(MediPictureIllumination, LampDriftAndFlickerDoNotFillTheMask) {

@@ -155,6 +155,9 @@ TEST(MessageJson, ClipPolygonRoundTrips) {
   clip_polygon_t msg{};
   msg.camera_id = 3;
   msg.sequence = 12;
+  msg.region = clip_polygon_t::REGION_SEARCH;
+  msg.frame_number = 410;
+  msg.valid_frames = 15;
   msg.image_width = 640;
   msg.image_height = 480;
   msg.num_points = 3;
@@ -164,7 +167,8 @@ TEST(MessageJson, ClipPolygonRoundTrips) {
   const nlohmann::json fields = fields_of(msg);
 
   EXPECT_EQ(fields, nlohmann::json::parse(R"({"camera_id":3,"sender":0,"sequence":12,
-      "sent_realtime_ns":0,"image_width":640,"image_height":480,"num_points":3,
+      "sent_realtime_ns":0,"region":"search","frame_number":410,"valid_frames":15,
+      "image_width":640,"image_height":480,"num_points":3,
       "x":[10,600,300],"y":[470,470,200],"mac":"0000000000000000000000000000000000000000000000000000000000000000"})"));
 }
 
