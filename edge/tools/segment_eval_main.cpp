@@ -1,14 +1,17 @@
 // syncap-segment-eval: scores a foreground method on a CDnet 2014 folder, or medi-picture on a
 // scene rendered by syncap-sim.
 //   syncap-segment-eval --cdnet DIR --method medipicture|mog2|knn [--train-frames N] ...
-//   syncap-segment-eval --scene DIR [--thesis] [medi-picture options]
+//   syncap-segment-eval --scene DIR [--thesis] [--regions FILE] [medi-picture options]
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "segmentation/cdnet_eval.hpp"
 #include "segmentation/masking_options.hpp"
@@ -23,11 +26,12 @@ constexpr int kExitUsage = cli::kExitUsage;  // bad arguments or bad input, as i
 
 constexpr const char* kDescription =
     "usage: syncap segment-eval --cdnet DIR --method medipicture|mog2|knn [options]\n"
-    "       syncap segment-eval --scene DIR [--thesis] [medi-picture options]\n"
+    "       syncap segment-eval --scene DIR [--thesis] [--regions FILE] [medi-picture options]\n"
     "Scores the method on a CDnet 2014 folder (frames of temporalROI.txt, pixels of\n"
     "ROI.bmp; ground truth 255 foreground, 0 and 50 background, 85 and 170 not scored),\n"
     "or medi-picture on a syncap-sim scene: per camera, trained on the room phase, IoU\n"
-    "against the true masks of the person frames.\n";
+    "against the true masks of the person frames; with --regions, inside the host's regions\n"
+    "(clip_polygon_t JSON lines as `syncap clip` and `syncap regions` print them).\n";
 
 constexpr const char* kFooter =
     "Values out of range are refused (as syncap-edge's --mask-* options). Exit status: 0\n"
@@ -39,6 +43,7 @@ struct Arguments {
   bool scene = false;  // --scene DIR rather than --cdnet DIR
   bool thesis = false, no_shadows = false;
   std::map<std::string, std::string> masking;  // by name: applied after --thesis' base
+  std::string regions;                         // --regions FILE
   syncap::edge::CdnetEvalOptions options;
 };
 
@@ -69,6 +74,10 @@ void add_options(CLI::App& app, Arguments& a) {
         ->option_text(metavar);
   }
   app.add_flag("--no-shadows", a.no_shadows, "skip the shadow test");
+  app.add_option("--regions", a.regions,
+                 "--scene: the host's regions per camera, JSON lines of clip_polygon_t\n"
+                 "(clip, floor, search with its frames)")
+      ->option_text("FILE");
 }
 
 // After parsing: --thesis is the base the medi-picture options change, wherever it stands.
@@ -99,6 +108,40 @@ void apply_options(Arguments& a) {
     throw CLI::ValidationError("--scene scores medi-picture only");
 }
 
+// FILE's lines, each a clip_polygon_t as syncap clip prints it; errors name FILE and the line.
+std::vector<syncap::edge::SceneRegion> read_regions(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("--regions: cannot read " + path);
+  std::vector<syncap::edge::SceneRegion> regions;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    try {
+      const nlohmann::json j = nlohmann::json::parse(line);
+      syncap::edge::SceneRegion r;
+      r.camera = j.at("camera_id").get<int>();
+      const std::string kind = j.value("region", "clip");
+      if (kind != "clip" && kind != "floor" && kind != "search")
+        throw std::runtime_error("region '" + kind + "' (clip, floor or search)");
+      r.kind = kind == "floor"    ? syncap::edge::SceneRegion::Kind::kFloor
+               : kind == "search" ? syncap::edge::SceneRegion::Kind::kSearch
+                                  : syncap::edge::SceneRegion::Kind::kClip;
+      r.first_frame = j.value("frame_number", int64_t{0});
+      r.frames = j.value("valid_frames", 0);
+      const auto x = j.at("x").get<std::vector<int>>();
+      const auto y = j.at("y").get<std::vector<int>>();
+      if (x.size() != y.size() || (!x.empty() && x.size() < 3))
+        throw std::runtime_error("x and y need the same count, 0 or at least 3");
+      for (std::size_t i = 0; i < x.size(); ++i) r.polygon.emplace_back(x[i], y[i]);
+      regions.push_back(std::move(r));
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--regions " + where + e.what());
+    }
+  }
+  return regions;
+}
+
 void print_scores(const std::string& method, const syncap::edge::CdnetScores& scores) {
   std::printf("method %s frames %d\n", method.c_str(), scores.scored_frames);
   std::printf("precision %.4f recall %.4f f-measure %.4f\n", scores.precision(), scores.recall(),
@@ -110,11 +153,11 @@ void print_scores(const std::string& method, const syncap::edge::CdnetScores& sc
 }
 
 void print_scene_scores(const std::vector<syncap::edge::SceneCameraScore>& scores) {
-  std::printf("camera frames iou_mean iou_min fp_px fn_px truth_px\n");
+  std::printf("camera frames iou_mean iou_min fp_px fn_px truth_px searched\n");
   double sum = 0;
   for (const auto& s : scores) {
-    std::printf("%6d %6d %8.4f %7.4f %5.0f %5.0f %8.0f\n", s.camera, s.frames, s.iou_mean,
-                s.iou_min, s.false_positives, s.false_negatives, s.truth_pixels);
+    std::printf("%6d %6d %8.4f %7.4f %5.0f %5.0f %8.0f %8d\n", s.camera, s.frames, s.iou_mean,
+                s.iou_min, s.false_positives, s.false_negatives, s.truth_pixels, s.frames_searched);
     sum += s.iou_mean;
   }
   std::printf("all    %15.4f\n", sum / static_cast<double>(scores.size()));
@@ -130,8 +173,10 @@ int main(int argc, char** argv) {
     return *status;
   try {
     if (arguments.scene) {
+      const auto regions = arguments.regions.empty() ? std::vector<syncap::edge::SceneRegion>{}
+                                                     : read_regions(arguments.regions);
       print_scene_scores(
-          syncap::edge::evaluate_scene(arguments.folder, arguments.options.medi_picture));
+          syncap::edge::evaluate_scene(arguments.folder, arguments.options.medi_picture, regions));
       return cli::kExitOk;
     }
     const auto scores = syncap::edge::evaluate_cdnet(arguments.folder, arguments.options);

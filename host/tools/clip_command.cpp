@@ -27,6 +27,8 @@ struct ClipArgs {
   double margin_px = 8.0;
   std::vector<int> only;
   bool remove = false;
+  bool floor = false;
+  double floor_extent_mm = 1000.0;
   bool publish = false;
   std::string key_path;
   std::string lcm_url = proto::kDefaultLcmUrl;
@@ -52,11 +54,13 @@ std::array<double, 6> parse_volume(const std::string& text) {
 }
 
 constexpr const char* kDescription =
-    "usage: syncap clip --cameras FILE --volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [options]\n"
-    "       syncap clip --cameras FILE --remove [options]\n"
+    "usage: syncap clip --cameras FILE --volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [--floor] [options]\n"
+    "       syncap clip --cameras FILE --remove [--floor] [options]\n"
     "Projects the capture volume (mm, the cameras' object frame) into every camera of FILE\n"
     "(cameras.json) and prints each camera's clip polygon as a JSON line; with --publish sends\n"
-    "it to the camera's edge process, whose masking then treats pixels outside it as background.\n";
+    "it to the camera's edge process, whose masking then treats pixels outside it as background.\n"
+    "With --floor the same for the floor (the volume's floor plane z = ZMIN grown by\n"
+    "--floor-extent): the edge then calls only pixels on the floor shadow.\n";
 
 void add_clip_options(CLI::App& app, ClipArgs& a) {
   app.add_option("--cameras", a.cameras, "the calibration, cameras.json")
@@ -73,6 +77,12 @@ void add_clip_options(CLI::App& app, ClipArgs& a) {
       ->allow_extra_args(false)                            // one id per --camera, as before
       ->transform(cli::whole_in(0, proto::kMaxCameraId));  // "010" is camera 10
   app.add_flag("--remove", a.remove, "clip nothing: polygons of no points");
+  app.add_flag("--floor", a.floor,
+               "the floor's polygon for the shadow test instead of the clip\n"
+               "(thesis 5.1.3, the ground plane)");
+  cli::add_checked(app, "--floor-extent", a.floor_extent_mm, "MM", cli::number_in(0, 1e5),
+                   "--floor: grow the volume's floor by MM on every side, as\n"
+                   "shadows fall beyond the volume (default 1000)");
   app.add_flag("--publish", a.publish,
                "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key");
   app.add_option("--key", a.key_path,
@@ -104,10 +114,11 @@ std::optional<int> parse_clip_args(std::span<const std::string> args, ClipArgs& 
   return cli::parse(app, args, out, err, [&a] { check_clip_args(a); });
 }
 
-clip_polygon_t message_of(const sensor::CameraModel& camera, int64_t sequence) {
+clip_polygon_t message_of(const sensor::CameraModel& camera, int64_t sequence, int8_t region) {
   clip_polygon_t m{};
   m.camera_id = static_cast<int16_t>(camera.id);
   m.sequence = sequence;
+  m.region = region;
   m.image_width = static_cast<int16_t>(camera.sensor.width_px);
   m.image_height = static_cast<int16_t>(camera.sensor.height_px);
   return m;
@@ -116,16 +127,22 @@ clip_polygon_t message_of(const sensor::CameraModel& camera, int64_t sequence) {
 }  // namespace
 
 ClipPolygons clip_polygons(const std::vector<sensor::CameraModel>& cameras,
-                           const std::array<double, 6>& volume, double margin_px, bool remove) {
+                           const std::array<double, 6>& volume, double margin_px, bool remove,
+                           int8_t region, double floor_extent_mm) {
   ClipPolygons out;
-  const Eigen::AlignedBox3d box(Eigen::Vector3d(volume[0], volume[1], volume[2]),
-                                Eigen::Vector3d(volume[3], volume[4], volume[5]));
+  Eigen::AlignedBox3d box(Eigen::Vector3d(volume[0], volume[1], volume[2]),
+                          Eigen::Vector3d(volume[3], volume[4], volume[5]));
+  if (region == clip_polygon_t::REGION_FLOOR) {  // the floor: a flat box at z = zmin
+    const Eigen::Vector3d grow(floor_extent_mm, floor_extent_mm, 0.0);
+    box = Eigen::AlignedBox3d(Eigen::Vector3d(volume[0], volume[1], volume[2]) - grow,
+                              Eigen::Vector3d(volume[3], volume[4], volume[2]) + grow);
+  }
   sensor::VolumeOutlineOptions options;
   options.margin_px = margin_px;
   options.max_points = clip_polygon_t::MAX_POINTS;
   int64_t sequence = 0;
   for (const sensor::CameraModel& camera : cameras) {
-    clip_polygon_t m = message_of(camera, ++sequence);
+    clip_polygon_t m = message_of(camera, ++sequence, region);
     if (!remove) {
       const sensor::VolumeOutline outline = sensor::volume_outline(camera, box, options);
       if (!outline.note.empty()) out.notes.push_back(outline.note);
@@ -159,8 +176,10 @@ int clip_command(std::span<const std::string> args, std::ostream& out, std::ostr
     err << kErrorPrefix << parsed.cameras << ": none of the cameras asked for\n";
     return kExitUsage;
   }
-  const ClipPolygons clips = clip_polygons(cameras, parsed.volume.value_or(std::array<double, 6>{}),
-                                           parsed.margin_px, parsed.remove);
+  const ClipPolygons clips = clip_polygons(
+      cameras, parsed.volume.value_or(std::array<double, 6>{}), parsed.margin_px, parsed.remove,
+      parsed.floor ? clip_polygon_t::REGION_FLOOR : clip_polygon_t::REGION_CLIP,
+      parsed.floor_extent_mm);
   std::optional<lcm::LCM> lcm;
   std::optional<proto::CommandSigner> signer;
   if (parsed.publish) {

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "help_check.hpp"
 #include "sensor/camera_file.hpp"
@@ -74,6 +76,46 @@ TEST_F(ClipCommandTest, OneOutlinePerCameraInsideItsImage) {
   }
   // Sequences increase, so that an edge can tell a newer polygon.
   EXPECT_LT(r.lines[0]["sequence"].get<int64_t>(), r.lines[1]["sequence"].get<int64_t>());
+}
+
+// Polygon area (shoelace) of a message line.
+double area_of(const nlohmann::json& m) {
+  double twice = 0;
+  const std::size_t n = m["x"].size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    twice += m["x"][i].get<double>() * m["y"][j].get<double>() -
+             m["x"][j].get<double>() * m["y"][i].get<double>();
+  }
+  return std::abs(twice) / 2;
+}
+
+// --floor: the volume's floor plane (grown by --floor-extent) as REGION_FLOOR messages; the
+// floor's centre is inside, the top of the volume's centre line is not, for the camera looking
+// from the side (id 4, 2.2 m up, 4.3 m away).
+TEST_F(ClipCommandTest, FloorIsTheVolumesFloorPlaneGrown) {
+  const std::vector<std::string> base{"--cameras", file_.string(), "--volume",
+                                      "-1000,-1000,0,1000,1000,2000", "--floor"};
+  const ClipRun r = run(base);
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  ASSERT_EQ(r.lines.size(), 2u);
+  for (const nlohmann::json& m : r.lines) EXPECT_EQ(m["region"], "floor");
+  const sensor::CameraModel side = sensor::read_cameras(file_)[1];
+  std::vector<cv::Point> polygon;
+  for (std::size_t i = 0; i < r.lines[1]["x"].size(); ++i)
+    polygon.emplace_back(r.lines[1]["x"][i].get<int>(), r.lines[1]["y"][i].get<int>());
+  const auto inside = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector2d px = side.project(p).pixel;
+    return cv::pointPolygonTest(polygon, cv::Point2f(float(px.x()), float(px.y())), false) > 0;
+  };
+  EXPECT_TRUE(inside({0, 0, 0}));
+  EXPECT_TRUE(inside({1800, 0, 0}));  // beyond the volume, within the extent: a shadow's place
+  EXPECT_FALSE(inside({0, 0, 2000}));
+  std::vector<std::string> tight = base;
+  tight.insert(tight.end(), {"--floor-extent", "0"});
+  const ClipRun small = run(tight);
+  ASSERT_EQ(small.status, kExitOk) << small.err;
+  EXPECT_LT(area_of(small.lines[1]), area_of(r.lines[1]) * 0.8);
 }
 
 TEST_F(ClipCommandTest, OnlyTheCamerasAskedForAndRemove) {
@@ -170,7 +212,8 @@ TEST_F(ClipCommandTest, HelpIsComplete) {
       r.out, {"usage: syncap clip --cameras FILE --volume", "syncap clip --cameras FILE --remove",
               "--cameras FILE", "--volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", "--margin PX",
               "(default 8)", "--camera ID", "(repeatable)", "--remove", "--publish", "--key FILE",
-              "--lcm-url URL", "(default udpm://", "Exit status: 0 done"});
+              "--lcm-url URL", "(default udpm://", "--floor", "--floor-extent MM", "(default 1000)",
+              "Exit status: 0 done"});
 }
 
 }  // namespace

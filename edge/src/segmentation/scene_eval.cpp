@@ -70,8 +70,27 @@ cv::Mat read_grey(const std::filesystem::path& path) {
   return image;
 }
 
+// The search region of `camera` for `frame` (empty when none applies).
+std::vector<cv::Point> search_region_at(const std::vector<SceneRegion>& regions, int camera,
+                                        int frame) {
+  std::vector<cv::Point> found;
+  for (const SceneRegion& r : regions) {
+    if (r.camera == camera && r.kind == SceneRegion::Kind::kSearch && frame >= r.first_frame &&
+        frame < r.first_frame + r.frames) {
+      found = r.polygon;
+    }
+  }
+  return found;
+}
+
 SceneCameraScore score_camera(const std::filesystem::path& dir, int camera,
-                              const ScenePhases& phases, const MediPictureOptions& options) {
+                              const ScenePhases& phases, MediPictureOptions options,
+                              const std::vector<SceneRegion>& regions) {
+  for (const SceneRegion& r : regions) {
+    if (r.camera != camera) continue;
+    if (r.kind == SceneRegion::Kind::kClip) options.clip_polygon = r.polygon;
+    if (r.kind == SceneRegion::Kind::kFloor) options.floor_polygon = r.polygon;
+  }
   const std::filesystem::path images = dir / camera_folder(camera);
   const std::filesystem::path masks = dir / "truth" / "masks" / camera_folder(camera);
   std::vector<cv::Mat> training;
@@ -86,6 +105,9 @@ SceneCameraScore score_camera(const std::filesystem::path& dir, int camera,
     const std::filesystem::path mask_path = numbered(masks, "mask_", frame, ".png");
     if (!std::filesystem::exists(mask_path)) continue;
     const cv::Mat truth = read_grey(mask_path) != 0;
+    std::vector<cv::Point> search = search_region_at(regions, camera, frame);
+    if (!search.empty()) ++score.frames_searched;
+    medi.set_search_region(std::move(search));
     const cv::Mat mask = medi.apply(read_grey(numbered(images, "frame_", frame, ".pgm"))) != 0;
     const int either = cv::countNonZero(mask | truth);
     const double iou = either == 0 ? 1.0 : cv::countNonZero(mask & truth) / double(either);
@@ -107,11 +129,12 @@ SceneCameraScore score_camera(const std::filesystem::path& dir, int camera,
 }  // namespace
 
 std::vector<SceneCameraScore> evaluate_scene(const std::filesystem::path& dir,
-                                             const MediPictureOptions& options) {
+                                             const MediPictureOptions& options,
+                                             const std::vector<SceneRegion>& regions) {
   const ScenePhases phases = read_phases(dir);
   std::vector<SceneCameraScore> scores;
   for (int camera = 0; std::filesystem::is_directory(dir / camera_folder(camera)); ++camera) {
-    scores.push_back(score_camera(dir, camera, phases, options));
+    scores.push_back(score_camera(dir, camera, phases, options, regions));
   }
   if (scores.empty()) throw std::runtime_error("scene: no camera00 folder in " + dir.string());
   return scores;

@@ -1,6 +1,8 @@
 // The built syncap-segment-eval on bad arguments and bad input: exit 2, the option and value named.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "help_check.hpp"
@@ -42,6 +44,19 @@ TEST(SegmentEvalProgram, BadValuesUnknownOptionsAndBadInputExitTwoNamingThem) {
   EXPECT_NE(missing.output.find("/nonexistent/scene"), std::string::npos) << missing.output;
 }
 
+// A bad line of --regions is named with its file and line, and nothing is scored.
+TEST(SegmentEvalProgram, BadRegionsLineIsNamed) {
+  const std::string path = ::testing::TempDir() + "syncap_bad_regions.jsonl";
+  std::ofstream(path) << R"({"camera_id":0,"region":"clip","x":[0,9,9],"y":[0,0,9]})"
+                      << "\n"
+                      << R"({"camera_id":0,"region":"wall","x":[],"y":[]})"
+                      << "\n";
+  const ProgramRun run = run_segment_eval("--scene /tmp --regions " + path);
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find(path + ":2: region 'wall'"), std::string::npos) << run.output;
+  std::remove(path.c_str());
+}
+
 // --help: both forms, every option with its meaning and default, the exit statuses.
 TEST(SegmentEvalProgram, HelpIsComplete) {
   const ProgramRun run = run_segment_eval("--help");
@@ -73,6 +88,7 @@ TEST(SegmentEvalProgram, HelpIsComplete) {
                                                   "(default 40)",
                                                   "--update-rate R",
                                                   "--illumination M",
+                                                  "--regions FILE",
                                                   "(default lsm)",
                                                   "Exit status: 0"});
 }
