@@ -1,7 +1,8 @@
 // Classifying one 1280x1024 grey frame: the medi-picture model (interval test, NCC shadow test,
 // closing, small components; the thesis' parameters) against OpenCV's MOG2 apply on the same
 // frame, in the same process; the defaults (the edge's) likewise; the defaults with and without
-// their illumination correction (least-squares matching, eqs 5.12-5.20); and training on 30
+// their illumination correction (least-squares matching, eqs 5.12-5.20), and inside a search
+// region against the whole frame; and training on 30
 // frames of 640x480 against the per-pixel nth_element of eq 5.5's definition.
 #include <benchmark/benchmark.h>
 
@@ -73,6 +74,30 @@ BENCHMARK(BM_DefaultMask)
 BENCHMARK(BM_DefaultMask)
     ->Arg(0)
     ->Name("illumination-correction-vs-none/baseline")
+    ->Unit(benchmark::kMillisecond);
+
+// The defaults inside the tracked body's search region (the person's bounding box grown by
+// 40 px, as `syncap regions` draws it after a fit) against the whole frame; with the refresh of
+// the shadow's factor every tenth frame (the whole frame then) included, as the edge runs it.
+void BM_SearchRegion(benchmark::State& state) {
+  const std::vector<cv::Mat> training = empty_scene(20);
+  syncap::edge::MediPictureOptions options;
+  if (state.range(0) != 0) {
+    const cv::Rect person(640 - 120 - 40, 500 - 380 - 40, 2 * 160, 2 * 420);
+    options.search_polygon = {
+        person.tl(), {person.br().x, person.y}, person.br(), {person.x, person.br().y}};
+  }
+  syncap::edge::MediPicture medi(syncap::edge::train_medi_picture(training, options), options);
+  const cv::Mat frame = frame_with_person();
+  for (auto _ : state) benchmark::DoNotOptimize(medi.apply(frame).data);
+}
+BENCHMARK(BM_SearchRegion)
+    ->Arg(1)
+    ->Name("search-region-vs-whole-frame/ours")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SearchRegion)
+    ->Arg(0)
+    ->Name("search-region-vs-whole-frame/baseline")
     ->Unit(benchmark::kMillisecond);
 
 std::vector<cv::Mat> training_frames() {

@@ -23,6 +23,7 @@
 #include "log_command.hpp"
 #include "markers_command.hpp"
 #include "record_command.hpp"
+#include "regions_command.hpp"
 #include "subcommand.hpp"
 
 namespace {
@@ -47,6 +48,9 @@ constexpr std::array kSubcommands{
                &syncap::tools::calibrate_command},
     Subcommand{"clip", "send each camera the capture volume's outline as its masking's clip",
                &syncap::tools::clip_command},
+    Subcommand{"regions",
+               "send each camera the tracked body's search region for its masking (or print it)",
+               &syncap::tools::regions_command},
     Subcommand{"ctl", "command the edges (start, stop, background, threshold, ROI, ...), signed",
                &syncap::tools::ctl_command},
     Subcommand{"markers", "reconstruct the 3D markers of a recorded LCM log (as syncap-host)",

@@ -559,8 +559,15 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   if (captured.type() != CV_8UC1 || captured.size() != model_.median.size()) {
     throw std::invalid_argument("MediPicture::apply needs a CV_8UC1 frame of the model's size");
   }
+  decide_search();
   // The last mask's foreground does not observe the illumination: it is the person, not light.
-  const cv::Mat frame = illumination_ ? illumination_->correct(captured, mask_) : captured;
+  // In the search region only its box (and the shadow test's window around it) is corrected.
+  const int reach = options_.ncc_half_window + 1;
+  const cv::Rect corrected_area =
+      restricted_ ? (search_box_ + cv::Point(-reach, -reach) + cv::Size(2 * reach, 2 * reach))
+                  : cv::Rect();
+  const cv::Mat frame =
+      illumination_ ? illumination_->correct(captured, mask_, corrected_area) : captured;
   if (!fast_path_) return mask_ = apply_whole_frame(frame);
   const int rows = frame.rows, cols = frame.cols;
   // A new image only when the caller still holds the previous one.
@@ -578,9 +585,17 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   column_below_.assign(static_cast<std::size_t>(stripes) * cols_size, 0);
   column_any_.assign(static_cast<std::size_t>(stripes) * cols_size, 0);
   const uchar below_value = options_.remove_shadows ? kBelow : 255;
-  const bool clipped = !allowed_.empty();
-  // Only the search region's bounding box is classified; the rest of the mask is background.
-  const cv::Rect box = search_box_.empty() ? cv::Rect() : search_box_;
+  // With a search region only its bounding box is classified, the rest of the mask is
+  // background, and the shadow's factor is the one last found over the whole frame: inside the
+  // region alone a shadow partly outside it leaves too few candidates, and the mode became the
+  // body's own darkening (camera 5 of the ring lost 5 % IoU). Every search_refresh_frames-th
+  // frame, and while no factor is known, the whole frame is classified to find it again; the
+  // result is still confined to the region.
+  const bool searching = !search_.empty();
+  const cv::Mat& allowed = restricted_ ? allowed_ : clip_;
+  frame_allowed_ = &allowed;
+  const bool clipped = !allowed.empty();
+  const cv::Rect box = restricted_ ? search_box_ : cv::Rect(0, 0, cols, rows);
   const bool whole = box.width == cols;
   cv::parallel_for_(cv::Range(0, stripes), [&](const cv::Range& range) {
     for (int s = range.start; s < range.end; ++s) {
@@ -597,7 +612,7 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
         const int x = box.x;
         const int found =
             classify_row(frame.ptr<uchar>(y) + x, lower_.ptr<uchar>(y) + x,
-                         upper_.ptr<uchar>(y) + x, clipped ? allowed_.ptr<uchar>(y) + x : nullptr,
+                         upper_.ptr<uchar>(y) + x, clipped ? allowed.ptr<uchar>(y) + x : nullptr,
                          below_value, box.width, out + x, column_below + x, column_any + x);
         row_below_[static_cast<std::size_t>(y)] = (found & 1) != 0 ? 1 : 0;
         row_any_[static_cast<std::size_t>(y)] = (found & 2) != 0 ? 1 : 0;
@@ -623,16 +638,32 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   if (options_.max_hole_area > 0 && !any_box.empty()) {
     // The bounding box of what the cleaning kept (scattered specks are gone by then).
     fill_holes_in(mask, cv::boundingRect(mask), options_.max_hole_area, packed_);
-    if (!allowed_.empty()) mask &= allowed_;
+    if (!allowed.empty()) mask &= allowed;
   }
+  if (searching && !restricted_) mask &= search_;  // a refresh frame: still the region only
   if (options_.update_rate > 0) update_model(frame, mask);
   return mask;
+}
+
+// Whether this frame is classified in the search region only (apply's comment).
+void MediPicture::decide_search() {
+  const bool needs_factor =
+      options_.remove_shadows && options_.shadow_test == ShadowTest::kCommonRatio;
+  restricted_ =
+      !search_.empty() &&
+      (!needs_factor || (remembered_ratio_ > 0 &&
+                         frames_since_refresh_ + 1 < std::max(1, options_.search_refresh_frames)));
+  frames_since_refresh_ = restricted_ ? frames_since_refresh_ + 1 : 0;
 }
 
 void MediPicture::resolve_common_ratio_shadows(const cv::Mat& frame, cv::Mat& mask, cv::Rect box) {
   cv::Mat inside = mask(box);
   const cv::Mat candidates = inside == kBelow;
-  const float ratio = common_ratio(model_.median(box), frame(box), candidates);
+  float ratio = remembered_ratio_;
+  if (!restricted_) {
+    ratio = common_ratio(model_.median(box), frame(box), candidates);
+    if (ratio > 0) remembered_ratio_ = ratio;
+  }
   cv::Mat shadow = cv::Mat::zeros(box.size(), CV_8UC1);
   mark_common_ratio_shadow(model_.median(box), model_.sigma(box), frame(box), candidates,
                            ratio >= options_.min_shadow_ratio ? ratio : 0.0f,
@@ -737,7 +768,8 @@ void MediPicture::clean_inside(cv::Mat& mask, cv::Rect box) {
                     centroids_);
     work_.copyTo(target);
   }
-  if (!allowed_.empty()) cv::bitwise_and(target, allowed_(region), target);
+  const cv::Mat& allowed = frame_allowed_ != nullptr ? *frame_allowed_ : allowed_;
+  if (!allowed.empty()) cv::bitwise_and(target, allowed(region), target);
 }
 
 cv::Mat MediPicture::apply_whole_frame(const cv::Mat& frame) {

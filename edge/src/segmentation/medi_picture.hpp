@@ -86,6 +86,9 @@ struct MediPictureOptions {
   // When not empty, only pixels inside are classified (the tracked body's projection, thesis
   // Fig 5.8); the rest is background, and the classification visits only its bounding box.
   std::vector<cv::Point> search_polygon;
+  // With a search region, every this many frames the whole frame is classified all the same, to
+  // find the shadow's factor (kCommonRatio) where the region holds too little of the shadow.
+  int search_refresh_frames = 10;
 };
 
 // The parameters of the thesis' text (k 3, the correlation shadow test of eqs 5.6-5.11 with
@@ -126,6 +129,7 @@ class MediPicture {
  private:
   void derive_thresholds();
   void combine_regions();
+  void decide_search();
   void update_model(const cv::Mat& frame, const cv::Mat& mask);
   // The steps one after the other over the whole frame (the free functions); used when the
   // options rule out the fast path.
@@ -148,6 +152,11 @@ class MediPicture {
   cv::Mat search_;             // CV_8UC1 255 inside the search region, empty when none
   cv::Mat allowed_;            // clip_ and search_ combined, empty when neither
   cv::Rect search_box_;        // the search region's bounding box, or the whole image
+  // The search region's state between frames (apply's comment).
+  bool restricted_ = false;                 // this frame is classified in the search region only
+  const cv::Mat* frame_allowed_ = nullptr;  // this frame's allowed_ or clip_
+  float remembered_ratio_ = 0.0f;           // the shadow's factor from the last whole frame
+  int frames_since_refresh_ = 0;
   // lower <= background <= upper everywhere: then the candidates of the shadow test are exactly
   // the pixels below the interval. False (odd options) selects apply_whole_frame.
   bool fast_path_ = false;

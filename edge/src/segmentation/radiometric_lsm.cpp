@@ -318,23 +318,25 @@ void RadiometricCorrection::background_changed() {
 }
 
 // Row y of the corrected frame: gain and offset blended between the two nearest grid rows.
-void RadiometricCorrection::correct_row(const cv::Mat& frame, int y, double cell, cv::Mat& buffer) {
+void RadiometricCorrection::correct_row(const cv::Mat& frame, int y, double cell, int x0, int x1,
+                                        cv::Mat& buffer) {
   const double at = std::clamp((y + 0.5) / cell - 0.5, 0.0, options_.grid_rows - 1.0);
   const int r0 = std::min(static_cast<int>(at), options_.grid_rows - 1);
   const int r1 = std::min(r0 + 1, options_.grid_rows - 1);
   const float t = static_cast<float>(at - r0);
-  const float* g0 = gain_rows_.ptr<float>(r0);
-  const float* g1 = gain_rows_.ptr<float>(r1);
-  const float* o0 = offset_rows_.ptr<float>(r0);
-  const float* o1 = offset_rows_.ptr<float>(r1);
-  const uchar* in = frame.ptr<uchar>(y);
+  const float* g0 = gain_rows_.ptr<float>(r0) + x0;
+  const float* g1 = gain_rows_.ptr<float>(r1) + x0;
+  const float* o0 = offset_rows_.ptr<float>(r0) + x0;
+  const float* o1 = offset_rows_.ptr<float>(r1) + x0;
+  const uchar* in = frame.ptr<uchar>(y) + x0;
   float* __restrict value = buffer.ptr<float>();
-  for (int x = 0; x < frame.cols; ++x) {  // vectorised; OpenCV rounds and saturates below
+  const int n = x1 - x0;
+  for (int x = 0; x < n; ++x) {  // vectorised; OpenCV rounds and saturates below
     const float g = g0[x] + t * (g1[x] - g0[x]);
     const float o = o0[x] + t * (o1[x] - o0[x]);
     value[x] = o + g * static_cast<float>(in[x]);
   }
-  buffer.convertTo(corrected_.row(y), CV_8U);
+  buffer.colRange(0, n).convertTo(corrected_.row(y).colRange(x0, x1), CV_8U);
 }
 
 // The median gain over the valid windows with the offset of the same window (a consistent line,
@@ -376,7 +378,8 @@ cv::Rect RadiometricCorrection::window_of(int row, int column) const {
   return cv::Rect(x0 + mx, y0 + my, x1 - x0 - 2 * mx, y1 - y0 - 2 * my) & inner;
 }
 
-const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Mat& exclude) {
+const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Mat& exclude,
+                                              cv::Rect region) {
   if (frame.size() != background_.size() || frame.type() != CV_8UC1)
     throw std::invalid_argument(
         "RadiometricCorrection::correct: frame not CV_8UC1 of the background's size");
@@ -429,6 +432,8 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
   cv::resize(offset_grid_, offset_rows_, cv::Size(frame.cols, options_.grid_rows), 0, 0,
              cv::INTER_LINEAR);
   corrected_.create(frame.size(), CV_8UC1);
+  const cv::Rect area = region.empty() ? cv::Rect(cv::Point(), frame.size())
+                                       : region & cv::Rect(cv::Point(), frame.size());
   // Rows split over OpenCV's threads like the classification pass; each stripe its own buffer.
   const int stripes = std::clamp(4 * cv::getNumThreads(), 1, frame.rows);
   rows_.create(stripes, frame.cols, CV_32F);
@@ -437,7 +442,8 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
     for (int s = range.start; s < range.end; ++s) {
       cv::Mat buffer = rows_.row(s);
       for (int y = frame.rows * s / stripes; y < frame.rows * (s + 1) / stripes; ++y) {
-        correct_row(frame, y, cell, buffer);
+        if (y >= area.y && y < area.y + area.height)
+          correct_row(frame, y, cell, area.x, area.x + area.width, buffer);
       }
     }
   });

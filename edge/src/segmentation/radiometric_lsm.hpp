@@ -135,8 +135,10 @@ class RadiometricCorrection {
   RadiometricCorrection(cv::Mat background, RadiometricOptions options = {});
 
   // The frame in the background's radiometry (CV_8UC1, saturated). `exclude` as in match_window.
-  // The returned image is reused by the next call.
-  const cv::Mat& correct(const cv::Mat& frame, const cv::Mat& exclude = {});
+  // With a non-empty `region` only its pixels are corrected (the rest of the returned image is
+  // left from before); the windows are matched all the same. The returned image is reused by the
+  // next call.
+  const cv::Mat& correct(const cv::Mat& frame, const cv::Mat& exclude = {}, cv::Rect region = {});
 
   // To be called when the background's pixels changed (the slow update of the model): the
   // windows' observations are kept between frames.
@@ -149,7 +151,7 @@ class RadiometricCorrection {
  private:
   cv::Rect window_of(int row, int column) const;
   void summarise_valid_windows();
-  void correct_row(const cv::Mat& frame, int y, double cell, cv::Mat& buffer);
+  void correct_row(const cv::Mat& frame, int y, double cell, int x0, int x1, cv::Mat& buffer);
 
   cv::Mat background_;
   RadiometricOptions options_;
