@@ -11,6 +11,7 @@
 #include "body/pose.hpp"
 #include "fitting/pose_parameters.hpp"
 #include "io/message_json.hpp"
+#include "outputs/search_region_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
@@ -72,19 +73,6 @@ void add_regions_options(CLI::App& app, RegionsArgs& a) {
       ->option_text("URL");
 }
 
-clip_polygon_t message_of(const sensor::CameraModel& camera, int64_t sequence, int64_t first,
-                          int frames) {
-  clip_polygon_t m{};
-  m.camera_id = static_cast<int16_t>(camera.id);
-  m.sequence = sequence;
-  m.region = clip_polygon_t::REGION_SEARCH;
-  m.frame_number = first;
-  m.valid_frames = static_cast<int16_t>(frames);
-  m.image_width = static_cast<int16_t>(camera.sensor.width_px);
-  m.image_height = static_cast<int16_t>(camera.sensor.height_px);
-  return m;
-}
-
 }  // namespace
 
 SearchRegionMessages search_region_messages(const std::vector<io::FrameRecord>& records,
@@ -103,18 +91,15 @@ SearchRegionMessages search_region_messages(const std::vector<io::FrameRecord>& 
     const body::BodyFrame body =
         body::body_frame(skeleton, parameters.pose(record.body->parameters.data()));
     for (const sensor::CameraModel& camera : cameras) {
-      clip_polygon_t m = message_of(camera, ++sequence, record.frame + lead, frames);
-      const fitting::SearchRegion region = fitting::search_region(camera, body.ellipsoids, options);
-      if (region.whole_image) {
+      bool whole_image = false;
+      clip_polygon_t m = outputs::search_region_message(camera, body.ellipsoids, record.frame,
+                                                        {options, lead, frames}, &whole_image);
+      m.sequence = ++sequence;
+      if (whole_image) {
         out.notes.push_back("frame " + std::to_string(record.frame) +
                             ": the body reaches behind camera " + std::to_string(camera.id) +
                             ": the whole frame");
       }
-      for (const cv::Point& p : region.polygon) {
-        m.x.push_back(static_cast<int16_t>(p.x));
-        m.y.push_back(static_cast<int16_t>(p.y));
-      }
-      m.num_points = static_cast<int16_t>(m.x.size());
       out.messages.push_back(std::move(m));
     }
   }

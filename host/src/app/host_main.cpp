@@ -18,11 +18,13 @@
 #include "outputs/body_message_stage.hpp"
 #include "outputs/hull_message_stage.hpp"
 #include "outputs/json_lines_stage.hpp"
+#include "outputs/search_region_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
 #include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/proto/command_auth.hpp"
 
 namespace {
 
@@ -53,14 +55,25 @@ void add_hull_stages(const host_app::HullArgs& args, std::vector<sensor::CameraM
         [&lcm](const hull_frame_t& m) { lcm.publish(proto::kHullChannel, &m); }));
 }
 
-// The body after the hull it is fitted to.
-void add_body_stages(const host_app::BodyArgs& args, lcm::LCM& lcm, Stages& s) {
-  auto stage = std::make_unique<reconstruction::BodyFitStage>(body::hanim_skeleton(), args.stage);
+// The body after the hull it is fitted to; the edges' search regions after the body.
+void add_body_stages(const host_app::HostOptions& o,
+                     const std::vector<sensor::CameraModel>& cameras, lcm::LCM& lcm, Stages& s) {
+  auto stage = std::make_unique<reconstruction::BodyFitStage>(body::hanim_skeleton(), o.body.stage);
   s.body = stage.get();
   s.chain.push_back(std::move(stage));
-  if (args.message)
+  if (o.body.message)
     s.chain.push_back(std::make_unique<outputs::BodyMessageStage>(
         [&lcm](const body_frame_t& m) { lcm.publish(proto::kBodyChannel, &m); }));
+  if (o.search.enabled) {
+    // The key was loaded once when the options were parsed: a bad file is named there.
+    auto signer =
+        std::make_shared<proto::CommandSigner>(proto::CommandKey::load(o.search.key_path));
+    s.chain.push_back(std::make_unique<outputs::SearchRegionStage>(
+        cameras, o.search.stage, [&lcm, signer](clip_polygon_t& m) {
+          signer->sign(m);
+          lcm.publish(proto::kEdgeClipChannel, &m);
+        }));
+  }
 }
 
 Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& lcm) {
@@ -85,7 +98,7 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
       s.chain.push_back(std::move(message));
     }
     if (o.hull.enabled) add_hull_stages(o.hull, cameras, lcm, s);
-    if (o.body.enabled) add_body_stages(o.body, lcm, s);
+    if (o.body.enabled) add_body_stages(o, cameras, lcm, s);
   }
   if (!o.quiet)
     s.chain.push_back(

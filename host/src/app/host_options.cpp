@@ -1,5 +1,7 @@
 #include "app/host_options.hpp"
 
+#include "syncap/proto/command_auth.hpp"
+
 #include "tracking/rigid_set_file.hpp"
 
 #include <CLI/CLI.hpp>
@@ -168,6 +170,22 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                "the pose on SYNCAP_BODY and in --out (docs/body-fit.md)");
   add_body_options(app, o.body);
   app.add_flag("!--no-body-message", o.body.message, "do not publish body_frame_t");
+  app.add_flag("--search-regions", o.search.enabled,
+               "send each camera's edge the tracked body's search region after every fit "
+               "(needs --body and --key; docs/segmentation.md)");
+  app.add_option("--key", o.search.key_path,
+                 "the installation's command key (syncap keygen), to sign --search-regions")
+      ->option_text("FILE");
+  app.add_option("--search-margin", o.search.stage.region.margin_px,
+                 "grow each search region by PX pixels (default " +
+                     cli::number_text(o.search.stage.region.margin_px) + ")")
+      ->option_text("PX")
+      ->check(cli::number_in(0, 1000));
+  app.add_option("--search-frames", o.search.stage.valid_frames,
+                 "a search region serves this many frames after its fit's (default " +
+                     std::to_string(o.search.stage.valid_frames) + ")")
+      ->option_text("N")
+      ->check(cli::whole_in(1, 1000));
 }
 
 }  // namespace
@@ -191,6 +209,18 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
     load_rigid_sets(o.tracking);
     if (o.body.enabled && o.calibration.empty())
       throw CLI::ValidationError("--body", "needs --calibration (the cameras' models)");
+    if (o.search.enabled && !o.body.enabled)
+      throw CLI::ValidationError("--search-regions", "needs --body (the tracked body)");
+    if (o.search.enabled && o.search.key_path.empty())
+      throw CLI::ValidationError("--search-regions",
+                                 "needs --key FILE: an edge applies only signed regions");
+    if (o.search.enabled) {
+      try {
+        proto::CommandKey::load(o.search.key_path);  // named now, not when the first fit is sent
+      } catch (const proto::CommandKeyError& e) {
+        throw CLI::ValidationError("--key", e.what());
+      }
+    }
     apply_body_options(o.body, o.hull);
     if (o.hull.enabled && o.calibration.empty())
       throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "matching/marker_matcher.hpp"
+#include "outputs/search_region_stage.hpp"
 #include "reconstruction/body_fit_stage.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
@@ -49,6 +50,13 @@ struct BodyArgs {
   bool message = true;  // publish body_frame_t on SYNCAP_BODY (syncap-host's --no-body-message)
 };
 
+// The edges' search regions from the tracked body (syncap-host --search-regions).
+struct SearchRegionArgs {
+  bool enabled = false;
+  std::string key_path;  // --key: the installation's command key, to sign them
+  outputs::SearchRegionStageOptions stage;
+};
+
 struct HostOptions {
   std::set<int> cameras{0};
   std::string lcm_url;
@@ -64,6 +72,7 @@ struct HostOptions {
   TrackingArgs tracking;
   HullArgs hull;
   BodyArgs body;
+  SearchRegionArgs search;
 };
 
 // "0,2,5" as camera ids 0..99; CLI::ValidationError naming --cameras otherwise (syncap-host and

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
+
+#include "syncap/proto/command_auth.hpp"
 
 namespace syncap::host_app {
 namespace {
@@ -63,6 +66,36 @@ TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
   EXPECT_EQ(parse({}).options->hull.stage.method, reconstruction::HullMethod::kPolyhedral);
 }
 
+// --search-regions needs the tracked body and a readable key, and names what is missing.
+TEST(HostOptions, SearchRegionsNeedTheBodyAndTheKey) {
+  const std::string calibration = ::testing::TempDir() + "/search_options_cameras.json";
+  std::ofstream(calibration) << "{}";
+  std::string err;
+  EXPECT_EQ(parse({"--calibration", calibration, "--search-regions"}, &err).exit_status, 2);
+  EXPECT_NE(err.find("--search-regions: needs --body"), std::string::npos) << err;
+  EXPECT_EQ(parse({"--calibration", calibration, "--body", "--search-regions"}, &err).exit_status,
+            2);
+  EXPECT_NE(err.find("--search-regions: needs --key FILE"), std::string::npos) << err;
+  EXPECT_EQ(parse({"--calibration", calibration, "--body", "--search-regions", "--key",
+                   "/nonexistent.key"},
+                  &err)
+                .exit_status,
+            2);
+  EXPECT_NE(err.find("/nonexistent.key"), std::string::npos) << err;
+  const std::string key = ::testing::TempDir() + "/search_options.key";
+  std::remove(key.c_str());
+  proto::CommandKey::generate().save(key, /*replace=*/true);
+  const ParsedHostOptions p =
+      parse({"--calibration", calibration, "--body", "--search-regions", "--key", key,
+             "--search-margin", "30", "--search-frames", "20"});
+  ASSERT_TRUE(p.options.has_value()) << err;
+  EXPECT_TRUE(p.options->search.enabled);
+  EXPECT_DOUBLE_EQ(p.options->search.stage.region.margin_px, 30);
+  EXPECT_EQ(p.options->search.stage.valid_frames, 20);
+  EXPECT_EQ(parse({"--search-frames", "0"}).exit_status, 2);
+  std::remove(key.c_str());
+}
+
 TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
   std::string err;
   EXPECT_EQ(parse({"--cameras", "0,x"}, &err).exit_status, 2);
@@ -96,7 +129,8 @@ TEST(HostOptions, HelpNamesEveryOption) {
   for (const char* option :
        {"--cameras", "--max-lag", "--frames", "--until-last", "--idle-timeout", "--out",
         "--lcm-url", "--quiet", "--calibration", "--volume", "--tolerance-px", "--sigma-px",
-        "--no-marker-message", "--keep-not-round", "--acceleration"})
+        "--no-marker-message", "--keep-not-round", "--acceleration", "--search-regions", "--key",
+        "--search-margin", "--search-frames"})
     EXPECT_NE(text.find(option), std::string::npos) << option;
 }
 

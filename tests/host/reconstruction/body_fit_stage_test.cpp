@@ -11,10 +11,14 @@
 #include <regex>
 #include <sstream>
 
+#include <opencv2/imgproc.hpp>
+
 #include "body/hanim_model.hpp"
 #include "body_scenes.hpp"
 #include "io/frame_json.hpp"
 #include "outputs/body_message_stage.hpp"
+#include "outputs/search_region_stage.hpp"
+#include "sensor/test_cameras.hpp"
 #include "syncap/body_frame_t.hpp"
 
 namespace syncap::reconstruction {
@@ -172,6 +176,46 @@ TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
   ASSERT_EQ(back.body->parameter_sigmas.size(), 60u);
   EXPECT_NEAR(back.body->parameter_sigmas[7], work.body->parameter_sigmas[7], 1e-6);
   EXPECT_NEAR(back.body->sigma0, work.body->sigma0, 1e-4);
+}
+
+// After a fit, every camera gets the body's search region for the frames after it; a frame
+// without a fit sends nothing (the regions sent before expire).
+TEST(SearchRegionStage, SendsEachCameraTheFittedBodysRegion) {
+  sensor::CameraModel a = sensor::test::basler_camera();
+  sensor::CameraModel b = a;
+  b.id = 7;
+  b.exterior = sensor::test::looking_at({-4000, 1500, 2200}, {0, 0, 1000});
+  outputs::SearchRegionStageOptions options;
+  options.lead = 2;
+  options.valid_frames = 5;
+  std::vector<clip_polygon_t> sent;
+  outputs::SearchRegionStage stage({a, b}, options,
+                                   [&sent](clip_polygon_t& m) { sent.push_back(m); });
+  pipeline::FrameWork work;
+  work.group.frame_number = 40;
+  stage.process(work);  // no body
+  EXPECT_TRUE(sent.empty());
+  const fitting::PoseParameters parameters(body::hanim_skeleton());
+  const auto rest = parameters.rest();
+  work.body.emplace();
+  work.body->parameters.assign(rest.begin(), rest.end());
+  stage.process(work);
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(stage.frames_sent(), 1);
+  EXPECT_EQ(sent[1].camera_id, 7);
+  for (const clip_polygon_t& m : sent) {
+    EXPECT_EQ(m.region, clip_polygon_t::REGION_SEARCH);
+    EXPECT_EQ(m.frame_number, 42);
+    EXPECT_EQ(m.valid_frames, 5);
+    EXPECT_GE(m.num_points, 3);
+    EXPECT_EQ(m.x.size(), static_cast<std::size_t>(m.num_points));
+  }
+  // The region holds the body: the root (pelvis, ~1 m up) projects inside camera 7's polygon.
+  std::vector<cv::Point> polygon;
+  for (int i = 0; i < sent[1].num_points; ++i) polygon.emplace_back(sent[1].x[i], sent[1].y[i]);
+  const Eigen::Vector2d pelvis = b.project(Eigen::Vector3d(0, 0, 1000)).pixel;
+  EXPECT_GT(cv::pointPolygonTest(polygon, cv::Point2f(float(pelvis.x()), float(pelvis.y())), false),
+            0);
 }
 
 }  // namespace
