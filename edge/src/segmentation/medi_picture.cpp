@@ -526,6 +526,12 @@ void MediPicture::set_search_region(std::vector<cv::Point> polygon) {
   search_ = polygon_mask(options_.search_polygon, model_.median.size());
   const cv::Rect image(cv::Point(), model_.median.size());
   search_box_ = search_.empty() ? image : (cv::boundingRect(options_.search_polygon) & image);
+  search_border_.release();
+  if (!search_.empty()) {  // the region's inner rim, 2 px wide
+    cv::erode(search_, search_border_, cv::Mat(), cv::Point(-1, -1), 2, cv::BORDER_CONSTANT, 0);
+    cv::bitwise_xor(search_, search_border_, search_border_);
+  }
+  region_cut_ = false;
   combine_regions();
 }
 
@@ -640,7 +646,15 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
     fill_holes_in(mask, cv::boundingRect(mask), options_.max_hole_area, packed_);
     if (!allowed.empty()) mask &= allowed;
   }
-  if (searching && !restricted_) mask &= search_;  // a refresh frame: still the region only
+  // A silhouette reaching the region's rim was cut by it (the region is stale: the body moved
+  // more than its margin, or the fit is wrong): the frame is classified again, whole, and so are
+  // the frames after it until a new region comes. A whole frame's mask is given as it is.
+  if (restricted_ && cv::countNonZero(mask(search_box_) & search_border_(search_box_)) >
+                         options_.search_cut_pixels) {
+    region_cut_ = true;
+    ++regions_cut_;
+    return apply(captured);  // this frame again, whole: a cut silhouette is never given out
+  }
   if (options_.update_rate > 0) update_model(frame, mask);
   return mask;
 }
@@ -650,7 +664,7 @@ void MediPicture::decide_search() {
   const bool needs_factor =
       options_.remove_shadows && options_.shadow_test == ShadowTest::kCommonRatio;
   restricted_ =
-      !search_.empty() &&
+      !search_.empty() && !region_cut_ &&
       (!needs_factor || (remembered_ratio_ > 0 &&
                          frames_since_refresh_ + 1 < std::max(1, options_.search_refresh_frames)));
   frames_since_refresh_ = restricted_ ? frames_since_refresh_ + 1 : 0;

@@ -89,6 +89,10 @@ struct MediPictureOptions {
   // With a search region, every this many frames the whole frame is classified all the same, to
   // find the shadow's factor (kCommonRatio) where the region holds too little of the shadow.
   int search_refresh_frames = 10;
+  // A silhouette with more than this many pixels on the search region's rim was cut by the
+  // region: the frames after it are classified whole until a new region is set
+  // (MediPicture::regions_cut counts them).
+  int search_cut_pixels = 10;
 };
 
 // The parameters of the thesis' text (k 3, the correlation shadow test of eqs 5.6-5.11 with
@@ -123,6 +127,10 @@ class MediPicture {
 
   const MediPictureModel& model() const { return model_; }
   const MediPictureOptions& options() const { return options_; }
+  // Frames whose silhouette the search region cut (each followed by a whole frame).
+  long regions_cut() const { return regions_cut_; }
+  // The last frame was classified in the search region only.
+  bool searched() const { return restricted_; }
   // The illumination correction of the last frame; nullptr when correct_illumination is off.
   const RadiometricCorrection* illumination() const { return illumination_.get(); }
 
@@ -157,6 +165,9 @@ class MediPicture {
   const cv::Mat* frame_allowed_ = nullptr;  // this frame's allowed_ or clip_
   float remembered_ratio_ = 0.0f;           // the shadow's factor from the last whole frame
   int frames_since_refresh_ = 0;
+  cv::Mat search_border_;    // the search region's inner rim, 2 px
+  bool region_cut_ = false;  // the last frame's silhouette reached the rim
+  long regions_cut_ = 0;
   // lower <= background <= upper everywhere: then the candidates of the shadow test are exactly
   // the pixels below the interval. False (odd options) selects apply_whole_frame.
   bool fast_path_ = false;

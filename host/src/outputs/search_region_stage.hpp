@@ -20,8 +20,8 @@ namespace syncap::outputs {
 
 struct SearchRegionStageOptions {
   fitting::SearchRegionOptions region;
-  int lead = 1;           // a fit of frame F serves from frame F + lead on
-  int valid_frames = 15;  // for this many frames (0.5 s at 30 Hz): a lost track expires
+  int lead = 1;          // a fit of frame F serves from frame F + lead on
+  int valid_frames = 8;  // for this many frames (0.27 s at 30 Hz): a lost track expires
 };
 
 // The search region message of `camera` for a body at `ellipsoids` fitted on frame `frame`

@@ -69,8 +69,7 @@ TEST(SceneEval, ScoresEachPersonFrameAgainstItsTrueMask) {
   std::filesystem::remove_all(dir);
 }
 
-// The host's regions: a clip over the square's left half, a search region for frame 3 only
-// around its right half.
+// The host's regions: a clip over the square's left half; a search region for frame 3 only.
 TEST(SceneEval, RegionsApplyToTheirCameraAndFrames) {
   const auto dir = write_scene("regions");
   SceneRegion clip{0, SceneRegion::Kind::kClip, 0, 0, {{0, 0}, {19, 0}, {19, 39}, {0, 39}}};
@@ -81,10 +80,11 @@ TEST(SceneEval, RegionsApplyToTheirCameraAndFrames) {
   // Frame 2: the mask is x 10..19 of the true 10..29; frame 3: x 10..19 against 20..39.
   EXPECT_NEAR(scores[0].iou_mean, (0.5 + 0.0) / 2, 1e-9);
   EXPECT_EQ(scores[0].frames_searched, 0);
-  SceneRegion search{0, SceneRegion::Kind::kSearch, 3, 1, {{20, 0}, {59, 0}, {59, 39}, {20, 39}}};
+  // A search region for frame 3 only, around the square (x 10..29): the same masks, one frame
+  // searched.
+  SceneRegion search{0, SceneRegion::Kind::kSearch, 3, 1, {{2, 2}, {40, 2}, {40, 38}, {2, 38}}};
   scores = evaluate_scene(dir, bare_options(), {search});
-  // Frame 2 unrestricted (IoU 1), frame 3: x 20..29 of the mask against the true 20..39.
-  EXPECT_NEAR(scores[0].iou_mean, (1.0 + 0.5) / 2, 1e-9);
+  EXPECT_NEAR(scores[0].iou_mean, (1.0 + 1.0 / 3.0) / 2, 1e-9);
   EXPECT_EQ(scores[0].frames_searched, 1);
   std::filesystem::remove_all(dir);
 }
