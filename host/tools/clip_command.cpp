@@ -1,7 +1,5 @@
 #include "clip_command.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <algorithm>
 #include <optional>
 #include <set>
@@ -9,12 +7,12 @@
 #include <nlohmann/json.hpp>
 
 #include "io/message_json.hpp"
+#include "region_sender.hpp"
 #include "sensor/camera_file.hpp"
 #include "sensor/volume_outline.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
-#include "syncap/proto/command_auth.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -180,28 +178,8 @@ int clip_command(std::span<const std::string> args, std::ostream& out, std::ostr
       cameras, parsed.volume.value_or(std::array<double, 6>{}), parsed.margin_px, parsed.remove,
       parsed.floor ? clip_polygon_t::REGION_FLOOR : clip_polygon_t::REGION_CLIP,
       parsed.floor_extent_mm);
-  std::optional<lcm::LCM> lcm;
-  std::optional<proto::CommandSigner> signer;
-  if (parsed.publish) {
-    try {
-      signer.emplace(proto::CommandKey::load(parsed.key_path));
-    } catch (const proto::CommandKeyError& e) {
-      err << kErrorPrefix << "--key " << e.what() << '\n';
-      return kExitUsage;
-    }
-    lcm.emplace(parsed.lcm_url);
-    if (!lcm->good()) {
-      err << kErrorPrefix << "cannot open LCM at " << parsed.lcm_url << '\n';
-      return kExitUsage;
-    }
-  }
-  for (clip_polygon_t m : clips.messages) {
-    if (signer) signer->sign(m);
-    out << nlohmann::ordered_json(m).dump() << '\n';
-    if (lcm) lcm->publish(proto::kEdgeClipChannel, &m);
-  }
-  for (const std::string& note : clips.notes) err << kErrorPrefix << note << '\n';
-  return clips.notes.empty() ? kExitOk : kExitReportedErrors;
+  return send_regions(clips.messages, clips.notes,
+                      {parsed.publish, parsed.key_path, parsed.lcm_url}, kErrorPrefix, out, err);
 }
 
 }  // namespace syncap::tools

@@ -1,9 +1,6 @@
 #include "regions_command.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <algorithm>
-#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -12,11 +9,11 @@
 #include "fitting/pose_parameters.hpp"
 #include "io/message_json.hpp"
 #include "outputs/search_region_stage.hpp"
+#include "region_sender.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
-#include "syncap/proto/command_auth.hpp"
 
 namespace syncap::tools {
 namespace {
@@ -137,28 +134,8 @@ int regions_command(std::span<const std::string> args, std::ostream& out, std::o
   }
   const SearchRegionMessages regions =
       search_region_messages(records, cameras, a.region, a.lead, a.frames);
-  std::optional<lcm::LCM> lcm;
-  std::optional<proto::CommandSigner> signer;
-  if (a.publish) {
-    try {
-      signer.emplace(proto::CommandKey::load(a.key_path));
-    } catch (const proto::CommandKeyError& e) {
-      err << kErrorPrefix << "--key " << e.what() << '\n';
-      return kExitUsage;
-    }
-    lcm.emplace(a.lcm_url);
-    if (!lcm->good()) {
-      err << kErrorPrefix << "cannot open LCM at " << a.lcm_url << '\n';
-      return kExitUsage;
-    }
-  }
-  for (clip_polygon_t m : regions.messages) {
-    if (signer) signer->sign(m);
-    out << nlohmann::ordered_json(m).dump() << '\n';
-    if (lcm) lcm->publish(proto::kEdgeClipChannel, &m);
-  }
-  for (const std::string& note : regions.notes) err << kErrorPrefix << note << '\n';
-  return regions.notes.empty() ? kExitOk : kExitReportedErrors;
+  return send_regions(regions.messages, regions.notes, {a.publish, a.key_path, a.lcm_url},
+                      kErrorPrefix, out, err);
 }
 
 }  // namespace syncap::tools
