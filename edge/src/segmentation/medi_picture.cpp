@@ -597,7 +597,6 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   // body's own darkening (camera 5 of the ring lost 5 % IoU). Every search_refresh_frames-th
   // frame, and while no factor is known, the whole frame is classified to find it again; the
   // result is still confined to the region.
-  const bool searching = !search_.empty();
   const cv::Mat& allowed = restricted_ ? allowed_ : clip_;
   frame_allowed_ = &allowed;
   const bool clipped = !allowed.empty();
