@@ -429,9 +429,7 @@ MediPictureModel train_medi_picture(std::span<const cv::Mat> frames) {
 MediPictureModel train_medi_picture(std::span<const cv::Mat> frames,
                                     const MediPictureOptions& options) {
   if (!options.correct_illumination) return train_medi_picture(frames);
-  check_training_frames(frames);
-  const std::vector<cv::Mat> copies(frames.begin(), frames.end());
-  return train_medi_picture(normalise_training_frames(copies, options.illumination));
+  return train_medi_picture(normalise_training_frames(frames, options.illumination));
 }
 
 cv::Mat classify_against_model(const MediPictureModel& model, const cv::Mat& frame,
@@ -595,10 +593,9 @@ cv::Mat MediPicture::apply(const cv::Mat& captured) {
   // background, and the shadow's factor is the one last found over the whole frame: inside the
   // region alone a shadow partly outside it leaves too few candidates, and the mode became the
   // body's own darkening (camera 5 of the ring lost 5 % IoU). Every search_refresh_frames-th
-  // frame, and while no factor is known, the whole frame is classified to find it again; the
-  // result is still confined to the region.
-  const cv::Mat& allowed = restricted_ ? allowed_ : clip_;
-  frame_allowed_ = &allowed;
+  // frame, and while no factor is known, the whole frame is classified to find it again (within
+  // the clip polygon only, and given out as it is).
+  const cv::Mat& allowed = frame_allowed();
   const bool clipped = !allowed.empty();
   const cv::Rect box = restricted_ ? search_box_ : cv::Rect(0, 0, cols, rows);
   const bool whole = box.width == cols;
@@ -781,7 +778,7 @@ void MediPicture::clean_inside(cv::Mat& mask, cv::Rect box) {
                     centroids_);
     work_.copyTo(target);
   }
-  const cv::Mat& allowed = frame_allowed_ != nullptr ? *frame_allowed_ : allowed_;
+  const cv::Mat& allowed = frame_allowed();
   if (!allowed.empty()) cv::bitwise_and(target, allowed(region), target);
 }
 

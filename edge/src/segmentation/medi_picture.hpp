@@ -138,6 +138,9 @@ class MediPicture {
   void derive_thresholds();
   void combine_regions();
   void decide_search();
+  // Where this frame's pixels may be foreground: clip and search region when restricted_, the
+  // clip alone on a whole frame.
+  const cv::Mat& frame_allowed() const { return restricted_ ? allowed_ : clip_; }
   void update_model(const cv::Mat& frame, const cv::Mat& mask);
   // The steps one after the other over the whole frame (the free functions); used when the
   // options rule out the fast path.
@@ -161,9 +164,8 @@ class MediPicture {
   cv::Mat allowed_;            // clip_ and search_ combined, empty when neither
   cv::Rect search_box_;        // the search region's bounding box, or the whole image
   // The search region's state between frames (apply's comment).
-  bool restricted_ = false;                 // this frame is classified in the search region only
-  const cv::Mat* frame_allowed_ = nullptr;  // this frame's allowed_ or clip_
-  float remembered_ratio_ = 0.0f;           // the shadow's factor from the last whole frame
+  bool restricted_ = false;        // this frame is classified in the search region only
+  float remembered_ratio_ = 0.0f;  // the shadow's factor from the last whole frame
   int frames_since_refresh_ = 0;
   cv::Mat search_border_;    // the search region's inner rim, 2 px
   bool region_cut_ = false;  // the last frame's silhouette reached the rim

@@ -22,11 +22,6 @@ constexpr double kMinStructure = 1.0;
 constexpr double kMinVariance = 16.0;
 constexpr double kMinScaleDn = 0.5;  // floor of the robust scale (noise-free synthetic images)
 
-// One observing pixel of a window: its place relative to the centre, the background's value and
-// the background's gradient there. The frame's gradient would be the textbook choice; the
-// background's (a median of many frames) is nearly noise-free, where the frame's noise enters
-// both the gradient and the residual and biases the shift (by 15 % in the test of 0.3 px). With
-// I(T(u)) = (B(u) - r0) / r1, r1 grad I = grad B.
 using Observation = detail::LsmObservation;
 
 double median_of(std::vector<double>& values) {
@@ -100,8 +95,7 @@ Iteration accumulate(const std::vector<Observation>& obs, const cv::Mat& frame,
   const bool geometry = active[0];
   for (std::size_t i = 0; i < obs.size(); ++i) {
     if (!geometry) {  // the identity: the observation's own pixel, no resampling
-      ws.resampled[i] = frame.at<uchar>(static_cast<int>(std::lround(cy + obs[i].v)),
-                                        static_cast<int>(std::lround(cx + obs[i].u)));
+      ws.resampled[i] = frame.at<uchar>(obs[i].y, obs[i].x);
     } else {
       const cv::Point2d at = transformed(p, obs[i], cx, cy);
       if (at.x < 0 || at.y < 0 || at.x >= frame.cols - 1 || at.y >= frame.rows - 1) continue;
@@ -160,13 +154,10 @@ bool solve_active(Iteration& it, const std::array<bool, kParameters>& active,
   return true;
 }
 
-double initial_offset(const std::vector<Observation>& obs, const cv::Mat& frame, double cx,
-                      double cy) {
+double initial_offset(const std::vector<Observation>& obs, const cv::Mat& frame) {
   std::vector<double> differences;
   differences.reserve(obs.size());
-  for (const Observation& o : obs)
-    differences.push_back(o.background - frame.at<uchar>(static_cast<int>(std::lround(cy + o.v)),
-                                                         static_cast<int>(std::lround(cx + o.u))));
+  for (const Observation& o : obs) differences.push_back(o.background - frame.at<uchar>(o.y, o.x));
   return median_of(differences);
 }
 
@@ -188,9 +179,13 @@ LsmWindow observe_window(const cv::Mat& background, cv::Rect window, int step) {
   double sxx = 0, syy = 0, sum = 0, sum2 = 0;
   for (int r = 0; r < window.height; r += step) {
     for (int c = 0; c < window.width; c += step) {
-      const Observation o{static_cast<float>(window.x + c - out.cx),
-                          static_cast<float>(window.y + r - out.cy), bg.at<float>(r, c),
-                          gx.at<float>(r + 1, c + 1), gy.at<float>(r + 1, c + 1)};
+      const Observation o{window.x + c,
+                          window.y + r,
+                          static_cast<float>(window.x + c - out.cx),
+                          static_cast<float>(window.y + r - out.cy),
+                          bg.at<float>(r, c),
+                          gx.at<float>(r + 1, c + 1),
+                          gy.at<float>(r + 1, c + 1)};
       sxx += o.gx * o.gx;
       syy += o.gy * o.gy;
       sum += o.background;
@@ -233,9 +228,7 @@ LsmWindowResult solve_window(const LsmWindow& observed, const cv::Mat& frame,
   if (!exclude.empty()) {
     kept.reserve(observed.observations.size());
     for (const Observation& o : observed.observations) {
-      const int x = static_cast<int>(std::lround(cx + o.u)),
-                y = static_cast<int>(std::lround(cy + o.v));
-      if (exclude.at<uchar>(y, x) == 0) kept.push_back(o);
+      if (exclude.at<uchar>(o.y, o.x) == 0) kept.push_back(o);
     }
   }
   const std::vector<Observation>& obs = exclude.empty() ? observed.observations : kept;
@@ -250,7 +243,7 @@ LsmWindowResult solve_window(const LsmWindow& observed, const cv::Mat& frame,
   const int unknowns = static_cast<int>(std::count(active.begin(), active.end(), true));
   if (static_cast<int>(obs.size()) < 2 * unknowns + 8) return result;
 
-  std::array<double, kParameters> p{0, 1, 0, 0, 0, 1, initial_offset(obs, frame, cx, cy), 1};
+  std::array<double, kParameters> p{0, 1, 0, 0, 0, 1, initial_offset(obs, frame), 1};
   const double half_w = window.width / 2.0, half_h = window.height / 2.0;
   bool converged = false;
   Workspace ws;
@@ -383,18 +376,16 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
   if (frame.size() != background_.size() || frame.type() != CV_8UC1)
     throw std::invalid_argument(
         "RadiometricCorrection::correct: frame not CV_8UC1 of the background's size");
+  if (!exclude.empty() && (exclude.size() != frame.size() || exclude.type() != CV_8UC1))
+    throw std::invalid_argument(
+        "RadiometricCorrection::correct: exclude not CV_8UC1 of the frame's size");
   windows_.clear();
   summary_ = RadiometricSummary{};
-  for (int r = 0; r < options_.grid_rows; ++r) {
-    for (int c = 0; c < options_.grid_columns; ++c) {
-      const cv::Rect window = window_of(r, c);
-      LsmWindowResult w = match_window(background_, frame, window, exclude, options_.lsm);
-      const int step = pixel_step_for(window, options_.lsm);
-      const double possible =
-          std::ceil(window.width / double(step)) * std::ceil(window.height / double(step));
-      w.valid = w.valid && w.observations >= options_.min_observed_share * possible;
-      windows_.push_back(w);
-    }
+  for (const detail::LsmWindow& observed : observed_) {  // the background's, kept between frames
+    LsmWindowResult w = detail::solve_window(observed, frame, exclude, options_.lsm);
+    const double possible = static_cast<double>(observed.observations.size());
+    w.valid = w.valid && w.observations >= options_.min_observed_share * possible;
+    windows_.push_back(w);
   }
   summary_.windows = static_cast<int>(windows_.size());
   summarise_valid_windows();
@@ -450,7 +441,7 @@ const cv::Mat& RadiometricCorrection::correct(const cv::Mat& frame, const cv::Ma
   return corrected_;
 }
 
-std::vector<cv::Mat> normalise_training_frames(const std::vector<cv::Mat>& frames,
+std::vector<cv::Mat> normalise_training_frames(std::span<const cv::Mat> frames,
                                                const RadiometricOptions& options) {
   const MediPictureModel raw = train_medi_picture(frames);
   cv::Mat reference;

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -55,9 +56,13 @@ struct LsmWindowResult {
 
 namespace detail {
 
-// One observing pixel of a window: its place relative to the window's centre, the background's
-// value and the background's gradient there.
+// One observing pixel of a window: the pixel, its place relative to the window's centre, the
+// background's value and the background's gradient there. The frame's gradient would be the
+// textbook choice; the background's (a median of many frames) is nearly noise-free, where the
+// frame's noise enters both the gradient and the residual and biases the shift (by 15 % in the
+// test of 0.3 px). With I(T(u)) = (B(u) - r0) / r1, r1 grad I = grad B.
 struct LsmObservation {
+  int x, y;  // the pixel in the image
   float u, v;
   float background;
   float gx, gy;
@@ -166,7 +171,7 @@ class RadiometricCorrection {
 
 // The training frames brought to one radiometry (that of their per-pixel median), so that a lamp
 // flickering during training does not widen the model's intervals. Frames as train_medi_picture.
-std::vector<cv::Mat> normalise_training_frames(const std::vector<cv::Mat>& frames,
+std::vector<cv::Mat> normalise_training_frames(std::span<const cv::Mat> frames,
                                                const RadiometricOptions& options = {});
 
 }  // namespace syncap::edge
