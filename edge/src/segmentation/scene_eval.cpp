@@ -107,7 +107,9 @@ SceneCameraScore score_camera(const std::filesystem::path& dir, int camera,
     const cv::Mat truth = read_grey(mask_path) != 0;
     std::vector<cv::Point> search = search_region_at(regions, camera, frame);
     if (!search.empty()) ++score.frames_searched;
-    medi.set_search_region(std::move(search));
+    // Set only when it changes, as the edge does: a region set again would count as new (its
+    // masks drawn again, a cut by it forgotten).
+    if (search != medi.options().search_polygon) medi.set_search_region(std::move(search));
     const cv::Mat mask = medi.apply(read_grey(numbered(images, "frame_", frame, ".pgm"))) != 0;
     const int either = cv::countNonZero(mask | truth);
     const double iou = either == 0 ? 1.0 : cv::countNonZero(mask & truth) / double(either);
