@@ -65,9 +65,8 @@ void add_body_stages(const host_app::HostOptions& o,
     s.chain.push_back(std::make_unique<outputs::BodyMessageStage>(
         [&lcm](const body_frame_t& m) { lcm.publish(proto::kBodyChannel, &m); }));
   if (o.search.enabled) {
-    // The key was loaded once when the options were parsed: a bad file is named there.
-    auto signer =
-        std::make_shared<proto::CommandSigner>(proto::CommandKey::load(o.search.key_path));
+    // The key was loaded when the options were parsed: a bad file is named there.
+    auto signer = std::make_shared<proto::CommandSigner>(*o.search.key);
     s.chain.push_back(std::make_unique<outputs::SearchRegionStage>(
         cameras, o.search.stage, [&lcm, signer](clip_polygon_t& m) {
           signer->sign(m);

@@ -216,7 +216,7 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
                                  "needs --key FILE: an edge applies only signed regions");
     if (o.search.enabled) {
       try {
-        proto::CommandKey::load(o.search.key_path);  // named now, not when the first fit is sent
+        o.search.key = proto::CommandKey::load(o.search.key_path);  // named now, not at a fit
       } catch (const proto::CommandKeyError& e) {
         throw CLI::ValidationError("--key", e.what());
       }

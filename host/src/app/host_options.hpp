@@ -12,6 +12,7 @@
 #include "reconstruction/body_fit_stage.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
+#include "syncap/proto/command_auth.hpp"
 #include "tracking/marker_tracker.hpp"
 #include "tracking/rigid_set.hpp"
 
@@ -53,7 +54,8 @@ struct BodyArgs {
 // The edges' search regions from the tracked body (syncap-host --search-regions).
 struct SearchRegionArgs {
   bool enabled = false;
-  std::string key_path;  // --key: the installation's command key, to sign them
+  std::string key_path;                  // --key: the installation's command key, to sign them
+  std::optional<proto::CommandKey> key;  // loaded from key_path when the options are parsed
   outputs::SearchRegionStageOptions stage;
 };
 
