@@ -28,15 +28,31 @@ cv::Rect ellipsoid_box(const View& view, const Ellipsoid& e) {
   return box & cv::Rect(0, 0, view.width, view.height);
 }
 
-// Stripes around each limb and Lambert shading: texture for matching, shape for the eye.
+// The clothes' pattern, in [0, 1]: three plane waves through the segment's own frame (a solid
+// texture, so it varies in both directions on the surface and a matched patch is located along
+// and across a limb; the stripes it replaced, along the axis only, were not). Three different
+// wavelengths (60, 85, 120 mm: 10-20 px at the ring's 6 mm a pixel) make the pattern repeat
+// rarely along a scan line, and are smooth at the pixel, so sampling each pixel at its centre
+// does not alias.
+double clothes_pattern(const Eigen::Vector3d& local, int index) {
+  static const Eigen::Vector3d waves[3] = {
+      {0.081, 0.027, 0.061}, {-0.030, 0.055, -0.040}, {0.017, -0.034, -0.037}};  // rad/mm
+  double sum = 0.0;
+  for (int w = 0; w < 3; ++w) sum += std::sin(waves[w].dot(local) + index * (1.7 + 0.9 * w));
+  return std::clamp(0.5 + sum / 4.0, 0.0, 1.0);
+}
+
+// The clothes' pattern and Lambert shading: texture for matching, shape for the eye.
 float body_shade(const Ellipsoid& e, const Eigen::Vector3d& hit, const Eigen::Vector3d& light_dir,
                  int index) {
   const Eigen::Vector3d local = e.axes.transpose() * (hit - e.centre_mm);
   const Eigen::Vector3d normal =
       (e.axes * local.cwiseQuotient(e.radii_mm.cwiseProduct(e.radii_mm))).normalized();
   const double lambert = std::max(0.0, -normal.dot(light_dir));
-  const double stripes = 0.5 + 0.5 * std::sin(local.z() * 0.12 + index * 1.7);
-  return static_cast<float>((70.0 + 50.0 * stripes) * (0.45 + 0.75 * lambert));
+  // 20-100 DN before shading (a typical swing of +-24 DN: printed cloth, 2.4 times the stripes'
+  // contrast); at most 120 DN lit, below the marker threshold (128 DN), or the pattern's bright
+  // round spots would be taken for markers.
+  return static_cast<float>((5.0 + 95.0 * clothes_pattern(local, index)) * (0.45 + 0.75 * lambert));
 }
 
 // An ellipsoid in the frame that makes it a unit sphere: rays from a fixed origin (the camera
