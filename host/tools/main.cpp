@@ -22,6 +22,7 @@
 #include "hull_command.hpp"
 #include "log_command.hpp"
 #include "markers_command.hpp"
+#include "match_command.hpp"
 #include "record_command.hpp"
 #include "regions_command.hpp"
 #include "subcommand.hpp"
@@ -60,6 +61,10 @@ constexpr std::array kSubcommands{
                &syncap::tools::fit_command},
     Subcommand{"hull", "the visual hull of one mask per calibrated camera (PLY, OBJ, IoU per view)",
                &syncap::tools::hull_command},
+    Subcommand{"match",
+               "the surface seen by calibrated cameras: GC3 and least-squares matching on the "
+               "hull (PLY, CSV)",
+               &syncap::tools::match_command},
     Subcommand{"keygen", "create the installation's key that signs the edges' commands",
                &syncap::tools::keygen_command},
 };

@@ -271,6 +271,7 @@ std::vector<HullView> read_views(const fs::path& cameras, const fs::path& masks,
     v.silhouette = silhouette_from_mask(v.mask, options.simplify_px);
     if (v.silhouette.empty()) throw HullError(v.name + ": empty mask (no foreground)");
     if (c.lenses[i]) to_ideal_pixels(*c.lenses[i], v);
+    v.lens = c.lenses[i];
     views.push_back(std::move(v));
   }
   return views;

@@ -13,6 +13,7 @@
 #include "hull/mesh.hpp"
 #include "hull/silhouette.hpp"
 #include "sensor/camera_model.hpp"
+#include "sensor/opencv_camera.hpp"
 
 namespace syncap::hull {
 
@@ -22,6 +23,9 @@ struct HullView {
   sensor::CameraModel camera;
   Silhouette silhouette;
   cv::Mat mask;  // optional (8-bit, the camera's image size): the voxel method samples it
+  // An OpenCV camera with lens distortion: `camera` is its ideal camera and `mask` was resampled
+  // into ideal pixels; the lens tells a user of the images (surface matching) how to do the same.
+  std::optional<sensor::OpenCvCamera> lens;
 };
 
 // Bad input: what() names the view (camera and file) and what is wrong with it.

@@ -108,7 +108,7 @@ std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
       ++stats_.cameras_missing;
       continue;
     }
-    views.push_back({"camera " + std::to_string(camera.id), camera, std::move(silhouette), {}});
+    views.push_back({"camera " + std::to_string(camera.id), camera, std::move(silhouette), {}, {}});
   }
   return views;
 }

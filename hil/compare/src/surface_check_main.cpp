@@ -1,0 +1,85 @@
+// syncap-hil-surface-check: `syncap match`'s points of one rendered frame against the true body
+// (hil/compare/README.md).
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "surface_check.hpp"
+#include "syncap/cli/options.hpp"
+#include "true_body.hpp"
+
+namespace {
+
+struct Options {
+  std::string points, truth, json, errors;
+  long frame = -1;
+  double blunder_mm = 5.0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace syncap;
+  Options o;
+  cli::App app("syncap-hil-surface-check",
+               "usage: syncap-hil-surface-check --points points.csv --truth DIR --frame N\n"
+               "The surface points of `syncap match` on one frame of a syncap-sim render against\n"
+               "the true body (DIR/truth/body.jsonl): each point's error along its ray from the\n"
+               "ray's first true hit, on the true normal, and over its sigma.\n",
+               "Exit status: 0 done, 2 usage error or unreadable input (named).");
+  app.add_option("--points", o.points, "syncap match's points.csv")->required();
+  app.add_option("--truth", o.truth, "the render folder (DIR/truth/body.jsonl)")->required();
+  app.add_option("--frame", o.frame, "the frame the points were matched on")->required();
+  app.add_option("--blunder-mm", o.blunder_mm,
+                 "a blunder: |error on the normal| > max(5 sigma, this) (default 5)");
+  app.add_option("--json", o.json, "also write the figures as JSON")->option_text("FILE");
+  app.add_option("--errors", o.errors,
+                 "write each point's errors (CSV, in points.csv's order: along the ray, on the "
+                 "normal, sigma on the normal, the GC3 peak's on the normal)")
+      ->option_text("FILE");
+  if (const auto status = cli::parse_main(app, argc, argv)) return *status;
+  try {
+    const auto bodies =
+        compare::read_true_bodies(std::filesystem::path(o.truth) / "truth" / "body.jsonl");
+    const auto body = bodies.find(o.frame);
+    if (body == bodies.end() || body->second.ellipsoids.empty()) {
+      std::fprintf(stderr, "syncap-hil-surface-check: %s: no body for frame %ld\n", o.truth.c_str(),
+                   o.frame);
+      return 2;
+    }
+    const auto points = compare::read_surface_points(o.points);
+    std::vector<compare::PointError> each;
+    const compare::SurfaceErrors e =
+        compare::check_surface(points, body->second, o.blunder_mm, &each);
+    if (!o.errors.empty()) {
+      std::ofstream out(o.errors);
+      out << "error_ray_mm,error_normal_mm,sigma_normal_mm,sweep_error_normal_mm\n";
+      for (const auto& p : each)
+        out << p.ray_mm << ',' << p.normal_mm << ',' << p.sigma_normal_mm << ','
+            << p.sweep_normal_mm << '\n';
+    }
+    std::printf(
+        "frame %ld: %zu points, %zu off the body, %zu blunders (%.2f %%); without them: RMS on "
+        "the normal %.3f mm, RMS error/sigma %.2f; within 3 sigma %.1f %%; median sigma %.3f "
+        "mm; the GC3 peaks' RMS %.3f mm\n",
+        o.frame, e.points, e.off_body, e.blunders, e.points ? 100.0 * e.blunders / e.points : 0.0,
+        e.rms_normal_mm, e.rms_normalised, 100.0 * e.within_3_sigma, e.median_sigma_normal_mm,
+        e.sweep_rms_normal_mm);
+    if (!o.json.empty()) {
+      const nlohmann::json j{{"frame", o.frame},
+                             {"points", e.points},
+                             {"off_body", e.off_body},
+                             {"blunders", e.blunders},
+                             {"rms_normal_mm", e.rms_normal_mm},
+                             {"rms_normalised", e.rms_normalised},
+                             {"within_3_sigma", e.within_3_sigma},
+                             {"median_sigma_normal_mm", e.median_sigma_normal_mm},
+                             {"sweep_rms_normal_mm", e.sweep_rms_normal_mm}};
+      std::ofstream(o.json) << j.dump() << '\n';
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "syncap-hil-surface-check: %s\n", e.what());
+    return 2;
+  }
+}

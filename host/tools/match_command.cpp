@@ -1,0 +1,247 @@
+#include "match_command.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "hull/polyhedral_hull.hpp"
+#include "hull/views_io.hpp"
+#include "matching/surface/surface_matcher.hpp"
+#include "subcommand.hpp"
+#include "syncap/cli/options.hpp"
+#include "util/printf_string.hpp"
+
+namespace syncap::tools {
+namespace {
+
+namespace fs = std::filesystem;
+namespace ms = matching::surface;
+
+constexpr const char* kErrorPrefix = "syncap match: ";
+
+struct MatchArgs {
+  std::string cameras;
+  std::string images;
+  std::string masks;
+  std::string hull;
+  std::string out;
+  int threshold = -1;
+  bool largest = false;
+  bool sweep_only = false;
+  ms::SurfaceMatchingOptions options;
+};
+
+constexpr const char* kDescription =
+    "usage: syncap match --cameras FILE|DIR --images DIR --masks DIR|--hull FILE --out DIR\n"
+    "The surface of the object the cameras see, by geometrically constrained cross-correlation\n"
+    "(GC3) along each seed's 3D scan line and multi-image least-squares matching constrained\n"
+    "to one 3D point (docs/matching.md). Seeds: a grid in each image on the visual hull (built\n"
+    "from the masks with the polyhedral method, or read from --hull), each matched from the\n"
+    "view that faces it best in the views whose facet-ID image sees it. Cameras as for\n"
+    "`syncap hull`; images: the image files of DIR in name order, one per camera (8-bit grey\n"
+    "or colour). Writes DIR/points.ply (x y z, normal, sigma along the normal) and\n"
+    "DIR/points.csv (every point with its ray, sigmas, SNCC, sigma0, views); prints the\n"
+    "seeds, the rejections by reason and the time.\n";
+
+constexpr const char* kFooter =
+    "Exit status: 0 done, 1 no point matched, 2 usage error or bad input (named: file, camera).";
+
+void add_match_options(CLI::App& app, MatchArgs& a) {
+  ms::SurfaceMatchingOptions& o = a.options;
+  app.add_option("--cameras", a.cameras,
+                 "cameras.json, an OpenCV-style .yaml/.yml/.json, or a folder of *.pa projection "
+                 "matrices")
+      ->option_text("FILE|DIR")
+      ->required();
+  app.add_option("--images", a.images, "the folder of images, one per camera in name order")
+      ->option_text("DIR")
+      ->required();
+  auto* masks = app.add_option("--masks", a.masks,
+                               "the folder of masks, one per camera in name order (the hull)")
+                    ->option_text("DIR");
+  auto* hull = app.add_option("--hull", a.hull, "the object's hull mesh (PLY or OBJ) instead")
+                   ->option_text("FILE");
+  masks->excludes(hull);
+  app.add_option("--out", a.out, "the folder for points.ply and points.csv (created)")
+      ->option_text("DIR")
+      ->required();
+  cli::add_checked(app, "--threshold", a.threshold, "N", cli::whole_in<int>(0, 254),
+                   "mask foreground is grey > N; default: any non-zero pixel");
+  app.add_flag("--largest", a.largest, "keep only each mask's largest foreground component");
+  cli::add_checked(
+      app, "--spacing", o.seed_spacing_px, "PX", cli::number_in(1, 100),
+      "seed grid spacing in each image (default " + cli::number_text(o.seed_spacing_px) + ")");
+  cli::add_checked(
+      app, "--half-window", o.half_window, "N", cli::whole_in<int>(1, 15),
+      "the window is 2N+1 pixels square (default " + std::to_string(o.half_window) + ")");
+  cli::add_checked(app, "--search-depth", o.search_depth_mm, "MM", cli::number_in(1, 5000),
+                   "the scan line reaches this far behind the hull (default " +
+                       cli::number_text(o.search_depth_mm) + ")");
+  cli::add_checked(
+      app, "--search-front", o.search_front_mm, "MM", cli::number_in(0, 5000),
+      "and starts this far in front of it (default " + cli::number_text(o.search_front_mm) + ")");
+  cli::add_checked(
+      app, "--min-sncc", o.min_sncc, "R", cli::number_in(-1, 1),
+      "the best SNCC peak's least value (default " + cli::number_text(o.min_sncc) + ")");
+  cli::add_checked(app, "--min-views", o.min_search_views, "N", cli::whole_in<int>(1, 99),
+                   "search images a seed needs besides its reference (default " +
+                       std::to_string(o.min_search_views) + ")");
+  cli::add_checked(app, "--max-angle", o.max_view_angle_deg, "DEG", cli::number_in(1, 89),
+                   "largest angle between the surface normal and a view's direction (default " +
+                       cli::number_text(o.max_view_angle_deg) + ")");
+  app.add_flag("--sweep-only", a.sweep_only,
+               "no least squares: each point is the GC3 peak (the NCC sweep baseline)");
+}
+
+std::optional<int> parse_match_args(std::span<const std::string> args, MatchArgs& a,
+                                    std::ostream& out, std::ostream& err) {
+  cli::App app("syncap match", kDescription, kFooter);
+  add_match_options(app, a);
+  if (const auto status = cli::parse(app, args, out, err)) return status;
+  if (a.masks.empty() && a.hull.empty()) {
+    err << kErrorPrefix << "give --masks DIR (the hull is built from them) or --hull FILE\n";
+    return kExitUsage;
+  }
+  a.options.least_squares = !a.sweep_only;
+  return std::nullopt;
+}
+
+// The views' cameras (and masks, when given) as the hull reads them.
+std::vector<hull::HullView> read_hull_views(const MatchArgs& a) {
+  hull::ViewFiles files;
+  if (a.threshold >= 0) files.threshold = a.threshold;
+  files.largest_only = a.largest;
+  // Without masks, the images stand in for them: only their cameras are used.
+  return hull::read_views(a.cameras, a.masks.empty() ? a.images : a.masks, files);
+}
+
+std::vector<ms::MatchingView> read_images(const MatchArgs& a,
+                                          const std::vector<hull::HullView>& cameras) {
+  const std::vector<fs::path> files = hull::mask_files(a.images);
+  if (files.size() != cameras.size())
+    throw hull::HullError(util::printf_string("%s: %zu image(s) for %zu camera(s)",
+                                              a.images.c_str(), files.size(), cameras.size()));
+  std::vector<ms::MatchingView> views;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    cv::Mat image = cv::imread(files[i].string(), cv::IMREAD_UNCHANGED);
+    if (image.empty() || image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3))
+      throw hull::HullError(files[i].string() + ": not a readable 8-bit grey or colour image");
+    const auto& camera = cameras[i].camera;
+    if (image.cols != camera.sensor.width_px || image.rows != camera.sensor.height_px)
+      throw hull::HullError(util::printf_string(
+          "%s: image is %dx%d, camera %d's %dx%d", files[i].string().c_str(), image.cols,
+          image.rows, camera.id, camera.sensor.width_px, camera.sensor.height_px));
+    if (const auto& lens = cameras[i].lens) {  // into the ideal camera's pixels, as the masks
+      cv::Mat undistorted;
+      cv::undistort(image, undistorted, lens->camera_matrix, lens->distortion);
+      image = undistorted;
+    }
+    views.push_back(
+        ms::make_matching_view(camera, image, a.masks.empty() ? cv::Mat() : cameras[i].mask));
+  }
+  return views;
+}
+
+std::vector<ms::Facet> facets_of(const hull::Mesh& mesh) {
+  std::vector<ms::Facet> facets;
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> corners;
+    for (const auto v : mesh.vertices_around_face(mesh.halfedge(f))) {
+      const auto& p = mesh.point(v);
+      corners.emplace_back(p.x(), p.y(), p.z());
+    }
+    if (corners.size() == 3) facets.push_back({corners[0], corners[1], corners[2]});
+  }
+  return facets;
+}
+
+void write_points_ply(const fs::path& file, const std::vector<ms::MatchedPoint>& points) {
+  std::ofstream out(file);
+  out << "ply\nformat ascii 1.0\ncomment syncap match: sigma = standard deviation along the "
+         "normal [mm]\nelement vertex "
+      << points.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\n"
+         "property float ny\nproperty float nz\nproperty float sigma\nend_header\n";
+  for (const auto& p : points) {
+    out << util::printf_string("%.4f %.4f %.4f %.5f %.5f %.5f %.5f\n", p.point.x(), p.point.y(),
+                               p.point.z(), p.normal.x(), p.normal.y(), p.normal.z(),
+                               p.sigma_normal_mm);
+  }
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+void write_points_csv(const fs::path& file, const std::vector<ms::MatchedPoint>& points,
+                      const std::vector<ms::MatchingView>& views) {
+  std::ofstream out(file);
+  out << "x,y,z,sigma_ray_mm,sigma_normal_mm,sncc,sigma0,iterations,reference_camera,u,v,"
+         "origin_x,origin_y,origin_z,dir_x,dir_y,dir_z,nx,ny,nz,sweep_t_mm,search_cameras\n";
+  for (const auto& p : points) {
+    std::string search;
+    for (const int j : p.search)
+      search += (search.empty() ? "" : " ") + std::to_string(views[j].camera.id);
+    out << util::printf_string(
+        "%.4f,%.4f,%.4f,%.5f,%.5f,%.4f,%.3f,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.8f,%.8f,%.8f,%.5f,%.5f,"
+        "%.5f,%.4f,%s\n",
+        p.point.x(), p.point.y(), p.point.z(), p.sigma_ray_mm, p.sigma_normal_mm, p.sncc, p.sigma0,
+        p.iterations, views[p.reference].camera.id, p.pixel.x(), p.pixel.y(), p.ray_origin.x(),
+        p.ray_origin.y(), p.ray_origin.z(), p.ray_direction.x(), p.ray_direction.y(),
+        p.ray_direction.z(), p.normal.x(), p.normal.y(), p.normal.z(), p.sweep_t, search.c_str());
+  }
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+void print_result(const ms::SurfaceMatchingResult& r, double seconds, std::ostream& out) {
+  out << util::printf_string("seeds: %zu, points: %zu\n", r.seeds, r.points.size());
+  for (std::size_t i = 0; i < r.rejected.size(); ++i) {
+    out << util::printf_string("rejected, %s: %zu\n",
+                               ms::rejection_name(static_cast<ms::Rejection>(i)), r.rejected[i]);
+  }
+  std::vector<double> sigmas;
+  for (const auto& p : r.points) sigmas.push_back(p.sigma_normal_mm);
+  if (!sigmas.empty()) {
+    std::ranges::sort(sigmas);
+    out << util::printf_string("sigma along the normal: median %.3f mm, 90 %% %.3f mm\n",
+                               sigmas[sigmas.size() / 2], sigmas[sigmas.size() * 9 / 10]);
+  }
+  out << util::printf_string(
+      "time: %.3f s (facet-ID images and seeds %.3f s, GC3 %.3f s, least squares %.3f s); "
+      "%.0f points/s\n",
+      seconds, r.visibility_seconds, r.sweep_seconds, r.lsm_seconds,
+      seconds > 0 ? static_cast<double>(r.points.size()) / seconds : 0.0);
+}
+
+}  // namespace
+
+int match_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+  MatchArgs a;
+  if (const auto status = parse_match_args(args, a, out, err)) return *status;
+  using Clock = std::chrono::steady_clock;
+  try {
+    const std::vector<hull::HullView> hull_views = read_hull_views(a);
+    const std::vector<ms::MatchingView> views = read_images(a, hull_views);
+    const hull::Mesh mesh =
+        a.hull.empty() ? hull::polyhedral_visual_hull(hull_views) : hull::read_mesh(a.hull);
+    const Clock::time_point start = Clock::now();
+    const ms::SurfaceMatchingResult result = ms::match_surface(views, facets_of(mesh), a.options);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    fs::create_directories(a.out);
+    write_points_ply(fs::path(a.out) / "points.ply", result.points);
+    write_points_csv(fs::path(a.out) / "points.csv", result.points, views);
+    print_result(result, seconds, out);
+    if (result.points.empty()) {
+      err << kErrorPrefix << "no point matched\n";
+      return kExitReportedErrors;
+    }
+    return kExitOk;
+  } catch (const hull::HullError& e) {
+    err << kErrorPrefix << e.what() << '\n';
+  } catch (const std::exception& e) {
+    err << kErrorPrefix << a.out << ": " << e.what() << '\n';
+  }
+  return kExitUsage;
+}
+
+}  // namespace syncap::tools
