@@ -9,6 +9,7 @@
 
 #include "hull/polyhedral_hull.hpp"
 #include "hull/views_io.hpp"
+#include "matching/surface/hull_consistency.hpp"
 #include "matching/surface/surface_matcher.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
@@ -44,7 +45,8 @@ constexpr const char* kDescription =
     "`syncap hull`; images: the image files of DIR in name order, one per camera (8-bit grey\n"
     "or colour). Writes DIR/points.ply (x y z, normal, sigma along the normal) and\n"
     "DIR/points.csv (every point with its ray, sigmas, SNCC, sigma0, views); prints the\n"
-    "seeds, the rejections by reason and the time.\n";
+    "seeds, the rejections by reason, the time, each camera's points and, with masks, how many\n"
+    "points lie inside the visual hull (a warning on stderr for those that do not).\n";
 
 constexpr const char* kFooter =
     "Exit status: 0 done, 1 no point matched, 2 usage error or bad input (named: file, camera).";
@@ -77,12 +79,11 @@ void add_match_options(CLI::App& app, MatchArgs& a) {
   cli::add_checked(
       app, "--half-window", o.half_window, "N", cli::whole_in<int>(1, 15),
       "the window is 2N+1 pixels square (default " + std::to_string(o.half_window) + ")");
-  cli::add_checked(app, "--search-depth", o.search_depth_mm, "MM", cli::number_in(1, 5000),
-                   "the scan line reaches this far behind the hull (default " +
-                       cli::number_text(o.search_depth_mm) + ")");
-  cli::add_checked(
-      app, "--search-front", o.search_front_mm, "MM", cli::number_in(0, 5000),
-      "and starts this far in front of it (default " + cli::number_text(o.search_front_mm) + ")");
+  cli::add_checked(app, "--search-depth", o.search_depth, "LENGTH", cli::number_in(0, 1e6),
+                   "the scan line reaches this far behind the hull, in object units (default:\n"
+                   "6 % of the hull's bounding-box diagonal, 120 mm for a person of 2 m)");
+  cli::add_checked(app, "--search-front", o.search_front, "LENGTH", cli::number_in(0, 1e6),
+                   "and starts this far in front of it (default: 0.75 % of the diagonal)");
   cli::add_checked(
       app, "--min-sncc", o.min_sncc, "R", cli::number_in(-1, 1),
       "the best SNCC peak's least value (default " + cli::number_text(o.min_sncc) + ")");
@@ -193,7 +194,39 @@ void write_points_csv(const fs::path& file, const std::vector<ms::MatchedPoint>&
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
+// Each reference view's points and their median sigma.
+void print_views(const ms::SurfaceMatchingResult& r, const std::vector<ms::MatchingView>& views,
+                 std::ostream& out) {
+  std::vector<std::vector<double>> sigmas(views.size());
+  for (const auto& p : r.points)
+    sigmas[static_cast<std::size_t>(p.reference)].push_back(p.sigma_normal_mm);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    auto& s = sigmas[i];
+    std::ranges::sort(s);
+    out << util::printf_string("camera %d: %zu points, median sigma %.4g\n", views[i].camera.id,
+                               s.size(), s.empty() ? 0.0 : s[s.size() / 2]);
+  }
+}
+
+// The plausibility check against the masks (the visual hull); false when points fall outside.
+bool print_consistency(const ms::SurfaceMatchingResult& r,
+                       const std::vector<hull::HullView>& hull_views, std::ostream& out) {
+  std::vector<sensor::CameraModel> cameras;
+  std::vector<cv::Mat> masks;
+  for (const auto& v : hull_views) cameras.push_back(v.camera), masks.push_back(v.mask);
+  const ms::HullConsistency c = ms::check_against_masks(r.points, cameras, masks);
+  out << util::printf_string(
+      "inside the visual hull (every mask) within 3 sigma and 0.5 px: %zu of %zu",
+      c.points - c.outside, c.points);
+  if (c.outside > 0) out << util::printf_string(" (worst %.2f px beyond)", c.worst_excess_px);
+  out << '\n';
+  return c.outside == 0;
+}
+
 void print_result(const ms::SurfaceMatchingResult& r, double seconds, std::ostream& out) {
+  out << util::printf_string(
+      "scan line: %.4g in front of the hull to %.4g behind it; visibility tolerance %.4g\n",
+      r.search_front, r.search_depth, r.visibility_tolerance);
   out << util::printf_string("seeds: %zu, points: %zu\n", r.seeds, r.points.size());
   for (std::size_t i = 0; i < r.rejected.size(); ++i) {
     out << util::printf_string("rejected, %s: %zu\n",
@@ -203,7 +236,7 @@ void print_result(const ms::SurfaceMatchingResult& r, double seconds, std::ostre
   for (const auto& p : r.points) sigmas.push_back(p.sigma_normal_mm);
   if (!sigmas.empty()) {
     std::ranges::sort(sigmas);
-    out << util::printf_string("sigma along the normal: median %.3f mm, 90 %% %.3f mm\n",
+    out << util::printf_string("sigma along the normal: median %.4g, 90 %% %.4g\n",
                                sigmas[sigmas.size() / 2], sigmas[sigmas.size() * 9 / 10]);
   }
   out << util::printf_string(
@@ -231,6 +264,11 @@ int match_command(std::span<const std::string> args, std::ostream& out, std::ost
     write_points_ply(fs::path(a.out) / "points.ply", result.points);
     write_points_csv(fs::path(a.out) / "points.csv", result.points, views);
     print_result(result, seconds, out);
+    print_views(result, views, out);
+    if (!a.masks.empty() && !print_consistency(result, hull_views, out))
+      err << kErrorPrefix
+          << "warning: points outside the visual hull (implausible matches, or "
+             "cameras that disagree with the images)\n";
     if (result.points.empty()) {
       err << kErrorPrefix << "no point matched\n";
       return kExitReportedErrors;

@@ -1,5 +1,6 @@
 #include "matching/surface/surface_matcher.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -49,7 +50,7 @@ std::vector<Seed> seeds_of_view(int r, const std::vector<MatchingView>& views,
       if (own < min_facing) continue;
       bool best = true;
       for (int j = 0; j < static_cast<int>(views.size()) && best; ++j) {
-        if (j == r || !ids[j].sees(seed.point, f, options.visibility_tolerance_mm)) continue;
+        if (j == r || !ids[j].sees(seed.point, f, options.visibility_tolerance)) continue;
         const double other = facing(views[j].camera, seed.point, seed.normal);
         if (other < min_facing) continue;
         if (other > own) best = false;
@@ -133,7 +134,7 @@ SeedOutcome match_seed(const Seed& seed, const std::vector<MatchingView>& views,
   // The hull's surface on this pixel's ray, and the stretch of the ray searched around it.
   const double t_hull =
       seed.normal.dot(seed.point - window->centre) / seed.normal.dot(window->direction);
-  const double t_from = t_hull - options.search_front_mm, t_to = t_hull + options.search_depth_mm;
+  const double t_from = t_hull - options.search_front, t_to = t_hull + options.search_depth;
   const auto search = pointers(views, seed.search);
   const ScanProfile profile =
       scan_sncc(*window, search, t_from, t_to, options.step_px, options.min_sncc);
@@ -197,6 +198,17 @@ void reject_blunders(const SurfaceMatchingOptions& options, SurfaceMatchingResul
   result.points.erase(kept, result.points.end());
 }
 
+// The options with their lengths taken from the hull's size where they are 0.
+SurfaceMatchingOptions sized_to(const std::vector<Facet>& hull, SurfaceMatchingOptions options) {
+  Eigen::AlignedBox3d box;
+  for (const Facet& f : hull) box.extend(f.a), box.extend(f.b), box.extend(f.c);
+  const double diagonal = box.isEmpty() ? 0.0 : box.diagonal().norm();
+  if (options.visibility_tolerance <= 0) options.visibility_tolerance = 0.0025 * diagonal;
+  if (options.search_front <= 0) options.search_front = 0.0075 * diagonal;
+  if (options.search_depth <= 0) options.search_depth = 0.06 * diagonal;
+  return options;
+}
+
 }  // namespace
 
 const char* rejection_name(Rejection r) {
@@ -223,8 +235,12 @@ const char* rejection_name(Rejection r) {
 
 SurfaceMatchingResult match_surface(const std::vector<MatchingView>& views,
                                     const std::vector<Facet>& hull,
-                                    const SurfaceMatchingOptions& options) {
+                                    const SurfaceMatchingOptions& given) {
+  const SurfaceMatchingOptions options = sized_to(hull, given);
   SurfaceMatchingResult result;
+  result.visibility_tolerance = options.visibility_tolerance;
+  result.search_front = options.search_front;
+  result.search_depth = options.search_depth;
   const auto visibility_start = Clock::now();
   std::vector<FacetIdImage> ids;
   for (const auto& view : views) ids.emplace_back(view.camera, hull);

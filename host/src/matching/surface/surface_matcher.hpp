@@ -22,12 +22,14 @@ struct SurfaceMatchingOptions {
   // A view is used for a seed when the hull's normal there is within this angle of the view's
   // direction, and the facet-ID image says the facet is seen.
   double max_view_angle_deg = 70.0;
-  double visibility_tolerance_mm = 5.0;  // FacetIdImage::sees
   int min_search_views = 2;
-  // The scan line: from this far in front of the hull's surface to this far behind it (the
-  // surface lies inside the hull) [mm].
-  double search_front_mm = 15.0;
-  double search_depth_mm = 120.0;
+  // Lengths in object units (mm for our cameras); 0 takes each from the hull's size, the
+  // diagonal of its bounding box (the share in brackets; a person of 2 m gets 5, 15, 120 mm):
+  double visibility_tolerance = 0.0;  // FacetIdImage::sees (0.25 %)
+  // the scan line runs from this far in front of the hull's surface (0.75 %) to this far behind
+  // it (6 %): the surface lies inside the hull.
+  double search_front = 0.0;
+  double search_depth = 0.0;
   double step_px = 0.5;           // the sweep's step in the fastest search image
   double min_template_sd = 4.0;   // [DN]: a flatter reference window has no texture to match
   double min_object_share = 0.6;  // of the reference window on the object's mask (else: edge)
@@ -75,6 +77,8 @@ struct MatchedPoint {
 
 struct SurfaceMatchingResult {
   std::vector<MatchedPoint> points;
+  // The lengths used (the options', or those taken from the hull's size).
+  double visibility_tolerance = 0.0, search_front = 0.0, search_depth = 0.0;
   std::size_t seeds = 0;
   std::array<std::size_t, static_cast<std::size_t>(Rejection::kCount)> rejected{};
   double sweep_seconds = 0.0;  // GC3 with the candidate rules (one thread)
