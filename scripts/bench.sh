@@ -3,8 +3,9 @@
 # $SYNCAP_BUILD_DIR/bin) and prints one line per comparison: a program that registers
 # "<name>/ours" and "<name>/baseline" yields "<name>: R x (ours vs baseline)", R = baseline time /
 # our time (real time, from --benchmark_format=json); a lone "<name>/ours" (a goal in seconds, no
-# baseline) yields "<name>: S s on one core (CPU time; wall W s)". Extra arguments go to every
-# program (e.g. --benchmark_filter=blobs).
+# baseline) yields "<name>: S s on one core (CPU time; wall W s)"; a pair with an "error_rms"
+# counter adds the precision ratio (baseline's over ours). Extra arguments go to every program
+# (e.g. --benchmark_filter=blobs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${SYNCAP_BUILD_DIR:-build}
@@ -29,7 +30,7 @@ for program in "${programs[@]}"; do
     python3 - "$json" <<'PY'
 import json, sys
 runs = json.load(open(sys.argv[1])).get("benchmarks", [])
-times, cpu = {}, {}
+times, cpu, errors = {}, {}, {}
 for b in runs:
     if b.get("run_type", "iteration") != "iteration" or b.get("error_occurred"):
         continue
@@ -40,9 +41,15 @@ for b in runs:
     if side in ("ours", "baseline"):
         times.setdefault(name, {})[side] = float(b["real_time"]) * scale
         cpu.setdefault(name, {})[side] = float(b["cpu_time"]) * scale
+        if "error_rms" in b:  # an accuracy counter: the ratio is printed beside the time's
+            errors.setdefault(name, {})[side] = float(b["error_rms"])
 for name, t in times.items():
     if "ours" in t and "baseline" in t and t["ours"] > 0:
-        print(f"{name}: {t['baseline'] / t['ours']:.1f} x (ours vs baseline)")
+        e = errors.get(name, {})
+        precision = (f"; error RMS {e['ours']:.3g} vs {e['baseline']:.3g}: "
+                     f"{e['baseline'] / e['ours']:.1f} x more precise"
+                     if "ours" in e and "baseline" in e and e["ours"] > 0 else "")
+        print(f"{name}: {t['baseline'] / t['ours']:.1f} x (ours vs baseline){precision}")
     elif "ours" in t:
         print(f"{name}: {cpu[name]['ours']:.2f} s on one core (CPU time; wall {t['ours']:.2f} s)")
 PY
