@@ -11,6 +11,7 @@
 #include "hull/views_io.hpp"
 #include "matching/surface/hull_consistency.hpp"
 #include "matching/surface/surface_matcher.hpp"
+#include "matching/surface/surface_mesh.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "util/printf_string.hpp"
@@ -32,6 +33,7 @@ struct MatchArgs {
   int threshold = -1;
   bool largest = false;
   bool sweep_only = false;
+  bool no_mesh = false;
   ms::SurfaceMatchingOptions options;
 };
 
@@ -43,8 +45,10 @@ constexpr const char* kDescription =
     "from the masks with the polyhedral method, or read from --hull), each matched from the\n"
     "view that faces it best in the views whose facet-ID image sees it. Cameras as for\n"
     "`syncap hull`; images: the image files of DIR in name order, one per camera (8-bit grey\n"
-    "or colour). Writes DIR/points.ply (x y z, normal, sigma along the normal) and\n"
-    "DIR/points.csv (every point with its ray, sigmas, SNCC, sigma0, views); prints the\n"
+    "or colour). Writes DIR/points.ply (x y z, normal, sigma along the normal),\n"
+    "DIR/points.csv (every point with its ray, sigmas, SNCC, sigma0, views) and\n"
+    "DIR/surface.ply (the points meshed by CGAL's advancing front, the hull's surface filling\n"
+    "the gaps matching left); prints the\n"
     "seeds, the rejections by reason, the time, each camera's points and, with masks, how many\n"
     "points lie inside the visual hull (a warning on stderr for those that do not).\n";
 
@@ -93,6 +97,7 @@ void add_match_options(CLI::App& app, MatchArgs& a) {
   cli::add_checked(app, "--max-angle", o.max_view_angle_deg, "DEG", cli::number_in(1, 89),
                    "largest angle between the surface normal and a view's direction (default " +
                        cli::number_text(o.max_view_angle_deg) + ")");
+  app.add_flag("--no-mesh", a.no_mesh, "write no surface.ply (the points only)");
   app.add_flag("--sweep-only", a.sweep_only,
                "no least squares: each point is the GC3 peak (the NCC sweep baseline)");
 }
@@ -223,6 +228,22 @@ bool print_consistency(const ms::SurfaceMatchingResult& r,
   return c.outside == 0;
 }
 
+// The matched points meshed with the hull filling the gaps (surface.ply).
+void write_surface(const ms::SurfaceMatchingResult& r, const hull::Mesh& hull_mesh,
+                   const fs::path& file, std::ostream& out) {
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : r.points) points.push_back(p.point);
+  ms::SurfaceMeshStats stats;
+  const hull::Mesh surface = ms::mesh_surface(points, hull_mesh, {}, &stats);
+  hull::write_mesh(file, surface);
+  const hull::MeshReport report = hull::check_mesh(surface, false);
+  out << util::printf_string(
+      "surface mesh: %zu vertices (%zu matched, %zu from the hull), %zu triangles, spacing "
+      "%.4g, %.3f s; %s\n",
+      stats.matched + stats.from_hull, stats.matched, stats.from_hull, report.faces, stats.spacing,
+      stats.seconds, report.summary().c_str());
+}
+
 void print_result(const ms::SurfaceMatchingResult& r, double seconds, std::ostream& out) {
   out << util::printf_string(
       "scan line: %.4g in front of the hull to %.4g behind it; visibility tolerance %.4g\n",
@@ -264,6 +285,7 @@ int match_command(std::span<const std::string> args, std::ostream& out, std::ost
     write_points_ply(fs::path(a.out) / "points.ply", result.points);
     write_points_csv(fs::path(a.out) / "points.csv", result.points, views);
     print_result(result, seconds, out);
+    if (!a.no_mesh) write_surface(result, mesh, fs::path(a.out) / "surface.ply", out);
     print_views(result, views, out);
     if (!a.masks.empty() && !print_consistency(result, hull_views, out))
       err << kErrorPrefix

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "help_check.hpp"
+#include "hull/mesh.hpp"
 #include "matching/surface/textured_scene.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -96,6 +97,9 @@ TEST_F(MatchCommand, WritesThePointsOnTheSphereWithTheirSigmas) {
     sum2 += e * e;
   }
   EXPECT_LT(std::sqrt(sum2 / static_cast<double>(csv.size() - 1)), 1.0);
+  const hull::Mesh surface = hull::read_mesh(dir_ / "out" / "surface.ply");
+  EXPECT_GT(surface.number_of_faces(), csv.size());
+  EXPECT_NE(r.out.find("surface mesh: "), std::string::npos);
   const auto ply = lines_of(dir_ / "out" / "points.ply");
   ASSERT_GT(ply.size(), 10u);
   EXPECT_EQ(ply[0], "ply");

@@ -10,6 +10,7 @@
 #include "matching/surface/multi_image_lsm.hpp"
 #include "matching/surface/scan_line.hpp"
 #include "matching/surface/surface_matcher.hpp"
+#include "matching/surface/surface_mesh.hpp"
 #include "textured_scene.hpp"
 
 namespace syncap::matching::surface {
@@ -257,6 +258,45 @@ TEST_F(TexturedSphere, AFlatObjectHasNoTexture) {
   EXPECT_TRUE(r.points.empty());
   EXPECT_GT(r.rejected_by(Rejection::kNoTexture), r.seeds / 2);
   EXPECT_EQ(accounted(r), r.seeds);
+}
+
+hull::Mesh mesh_of(const std::vector<Facet>& facets) {
+  hull::Mesh mesh;
+  for (const Facet& f : facets) {
+    const auto a = mesh.add_vertex({f.a.x(), f.a.y(), f.a.z()});
+    const auto b = mesh.add_vertex({f.b.x(), f.b.y(), f.b.z()});
+    const auto c = mesh.add_vertex({f.c.x(), f.c.y(), f.c.z()});
+    mesh.add_face(a, b, c);
+  }
+  return mesh;
+}
+
+TEST_F(TexturedSphere, TheSurfaceMeshKeepsTheMatchedPointsAndFillsTheBackFromTheHull) {
+  const Sphere sphere;
+  const auto facets = test::icosphere(sphere.centre, sphere.radius + 20, 3);
+  SurfaceMatchingOptions options;
+  options.min_search_views = 1;
+  const SurfaceMatchingResult r = match_surface(*views_, facets, options);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : r.points) points.push_back(p.point);
+  SurfaceMeshStats stats;
+  const hull::Mesh mesh = mesh_surface(points, mesh_of(facets), {}, &stats);
+  EXPECT_EQ(stats.matched, points.size());
+  EXPECT_GT(stats.from_hull, points.size() / 2);  // the far side, which no camera sees
+  EXPECT_GT(mesh.number_of_faces(), points.size());
+  // The first vertices are the matched points, in order; the hull's lie 20 mm out.
+  std::size_t i = 0;
+  for (const auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    const double radius = (Eigen::Vector3d(p.x(), p.y(), p.z()) - sphere.centre).norm();
+    if (is_matched_vertex(i, stats)) {
+      EXPECT_EQ(Eigen::Vector3d(p.x(), p.y(), p.z()), points[i]);
+    } else {
+      EXPECT_NEAR(radius, sphere.radius + 20, 5.0);
+    }
+    ++i;
+  }
+  EXPECT_THROW(mesh_surface({}, hull::Mesh{}), std::invalid_argument);
 }
 
 }  // namespace
