@@ -221,7 +221,7 @@ bool print_consistency(const ms::SurfaceMatchingResult& r,
   for (const auto& v : hull_views) cameras.push_back(v.camera), masks.push_back(v.mask);
   const ms::HullConsistency c = ms::check_against_masks(r.points, cameras, masks);
   out << util::printf_string(
-      "inside the visual hull (every mask) within 3 sigma and 0.5 px: %zu of %zu",
+      "inside the visual hull (every mask) within 3 sigma and 0.71 px: %zu of %zu",
       c.points - c.outside, c.points);
   if (c.outside > 0) out << util::printf_string(" (worst %.2f px beyond)", c.worst_excess_px);
   out << '\n';

@@ -5,6 +5,13 @@
 #include <opencv2/imgproc.hpp>
 
 namespace syncap::matching::surface {
+namespace {
+
+// A mask says whether a pixel's centre sees the object: a surface point on the outline can
+// project up to half a pixel's diagonal from the nearest pixel centre inside.
+constexpr double kHalfDiagonalPx = 0.7072;
+
+}  // namespace
 
 HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
                                     const std::vector<sensor::CameraModel>& cameras,
@@ -29,7 +36,7 @@ HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
       const int v = static_cast<int>(std::lround(j.projection.pixel.y()));
       if (u < 0 || v < 0 || u >= outside[i].cols || v >= outside[i].rows) continue;
       const double sigma_px = m.sigma_ray_mm * (j.d_point * m.ray_direction).norm();
-      excess = std::max(excess, outside[i].at<float>(v, u) - k_sigma * sigma_px - 0.5);
+      excess = std::max(excess, outside[i].at<float>(v, u) - k_sigma * sigma_px - kHalfDiagonalPx);
     }
     if (excess > 0) {
       ++out.outside;

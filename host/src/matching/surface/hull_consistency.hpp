@@ -1,8 +1,8 @@
 // A plausibility check of matched points against the silhouettes they came from: every point of
 // the surface lies inside the visual hull, so its projection falls inside every view's mask. A
 // point whose projection lands outside by more than 3 of its own sigmas (projected into that
-// view) and half a pixel (the mask's discretisation) is implausible: a wrong match, or cameras
-// that disagree with the images.
+// view) and half a pixel's diagonal (the mask's discretisation) is implausible: a wrong match,
+// or cameras that disagree with the images.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -14,7 +14,7 @@ namespace syncap::matching::surface {
 
 struct HullConsistency {
   std::size_t points = 0;
-  std::size_t outside = 0;     // by more than k sigma + 0.5 px in some view
+  std::size_t outside = 0;     // by more than k sigma + 0.71 px in some view
   double worst_excess_px = 0;  // the largest distance beyond the mask, less the allowance
   std::vector<std::size_t> outside_points;  // their indices
 };

@@ -18,7 +18,7 @@ namespace syncap::matching::surface {
 
 struct SurfaceMatchingOptions {
   double seed_spacing_px = 4.0;  // seeds on a grid of this spacing in each reference image
-  int half_window = 4;           // the window is (2 half + 1)^2 pixels
+  int half_window = 5;           // the window is (2 half + 1)^2 pixels
   // A view is used for a seed when the hull's normal there is within this angle of the view's
   // direction, and the facet-ID image says the facet is seen.
   double max_view_angle_deg = 70.0;
@@ -40,7 +40,7 @@ struct SurfaceMatchingOptions {
   LsmOptions lsm;
   // A point whose sigma0 exceeds this times the median of all points' is a blunder (the
   // residuals are not the images' noise: an occlusion edge, a specularity, a wrong peak).
-  double blunder_sigma0_ratio = 1.5;
+  double blunder_sigma0_ratio = 1.4;
 };
 
 enum class Rejection {
