@@ -200,12 +200,21 @@ std::size_t accounted(const SurfaceMatchingResult& r) {
   return n;
 }
 
-TEST_F(TexturedSphere, MatchesTheSphereAndAccountsForEverySeed) {
+// The sphere's stand-in hull: an icosphere 20 mm larger.
+std::vector<Facet> sphere_hull() {
   const Sphere sphere;
-  const auto hull = test::icosphere(sphere.centre, sphere.radius + 20, 3);
+  return test::icosphere(sphere.centre, sphere.radius + 20, 3);
+}
+
+// The matcher's options with one search view enough (three cameras, 30 degrees apart).
+SurfaceMatchingOptions one_search_view() {
   SurfaceMatchingOptions options;
   options.min_search_views = 1;
-  const SurfaceMatchingResult r = match_surface(*views_, hull, options);
+  return options;
+}
+
+TEST_F(TexturedSphere, MatchesTheSphereAndAccountsForEverySeed) {
+  const SurfaceMatchingResult r = match_surface(*views_, sphere_hull(), one_search_view());
   ASSERT_GT(r.points.size(), 400u);
   EXPECT_EQ(accounted(r), r.seeds);
   EXPECT_GT(r.rejected_by(Rejection::kOccluded), 0u);  // the seeds only one camera sees
@@ -221,12 +230,9 @@ TEST_F(TexturedSphere, MatchesTheSphereAndAccountsForEverySeed) {
 }
 
 TEST_F(TexturedSphere, SweepOnlyGivesTheGc3Peaks) {
-  const Sphere sphere;
-  SurfaceMatchingOptions options;
-  options.min_search_views = 1;
+  SurfaceMatchingOptions options = one_search_view();
   options.least_squares = false;
-  const SurfaceMatchingResult r =
-      match_surface(*views_, test::icosphere(sphere.centre, sphere.radius + 20, 3), options);
+  const SurfaceMatchingResult r = match_surface(*views_, sphere_hull(), options);
   ASSERT_GT(r.points.size(), 400u);
   EXPECT_EQ(r.lsm_seconds, 0.0);
   for (const auto& p : r.points)
@@ -234,11 +240,9 @@ TEST_F(TexturedSphere, SweepOnlyGivesTheGc3Peaks) {
 }
 
 TEST_F(TexturedSphere, SeedsSeenByTooFewViewsAreOccluded) {
-  const Sphere sphere;
   SurfaceMatchingOptions options;
   options.min_search_views = 3;  // three cameras give at most two search views
-  const SurfaceMatchingResult r =
-      match_surface(*views_, test::icosphere(sphere.centre, sphere.radius + 20, 3), options);
+  const SurfaceMatchingResult r = match_surface(*views_, sphere_hull(), options);
   EXPECT_TRUE(r.points.empty());
   EXPECT_EQ(r.rejected_by(Rejection::kOccluded), r.seeds);
 }
@@ -250,11 +254,7 @@ TEST_F(TexturedSphere, AFlatObjectHasNoTexture) {
     grey.setTo(120, v.mask);
     flat.push_back(make_matching_view(v.camera, grey, v.mask, 0));
   }
-  SurfaceMatchingOptions options;
-  options.min_search_views = 1;
-  const Sphere sphere;
-  const SurfaceMatchingResult r =
-      match_surface(flat, test::icosphere(sphere.centre, sphere.radius + 20, 3), options);
+  const SurfaceMatchingResult r = match_surface(flat, sphere_hull(), one_search_view());
   EXPECT_TRUE(r.points.empty());
   EXPECT_GT(r.rejected_by(Rejection::kNoTexture), r.seeds / 2);
   EXPECT_EQ(accounted(r), r.seeds);
@@ -273,10 +273,8 @@ hull::Mesh mesh_of(const std::vector<Facet>& facets) {
 
 TEST_F(TexturedSphere, TheSurfaceMeshKeepsTheMatchedPointsAndFillsTheBackFromTheHull) {
   const Sphere sphere;
-  const auto facets = test::icosphere(sphere.centre, sphere.radius + 20, 3);
-  SurfaceMatchingOptions options;
-  options.min_search_views = 1;
-  const SurfaceMatchingResult r = match_surface(*views_, facets, options);
+  const auto facets = sphere_hull();
+  const SurfaceMatchingResult r = match_surface(*views_, facets, one_search_view());
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : r.points) points.push_back(p.point);
   SurfaceMeshStats stats;
