@@ -82,15 +82,17 @@ bool linearise(const ScanWindow& window, const std::vector<const MatchingView*>&
       ++used;
       const GreySample g = image.sample(q.x(), q.y());
       const double f = s.r0 + s.r1 * g.value - window.grey[k];
-      out.residuals[j * window.offsets.size() + k] = f;
+      // The observation's weight: both pixels' distance from their outline.
+      const double weight = window.weight[k] * weight_at(*search[j], q);
+      out.residuals[j * window.offsets.size() + k] = std::sqrt(weight) * f;
       const double gx = s.r1 * g.dx, gy = s.r1 * g.dy;
       const double along = gx * warp->per_mm.x() + gy * warp->per_mm.y();
       row << along, 0.5 * along * o.x() * o.x(), along * o.x() * o.y(), 0.5 * along * o.y() * o.y(),
           gx * o.x(), gx * o.y(), gy * o.x(), gy * o.y(), 1.0, g.value;
       if (!curvature) row.segment<3>(1).setZero();
-      block.noalias() += row * row.transpose();
-      block_rhs.noalias() += row * f;
-      out.view_squared[j] += f * f;
+      block.noalias() += weight * row * row.transpose();
+      block_rhs.noalias() += weight * row * f;
+      out.view_squared[j] += weight * f * f;
     }
     if (static_cast<double>(used) < kMinShareOnObject * static_cast<double>(window.offsets.size()))
       return false;

@@ -30,9 +30,17 @@ bool on_object(const MatchingView& view, const Eigen::Vector2d& pixel) {
          view.mask.at<uint8_t>(v, u) != 0;
 }
 
+float weight_at(const MatchingView& view, const Eigen::Vector2d& pixel) {
+  if (view.weight.empty()) return 1.0f;
+  const int u = static_cast<int>(std::lround(pixel.x())),
+            v = static_cast<int>(std::lround(pixel.y()));
+  if (u < 0 || v < 0 || u >= view.weight.cols || v >= view.weight.rows) return 0.0f;
+  return view.weight.at<float>(v, u);
+}
+
 MatchingView make_matching_view(const sensor::CameraModel& camera, const cv::Mat& image,
                                 const cv::Mat& mask, int margin_px) {
-  MatchingView view{camera, MatchImage(image), {}};
+  MatchingView view{camera, MatchImage(image), {}, {}};
   if (mask.empty()) return view;
   if (mask.type() != CV_8UC1 || mask.size() != image.size())
     throw std::invalid_argument("matching view: the mask is not 8-bit of the image's size");
@@ -42,6 +50,11 @@ MatchingView make_matching_view(const sensor::CameraModel& camera, const cv::Mat
     cv::erode(mask, view.mask,
               cv::getStructuringElement(cv::MORPH_RECT, {2 * margin_px + 1, 2 * margin_px + 1}));
   }
+  // The distance from the outline: to the nearest pixel off the (unshrunk) mask.
+  cv::Mat inside = mask != 0, distance;
+  cv::distanceTransform(inside, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  distance.convertTo(view.weight, CV_32F, 1.0 / kOutlineRampPx);
+  cv::min(view.weight, 1.0, view.weight);
   return view;
 }
 
@@ -78,6 +91,9 @@ std::optional<ScanWindow> make_scan_window(const MatchingView& reference,
       w.offsets.emplace_back(du, dv);
       const float g = image.at(pixel.x() + du, pixel.y() + dv);
       w.grey.push_back(g);
+      w.weight.push_back(reference.weight.empty()
+                             ? 1.0f
+                             : reference.weight.at<float>(pixel.y() + dv, pixel.x() + du));
       sum += g, sum2 += static_cast<double>(g) * g;
     }
   }
