@@ -175,6 +175,26 @@ TEST_F(TexturedSphere, TheMaskKeepsTheWindowOnTheObject) {
               0);
 }
 
+TEST(MatchingView, WeightsRiseFromTheOutline) {
+  cv::Mat mask(40, 40, CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(10, 10, 20, 20)).setTo(255);
+  const MatchingView view =
+      make_matching_view(sensor::CameraModel{}, cv::Mat(40, 40, CV_8UC1, cv::Scalar(9)), mask);
+  ASSERT_EQ(view.weight.type(), CV_32F);
+  EXPECT_EQ(view.weight.at<float>(5, 5), 0.0f);    // off the object
+  EXPECT_EQ(view.weight.at<float>(20, 20), 1.0f);  // 10 px in
+  // Along a row into the square: rising to 1 at kOutlineRampPx.
+  float before = 0.0f;
+  for (int x = 10; x < 20; ++x) {
+    const float w = view.weight.at<float>(20, x);
+    EXPECT_GE(w, before);
+    EXPECT_NEAR(w, std::min(1.0, (x - 9) / kOutlineRampPx), 0.01) << x;
+    before = w;
+  }
+  EXPECT_EQ(weight_at(view, {-3.0, 20.0}), 0.0f);          // outside the image
+  EXPECT_EQ(weight_at(MatchingView{}, {5.0, 5.0}), 1.0f);  // no mask: every pixel counts
+}
+
 TEST(MatchingView, RefusesAMaskOfAnotherSize) {
   const cv::Mat image(48, 64, CV_8UC1, cv::Scalar(100));
   EXPECT_THROW(make_matching_view(sensor::CameraModel{}, image, cv::Mat(10, 10, CV_8UC1)),
