@@ -12,6 +12,8 @@
 
 #include "help_check.hpp"
 #include "hull/mesh.hpp"
+#include "hull/polyhedral_hull.hpp"
+#include "hull/views_io.hpp"
 #include "matching/surface/textured_scene.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -105,6 +107,26 @@ TEST_F(MatchCommand, WritesThePointsOnTheSphereWithTheirSigmas) {
   EXPECT_EQ(ply[0], "ply");
   EXPECT_NE(std::find(ply.begin(), ply.end(), "element vertex " + std::to_string(csv.size() - 1)),
             ply.end());
+}
+
+TEST_F(MatchCommand, AHullMeshInsteadOfMasks) {
+  // The hull of the masks, written as a file (as `syncap hull` would).
+  hull::ViewFiles files;
+  const auto views = hull::read_views(dir_ / "cameras.json", dir_ / "masks", files);
+  hull::write_mesh(dir_ / "hull.ply", hull::polyhedral_visual_hull(views));
+  auto a = args();
+  a[4] = "--hull";
+  a[5] = (dir_ / "hull.ply").string();
+  const MatchRun r = run(a);
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  const auto csv = lines_of(dir_ / "out" / "points.csv");
+  EXPECT_GT(csv.size(), 200u);
+  // Without masks nothing to check the points against.
+  EXPECT_EQ(r.out.find("inside the visual hull"), std::string::npos) << r.out;
+  a[5] = (dir_ / "missing.ply").string();
+  const MatchRun missing = run(a);
+  EXPECT_EQ(missing.status, kExitUsage);
+  EXPECT_NE(missing.err.find("missing.ply"), std::string::npos) << missing.err;
 }
 
 TEST_F(MatchCommand, SweepOnlyIsLessPrecise) {
