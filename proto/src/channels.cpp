@@ -27,13 +27,17 @@ std::string silhouette_channel(int camera_id) {
   return per_camera_channel(kSilhouetteChannelPrefix, camera_id);
 }
 
+std::string patch_channel(int camera_id) {
+  return per_camera_channel(kPatchChannelPrefix, camera_id);
+}
+
 std::string status_channel(int camera_id) {
   return per_camera_channel(kStatusChannelPrefix, camera_id);
 }
 
 std::optional<int> camera_of_channel(std::string_view channel) {
   for (std::string_view prefix :
-       {kBlobChannelPrefix, kSilhouetteChannelPrefix, kStatusChannelPrefix}) {
+       {kBlobChannelPrefix, kSilhouetteChannelPrefix, kStatusChannelPrefix, kPatchChannelPrefix}) {
     if (!channel.starts_with(prefix)) continue;
     std::string_view digits = channel.substr(prefix.size());
     if (digits.size() != 2) return std::nullopt;

@@ -38,6 +38,8 @@ pid_t spawn_publisher(int rounds) {
     lcm.publish(proto::blob_channel(99), &blobs);
     const silhouette_part_t part = test::max_silhouette_part();
     lcm.publish(proto::silhouette_channel(99), &part);
+    const image_patch_t patch = test::max_image_patch();
+    lcm.publish(proto::patch_channel(99), &patch);
     const camera_status_t status = test::max_camera_status();
     lcm.publish(proto::status_channel(99), &status);
     const edge_command_t command = test::max_edge_command();

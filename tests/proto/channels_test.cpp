@@ -27,6 +27,8 @@ TEST(Channels, LongestNameFitsTheBudget) {
 TEST(Channels, CameraOfChannelParsesOnlyOurNames) {
   EXPECT_EQ(camera_of_channel("SYNCAP_BLOBS_07"), 7);
   EXPECT_EQ(camera_of_channel("SYNCAP_STATUS_99"), 99);
+  EXPECT_EQ(camera_of_channel(patch_channel(12)), 12);
+  EXPECT_EQ(patch_channel(3), "SYNCAP_PATCH_03");
   EXPECT_EQ(camera_of_channel("SYNCAP_TRIGGER"), std::nullopt);
   EXPECT_EQ(camera_of_channel("SYNCAP_BLOBS_7"), std::nullopt);
   EXPECT_EQ(camera_of_channel("SYNCAP_BLOBS_x7"), std::nullopt);

@@ -12,6 +12,7 @@
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/hull_frame_t.hpp"
+#include "syncap/image_patch_t.hpp"
 #include "syncap/marker_frame_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_status_t.hpp"
@@ -76,6 +77,22 @@ inline silhouette_part_t max_silhouette_part() {
   s.data_size = silhouette_part_t::MAX_DATA;
   for (int i = 0; i < s.data_size; ++i) s.data.push_back(static_cast<uint8_t>(i * 37));
   return s;
+}
+
+inline image_patch_t max_image_patch() {
+  image_patch_t p{};
+  p.camera_id = 99;
+  p.frame_number = (int64_t{1} << 33) + 5;
+  p.image_width = 1280;
+  p.image_height = 1024;
+  p.tile_x = 1000;
+  p.tile_y = 900;
+  p.part_index = 40;
+  p.part_count = 41;
+  p.encoding = image_patch_t::ENCODING_PNG;
+  p.data_size = image_patch_t::MAX_DATA;
+  for (int i = 0; i < p.data_size; ++i) p.data.push_back(static_cast<uint8_t>(i * 29));
+  return p;
 }
 
 inline camera_status_t max_camera_status() {

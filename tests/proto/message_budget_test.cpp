@@ -60,6 +60,12 @@ TEST(MessageBudget, SilhouettePartAtMaxDataFitsAndRoundTrips) {
   EXPECT_EQ(decode<silhouette_part_t>(encode(part)).data, part.data);
 }
 
+TEST(MessageBudget, ImagePatchAtMaxDataFitsAndRoundTrips) {
+  const image_patch_t part = test::max_image_patch();
+  expect_fits_and_round_trips(part, 8 + 25 + image_patch_t::MAX_DATA);
+  EXPECT_EQ(decode<image_patch_t>(encode(part)).data, part.data);
+}
+
 TEST(MessageBudget, CameraStatusWithLongestMessageFitsAndRoundTrips) {
   const camera_status_t status = test::max_camera_status();
   expect_fits_and_round_trips(status, 8 + 88 + camera_status_t::MAX_MESSAGE + 1);

@@ -51,11 +51,14 @@ inline constexpr int kMaxCameraId = 99;
 inline constexpr const char* kBlobChannelPrefix = "SYNCAP_BLOBS_";
 inline constexpr const char* kSilhouetteChannelPrefix = "SYNCAP_SIL_";
 inline constexpr const char* kStatusChannelPrefix = "SYNCAP_STATUS_";
+// image_patch_t: grey values where the person is, every Nth frame on request.
+inline constexpr const char* kPatchChannelPrefix = "SYNCAP_PATCH_";
 
 // Throws std::out_of_range for a camera id outside 0..kMaxCameraId.
 std::string blob_channel(int camera_id);
 std::string silhouette_channel(int camera_id);
 std::string status_channel(int camera_id);
+std::string patch_channel(int camera_id);
 
 // The camera id of a per-camera channel, or nothing for any other channel name.
 std::optional<int> camera_of_channel(std::string_view channel);
