@@ -20,8 +20,9 @@ namespace {
 constexpr const char* kCtlName = "syncap ctl";
 constexpr const char* kActions =
     "ACTION: start | stop | shutdown | train-background FRAMES | threshold DN (0: from the "
-    "histogram) | roi X,Y,W,H | roi full | exposure US | gain DB | status (send nothing, show "
-    "the heartbeats)";
+    "histogram) | roi X,Y,W,H | roi full | exposure US | gain DB | patches N (the person's "
+    "grey values every Nth frame, for the host's --surface; 0: none) | status (send nothing, "
+    "show the heartbeats)";
 
 template <class Number>
 Number parse_number(const std::string& text, Number low, Number high, const std::string& what) {
@@ -185,6 +186,9 @@ edge_command_t command_of_action(const std::string& action, std::span<const std:
   } else if (action == "threshold") {
     c.command = edge_command_t::SET_THRESHOLD;
     c.int_value = parse_number<int64_t>(value(), 0, 255, "threshold DN");
+  } else if (action == "patches") {
+    c.command = edge_command_t::SET_PATCH_EVERY;
+    c.int_value = parse_number<int64_t>(value(), 0, 100000, "patches N");
   } else if (action == "roi") {
     c.command = edge_command_t::SET_ROI;
     set_roi(c, value());

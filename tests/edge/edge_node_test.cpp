@@ -10,6 +10,7 @@
 
 #include "app/edge_options.hpp"
 #include "syncap/proto/contour_codec.hpp"
+#include "syncap/proto/image_patch.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -414,6 +415,64 @@ TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
   EXPECT_NEAR(y1, 189, 2);
 }
 
+// Issue 21: every Nth frame the person's grey values go out as an image patch, before the
+// frame's record; the host's SET_PATCH_EVERY changes N, and a blobs-only edge refuses it.
+TEST_F(EdgeNodeMaskTest, SendsThePersonsGreyValuesEveryNthFrameBeforeTheRecord) {
+  std::vector<std::string> order;  // what was published, in order
+  std::vector<image_patch_t> patches;
+  options_.patch_every = 3;
+  options_.train_frames = 8;
+  node_ = std::make_unique<EdgeNode>(
+      options_, source_,
+      EdgePublisher{[&](const blob_frame_t& f) {
+                      order.push_back("record " + std::to_string(f.frame_number));
+                    },
+                    [this](const camera_status_t& st) { statuses_.push_back(st); },
+                    [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                    {},
+                    [&](const image_patch_t& p) {
+                      order.push_back("patch " + std::to_string(p.frame_number));
+                      patches.push_back(p);
+                    }},
+      key_);
+  for (int k = 0; k < 8; ++k) source_.images[k] = scene(k, false);
+  for (int k = 8; k < 14; ++k) source_.images[k] = scene(k, true);
+  for (int k = 0; k < 14; ++k) node_->on_trigger(trigger(k));
+  // Frames 9 and 12 are masked and on the grid; 0, 3 and 6 trained the model.
+  EXPECT_EQ(node_->patches_sent(), 2);
+  ASSERT_FALSE(patches.empty());
+  const auto record_9 = std::find(order.begin(), order.end(), "record 9");
+  ASSERT_NE(record_9, order.end());
+  EXPECT_EQ(*(record_9 - 1), "patch 9") << "the patch goes before the record";
+  std::vector<image_patch_t> frame_12;
+  for (const image_patch_t& p : patches)
+    if (p.frame_number == 12) frame_12.push_back(p);
+  const proto::ImagePatch patch = proto::decode_image_patch(frame_12);
+  ASSERT_TRUE(patch.complete());
+  // The person (x 100..159, y 40..189) and the margin of 4 pixels arrive with their grey values.
+  const cv::Mat& image = source_.images[12];
+  const cv::Rect person(100, 40, 60, 150);
+  EXPECT_EQ(cv::countNonZero(patch.image(person) != image(person)), 0);
+  EXPECT_EQ(patch.known.at<uchar>(115, 97), 255);
+  EXPECT_EQ(patch.image.at<uchar>(115, 97), image.at<uchar>(115, 97));
+  EXPECT_EQ(patch.known.at<uchar>(115, 90), 0);
+
+  edge_command_t every{};
+  every.camera_id = 4;
+  every.command = edge_command_t::SET_PATCH_EVERY;
+  every.int_value = 0;
+  node_->on_command(signed_(every));
+  EXPECT_EQ(node_->patch_every(), 0);
+  source_.images[15] = scene(15, true);
+  node_->on_trigger(trigger(15));
+  EXPECT_EQ(node_->patches_sent(), 2);
+  every.int_value = -2;
+  node_->on_command(signed_(every));  // its acknowledgement carries the refusal
+  EXPECT_NE(statuses_.back().message.find("SET_PATCH_EVERY -2 refused: outside 0..100000"),
+            std::string::npos)
+      << statuses_.back().message;
+}
+
 // The person box spans x 100..159; a clip polygon over x < 130 keeps only its left half, and
 // removing the clip brings the whole box back.
 TEST_F(EdgeNodeMaskTest, TheHostsClipPolygonLimitsTheSilhouette) {
@@ -714,6 +773,17 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
                UsageError);  // from which frame, but how many?
   EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--roi", "1,2,3"}),
                UsageError);
+  const auto patches = parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode",
+                                           "mask", "--patch-every", "30", "--patch-margin", "6"});
+  EXPECT_EQ(patches.patch_every, 30);
+  EXPECT_EQ(patches.patch_margin_px, 6);
+  try {
+    parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--patch-every", "30"});
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("--patch-every needs --mode mask or both"),
+              std::string::npos);
+  }
 }
 
 }  // namespace

@@ -38,6 +38,12 @@ TEST(CtlActions, EachActionMakesItsCommand) {
   const edge_command_t t = command_of_action("threshold", threshold);
   EXPECT_EQ(t.command, edge_command_t::SET_THRESHOLD);
   EXPECT_EQ(t.int_value, 0) << "0: the threshold from the histogram";
+  const auto every = values({"30"});
+  const edge_command_t p = command_of_action("patches", every);
+  EXPECT_EQ(p.command, edge_command_t::SET_PATCH_EVERY);
+  EXPECT_EQ(p.int_value, 30);
+  const auto too_many = values({"100001"});
+  EXPECT_THROW(command_of_action("patches", too_many), std::invalid_argument);
   const auto roi = values({"8,16,320,240"});
   const edge_command_t r = command_of_action("roi", roi);
   EXPECT_EQ(r.command, edge_command_t::SET_ROI);

@@ -96,6 +96,7 @@ int run(const syncap::edge::EdgeOptions& options) {
   const std::string blob_channel = syncap::proto::blob_channel(options.camera_id);
   const std::string status_channel = syncap::proto::status_channel(options.camera_id);
   const std::string silhouette_channel = syncap::proto::silhouette_channel(options.camera_id);
+  const std::string patch_channel = syncap::proto::patch_channel(options.camera_id);
   // Acquisition never waits for the network: messages are sent by the queue's thread (LCM's
   // publish is thread-safe), the oldest dropped when it is full.
   syncap::edge::PublishQueue queue(static_cast<std::size_t>(options.publish_queue));
@@ -107,7 +108,8 @@ int run(const syncap::edge::EdgeOptions& options) {
       {[&](const syncap::blob_frame_t& m) { send(blob_channel, m); },
        [&](const syncap::camera_status_t& m) { send(status_channel, m); },
        [&](const syncap::silhouette_part_t& m) { send(silhouette_channel, m); },
-       [&] { return queue.stats(); }},
+       [&] { return queue.stats(); },
+       [&](const syncap::image_patch_t& m) { send(patch_channel, m); }},
       command_key);
 
   bool shutdown = false;

@@ -11,6 +11,7 @@
 #include "detection/blob_detector.hpp"
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/clock.hpp"
+#include "syncap/proto/image_patch.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -27,6 +28,8 @@ const char* command_name(int8_t command) {
       return "SET_EXPOSURE";
     case edge_command_t::SET_GAIN:
       return "SET_GAIN";
+    case edge_command_t::SET_PATCH_EVERY:
+      return "SET_PATCH_EVERY";
     case edge_command_t::SET_THRESHOLD:
       return "SET_THRESHOLD";
     case edge_command_t::SET_ROI:
@@ -48,6 +51,7 @@ std::string command_text(const edge_command_t& c) {
   switch (c.command) {
     case edge_command_t::SET_THRESHOLD:
     case edge_command_t::TRAIN_BACKGROUND:
+    case edge_command_t::SET_PATCH_EVERY:
       text += " " + std::to_string(c.int_value);
       break;
     case edge_command_t::SET_EXPOSURE:
@@ -148,6 +152,14 @@ bool EdgeNode::obey(const edge_command_t& c) {
       if (silhouettes_ && c.int_value > 0)
         silhouettes_->start_training(static_cast<int>(c.int_value));
       break;
+    case edge_command_t::SET_PATCH_EVERY:
+      if (c.int_value >= 0 && c.int_value <= 100000 && silhouettes_) {
+        options_.patch_every = static_cast<int>(c.int_value);
+      } else {
+        note_error("SET_PATCH_EVERY " + std::to_string(c.int_value) + " refused: " +
+                   (silhouettes_ ? "outside 0..100000" : "no silhouettes (--mode blobs)"));
+      }
+      break;
     case edge_command_t::SET_THRESHOLD:
       if (c.int_value >= 0 && c.int_value <= 255) {
         options_.detector.threshold = static_cast<int>(c.int_value);
@@ -236,12 +248,16 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
     silhouette = silhouettes_->process(frame->image, options_.camera_id, trigger.frame_number,
                                        frame->origin, frame->sensor_size);
   }
+  const std::vector<image_patch_t> patch = patch_of(*frame, trigger.frame_number);
   const int64_t done_ns = clock_now_ns(CLOCK_MONOTONIC);
   out.processing_us = static_cast<int32_t>((done_ns - start_ns) / 1000);
   // The blob frame is the frame's record, sent in every mode (no blobs in mask-only mode): it
   // tells the host how many silhouette parts to wait for.
   if (!publish_.silhouette) silhouette.clear();
   out.silhouette_parts = static_cast<int16_t>(silhouette.size());
+  // The patch goes first: its parts are in the host before the record that completes the frame.
+  for (const image_patch_t& part : patch) publish_.patch(part);
+  if (!patch.empty()) ++patches_sent_;
   for (const blob_frame_t& part : proto::split_blob_frame(out)) publish_.blobs(part);
   for (const silhouette_part_t& part : silhouette) publish_.silhouette(part);
 
@@ -249,6 +265,24 @@ void EdgeNode::on_trigger(const trigger_t& trigger) {
   ++interval_frames_;
   interval_processing_us_ += out.processing_us;
   last_frame_number_ = trigger.frame_number;
+}
+
+std::vector<image_patch_t> EdgeNode::patch_of(const Frame& frame, int64_t frame_number) {
+  if (!silhouettes_ || !publish_.patch || options_.patch_every <= 0 ||
+      frame_number % options_.patch_every != 0 || silhouettes_->last_mask().empty())
+    return {};
+  cv::Mat grey = frame.image;
+  if (grey.type() != CV_8UC1) frame.image.convertTo(grey, CV_8U);  // one channel: the sources'
+  try {
+    proto::PatchEncoding encoding;
+    encoding.margin_px = options_.patch_margin_px;
+    return proto::encode_image_patch(options_.camera_id, frame_number, grey,
+                                     silhouettes_->last_mask(), frame.origin, frame.sensor_size,
+                                     encoding);
+  } catch (const std::exception& e) {  // a mask of another size, an encoder failure
+    note_error(std::string("image patch not sent: ") + e.what());
+    return {};
+  }
 }
 
 void EdgeNode::on_clip(const clip_polygon_t& clip) {

@@ -16,6 +16,7 @@
 #include "syncap/camera_status_t.hpp"
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
+#include "syncap/image_patch_t.hpp"
 #include "syncap/proto/command_auth.hpp"
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
@@ -28,6 +29,8 @@ struct EdgePublisher {
   std::function<void(const silhouette_part_t&)> silhouette;
   // The publishing queue's state for the heartbeat (optional).
   std::function<PublishQueueStats()> queue;
+  // Image patches (--patch-every), sent before the frame's blob record (optional).
+  std::function<void(const image_patch_t&)> patch = {};
 };
 
 class EdgeNode {
@@ -43,10 +46,11 @@ class EdgeNode {
   // Obeys an authentic command meant for this camera (proto::CommandGuard: signed with the key,
   // sent within the time window, not replayed): TRAIN_BACKGROUND (int_value frames),
   // SET_THRESHOLD, SET_ROI (roi_*: the sensor window; width or height 0: the whole sensor),
-  // SET_EXPOSURE (real_value us), SET_GAIN (real_value dB), STOP (triggers are ignored, heartbeat
-  // IDLE) and START, then publishes a status as the acknowledgement. Returns true for SHUTDOWN.
-  // Every command for this camera is logged on stderr (what, sender, sequence, when, verdict) and
-  // counted (commands_accepted(), commands_rejected(), and in the heartbeat).
+  // SET_EXPOSURE (real_value us), SET_GAIN (real_value dB), SET_PATCH_EVERY (int_value: 0..100000),
+  // STOP (triggers are ignored, heartbeat IDLE) and START, then publishes a status as the
+  // acknowledgement. Returns true for SHUTDOWN. Every command for this camera is logged on stderr
+  // (what, sender, sequence, when, verdict) and counted (commands_accepted(), commands_rejected(),
+  // and in the heartbeat).
   bool on_command(const edge_command_t& command);
   // The host's clip polygon for this camera's masking (others' are ignored), authenticated as a
   // command; a malformed one is reported in the heartbeat and changes nothing.
@@ -59,6 +63,8 @@ class EdgeNode {
   int64_t frames_lost() const { return frames_lost_; }
   int64_t commands_accepted() const { return commands_accepted_; }
   int64_t commands_rejected() const { return commands_rejected_; }
+  int patch_every() const { return options_.patch_every; }
+  int64_t patches_sent() const { return patches_sent_; }  // frames with an image patch
   const DetectionStage& detection() const { return detection_; }
 
  private:
@@ -73,11 +79,14 @@ class EdgeNode {
   void set_camera_control(const edge_command_t& command);
   // Windowed mode with --roi-follows-windows: moves the sensor window to the next search windows.
   void follow_windows(cv::Size sensor);
+  // The image patch of a masked frame, when this frame is one to send (--patch-every).
+  std::vector<image_patch_t> patch_of(const Frame& frame, int64_t frame_number);
 
   EdgeOptions options_;
   FrameSource& source_;
   EdgePublisher publish_;
   int64_t last_frame_number_ = -1;
+  int64_t patches_sent_ = 0;
   int64_t frames_received_ = 0;
   int64_t frames_lost_ = 0;
   int64_t interval_frames_ = 0;

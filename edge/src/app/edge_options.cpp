@@ -198,6 +198,13 @@ void Parser::add_mask_options() {
                 masking_option_value(o.masking, name) + ")")
         ->option_text(m.metavar);
   }
+  cli::add_checked(app_, "--patch-every", o.patch_every, "N", cli::whole_in<int>(0, 100000),
+                   "mask: send the person's grey values (image_patch_t) every Nth frame\n"
+                   "(frame_number % N == 0) for the host's surface matching; 0: never" +
+                       by_default(o.patch_every));
+  cli::add_checked(
+      app_, "--patch-margin", o.patch_margin_px, "PX", cli::whole_in<int>(0, 64),
+      "mask: pixels beyond the silhouette a patch holds" + by_default(o.patch_margin_px));
   app_.add_flag_callback(
       "--mask-no-shadows", [this] { o.masking.remove_shadows = false; },
       "mask: skip the shadow test");
@@ -302,6 +309,11 @@ void check_combination(const EdgeOptions& o, bool have_camera) {
   }
   if (o.train_from_frame >= 0 && o.train_frames <= 0) {
     throw UsageError("syncap-edge: --train-from-frame needs --train-frames N");
+  }
+  if (o.patch_every > 0 && !o.mask) {
+    throw UsageError(
+        "syncap-edge: --patch-every needs --mode mask or both (a patch is where "
+        "the silhouette is)");
   }
   if (o.train_frames > 0 && !o.mask) {
     throw UsageError("syncap-edge: --train-frames needs --mode mask or both");

@@ -30,7 +30,11 @@ struct EdgeOptions {
   double contour_tolerance_px = 0.5;  // 1 px costs ~1 % IoU on a 300 px tall person
   // mask: the medi-picture classification (--mask-* options change its defaults).
   MediPictureOptions masking;
-  cv::Rect roi;  // sensor region of interest at start; empty: the whole sensor
+  // mask: the grey values where the person is (image_patch_t) every Nth frame, for the host's
+  // surface matching; 0: none (the host's SET_PATCH_EVERY command changes it).
+  int patch_every = 0;
+  int patch_margin_px = 4;  // pixels beyond the silhouette sent with it
+  cv::Rect roi;             // sensor region of interest at start; empty: the whole sensor
   std::string lcm_url;
   std::string command_key_path;  // the installation's key; empty: every command is refused
   double command_window_s = 5;   // a command sent longer ago (or ahead) than this is refused

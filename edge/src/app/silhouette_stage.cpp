@@ -67,6 +67,7 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
                                                         int64_t frame_number, cv::Point origin,
                                                         cv::Size sensor_size) {
   collect_trained_model();
+  last_mask_.release();
   if (training_wanted_ > 0) {
     if (training_from_ >= 0 && frame_number >= training_from_ + training_wanted_) {
       finish_training();  // the range is over; frames of it were lost
@@ -92,6 +93,7 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
   paused_.clear();
   apply_regions(origin, sensor_size.empty() ? image.size() : sensor_size, frame_number);
   const cv::Mat mask = model_->apply(image);
+  last_mask_ = mask;
   auto contours = silhouette_contours(mask, tolerance_px_);
   for (proto::Contour& contour : contours) {
     for (proto::ContourPoint& p : contour.points) p.x += origin.x, p.y += origin.y;

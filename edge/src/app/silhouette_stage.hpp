@@ -55,6 +55,9 @@ class SilhouetteStage {
   // "no background model", "training background 12/60", "waiting for frame 40 to train",
   // "masking" or why masking is paused, with the clip's state.
   std::string state() const;
+  // The foreground mask of the last frame process() masked (the frame's window, 8-bit), empty
+  // when it masked none: what an image patch of the frame sends (proto/image_patch.hpp).
+  const cv::Mat& last_mask() const { return last_mask_; }
 
  private:
   bool in_training_range(int64_t frame_number) const;
@@ -85,6 +88,7 @@ class SilhouetteStage {
   std::future<MediPictureModel> training_result_;  // valid while the thread computes
   std::string paused_;                             // why the last frame was not masked
   std::array<RegionState, 3> regions_;             // by Region
+  cv::Mat last_mask_;
 };
 
 }  // namespace syncap::edge
