@@ -10,6 +10,7 @@
 #include "hull/polyhedral_hull.hpp"
 #include "hull/views_io.hpp"
 #include "matching/surface/hull_consistency.hpp"
+#include "matching/surface/point_files.hpp"
 #include "matching/surface/surface_matcher.hpp"
 #include "matching/surface/surface_mesh.hpp"
 #include "subcommand.hpp"
@@ -151,54 +152,6 @@ std::vector<ms::MatchingView> read_images(const MatchArgs& a,
   return views;
 }
 
-std::vector<ms::Facet> facets_of(const hull::Mesh& mesh) {
-  std::vector<ms::Facet> facets;
-  for (const auto f : mesh.faces()) {
-    std::vector<Eigen::Vector3d> corners;
-    for (const auto v : mesh.vertices_around_face(mesh.halfedge(f))) {
-      const auto& p = mesh.point(v);
-      corners.emplace_back(p.x(), p.y(), p.z());
-    }
-    if (corners.size() == 3) facets.push_back({corners[0], corners[1], corners[2]});
-  }
-  return facets;
-}
-
-void write_points_ply(const fs::path& file, const std::vector<ms::MatchedPoint>& points) {
-  std::ofstream out(file);
-  out << "ply\nformat ascii 1.0\ncomment syncap match: sigma = standard deviation along the "
-         "normal [mm]\nelement vertex "
-      << points.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\n"
-         "property float ny\nproperty float nz\nproperty float sigma\nend_header\n";
-  for (const auto& p : points) {
-    out << util::printf_string("%.4f %.4f %.4f %.5f %.5f %.5f %.5f\n", p.point.x(), p.point.y(),
-                               p.point.z(), p.normal.x(), p.normal.y(), p.normal.z(),
-                               p.sigma_normal_mm);
-  }
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-}
-
-void write_points_csv(const fs::path& file, const std::vector<ms::MatchedPoint>& points,
-                      const std::vector<ms::MatchingView>& views) {
-  std::ofstream out(file);
-  out << "x,y,z,sigma_ray_mm,sigma_normal_mm,sncc,sigma0,iterations,reference_camera,u,v,"
-         "origin_x,origin_y,origin_z,dir_x,dir_y,dir_z,nx,ny,nz,sweep_t_mm,search_cameras\n";
-  for (const auto& p : points) {
-    std::string search;
-    for (const int j : p.search)
-      search += (search.empty() ? "" : " ") + std::to_string(views[j].camera.id);
-    out << util::printf_string(
-        "%.4f,%.4f,%.4f,%.5f,%.5f,%.4f,%.3f,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.8f,%.8f,%.8f,%.5f,%.5f,"
-        "%.5f,%.4f,%s\n",
-        p.point.x(), p.point.y(), p.point.z(), p.sigma_ray_mm, p.sigma_normal_mm, p.sncc, p.sigma0,
-        p.iterations, views[p.reference].camera.id, p.pixel.x(), p.pixel.y(), p.ray_origin.x(),
-        p.ray_origin.y(), p.ray_origin.z(), p.ray_direction.x(), p.ray_direction.y(),
-        p.ray_direction.z(), p.normal.x(), p.normal.y(), p.normal.z(), p.sweep_t, search.c_str());
-  }
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-}
-
 // Each reference view's points and their median sigma.
 void print_views(const ms::SurfaceMatchingResult& r, const std::vector<ms::MatchingView>& views,
                  std::ostream& out) {
@@ -279,11 +232,12 @@ int match_command(std::span<const std::string> args, std::ostream& out, std::ost
     const hull::Mesh mesh =
         a.hull.empty() ? hull::polyhedral_visual_hull(hull_views) : hull::read_mesh(a.hull);
     const Clock::time_point start = Clock::now();
-    const ms::SurfaceMatchingResult result = ms::match_surface(views, facets_of(mesh), a.options);
+    const ms::SurfaceMatchingResult result =
+        ms::match_surface(views, ms::facets_of(hull::triangles_of(mesh)), a.options);
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     fs::create_directories(a.out);
-    write_points_ply(fs::path(a.out) / "points.ply", result.points);
-    write_points_csv(fs::path(a.out) / "points.csv", result.points, views);
+    ms::write_points_ply(fs::path(a.out) / "points.ply", result.points);
+    ms::write_points_csv(fs::path(a.out) / "points.csv", result.points, ms::camera_ids(views));
     print_result(result, seconds, out);
     if (!a.no_mesh) write_surface(result, mesh, fs::path(a.out) / "surface.ply", out);
     print_views(result, views, out);

@@ -147,6 +147,28 @@ bool FrameGrouper::add_silhouette_part(const silhouette_part_t& part, std::strin
   return keep_silhouette(silhouette_parts_.take({part.camera_id, part.frame_number}));
 }
 
+bool FrameGrouper::add_patch_part(const image_patch_t& part, std::string_view channel) {
+  const std::string what = "image patch of camera " + std::to_string(part.camera_id);
+  if (reject_late(part.frame_number, what) ||
+      reject_camera(part.camera_id, part.frame_number, channel, what)) {
+    return false;
+  }
+  if (part.part_count < 1 || part.part_index < 0 || part.part_index >= part.part_count) {
+    error_ = what + " frame " + std::to_string(part.frame_number) + " part " +
+             std::to_string(part.part_index) + "/" + std::to_string(part.part_count) +
+             ": part index outside 0..part_count-1";
+    return false;
+  }
+  auto& parts = pending_[part.frame_number].patches[part.camera_id];
+  for (const image_patch_t& held : parts) {
+    if (held.part_index == part.part_index)
+      return reject_duplicate(what + " part " + std::to_string(part.part_index), part.frame_number);
+  }
+  note_frame(part.frame_number, part.camera_id);
+  parts.push_back(part);
+  return true;
+}
+
 // Decodes a silhouette's parts (all, or what came) into the frame's pending group. Data that does
 // not decode is reported and dropped; the rest of the frame is unaffected.
 bool FrameGrouper::keep_silhouette(const proto::PartSet<silhouette_part_t>& set) {
@@ -187,6 +209,7 @@ FrameGroup FrameGrouper::finish(int64_t frame_number, Pending pending) {
   group.trigger = std::move(pending.trigger);
   group.blobs = std::move(pending.blobs);
   group.silhouettes = std::move(pending.silhouettes);
+  group.patches = std::move(pending.patches);
   for (int camera : expected_) {
     auto it = group.blobs.find(camera);
     // A frame joined from fewer parts than were sent lacks blobs: count the camera as missing.

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "syncap/blob_frame_t.hpp"
+#include "syncap/image_patch_t.hpp"
 #include "syncap/proto/contour_codec.hpp"
 #include "syncap/proto/part_collector.hpp"
 #include "syncap/silhouette_part_t.hpp"
@@ -45,6 +46,9 @@ struct FrameGroup {
   // cameras whose blob frame announced silhouette parts that did not all arrive (what came is
   // in `silhouettes`, its lost contours marked incomplete)
   std::vector<int> incomplete_silhouettes;
+  // By camera id: the image patch parts that came (edges send them every Nth frame on request,
+  // before the frame's record; proto::decode_image_patch joins them), in arrival order.
+  std::map<int, std::vector<image_patch_t>> patches;
   bool complete() const {
     return trigger.has_value() && missing_cameras.empty() && incomplete_silhouettes.empty();
   }
@@ -66,6 +70,9 @@ class FrameGrouper {
   bool add_trigger(const trigger_t& trigger);
   bool add_blob_part(const blob_frame_t& part, std::string_view channel = {});
   bool add_silhouette_part(const silhouette_part_t& part, std::string_view channel = {});
+  // An image patch part: kept with its frame (not waited for: the edge sends a frame's patch
+  // before its record). Late, foreign-camera and duplicate parts are rejected as the others.
+  bool add_patch_part(const image_patch_t& part, std::string_view channel = {});
 
   // Groups that are complete, or that waited max_lag_frames; in frame-number order.
   std::vector<FrameGroup> pop_ready();
@@ -86,6 +93,7 @@ class FrameGrouper {
     std::optional<trigger_t> trigger;
     std::map<int, blob_frame_t> blobs;
     std::map<int, proto::Silhouette> silhouettes;
+    std::map<int, std::vector<image_patch_t>> patches;
   };
 
   // A record's source for confirming jumps: the trigger or a camera id.

@@ -23,6 +23,7 @@
 #include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "syncap/camera_status_t.hpp"
+#include "syncap/image_patch_t.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/command_auth.hpp"
 
@@ -42,6 +43,7 @@ struct Stages {
   outputs::MarkerMessageStage* marker_message = nullptr;
   reconstruction::HullStage* hull = nullptr;
   reconstruction::BodyFitStage* body = nullptr;
+  reconstruction::SurfaceStage* surface = nullptr;
 };
 
 // The hull after the markers: the markers' message leaves before the slower hull is built.
@@ -98,6 +100,12 @@ Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& 
     }
     if (o.hull.enabled) add_hull_stages(o.hull, cameras, lcm, s);
     if (o.body.enabled) add_body_stages(o, cameras, lcm, s);
+    if (o.surface.enabled) {
+      // Last: it hands the frame to its own thread and returns at once.
+      auto surface = std::make_unique<reconstruction::SurfaceStage>(cameras, o.surface.stage);
+      s.surface = surface.get();
+      s.chain.push_back(std::move(surface));
+    }
   }
   if (!o.quiet)
     s.chain.push_back(
@@ -123,7 +131,7 @@ LastPulse last_pulse_of(const trigger_t& t, int max_lag) {
 }
 
 void subscribe(proto::Subscriber& sub, pipeline::HostNode& node, host_app::Arrivals& a,
-               std::optional<LastPulse>& last_pulse, int max_lag) {
+               std::optional<LastPulse>& last_pulse, int max_lag, bool patches) {
   auto reject = [&](bool ok) {
     if (!ok) {
       ++a.rejected;
@@ -146,6 +154,13 @@ void subscribe(proto::Subscriber& sub, pipeline::HostNode& node, host_app::Arriv
                                      ++a.silhouette_parts;
                                      reject(node.on_silhouette_part(p, c));
                                    });
+  // Image patches only for the surface stage: without it they would ride along unused.
+  if (patches)
+    sub.subscribe<image_patch_t>(std::string(proto::kPatchChannelPrefix) + ".*",
+                                 [&](const image_patch_t& p, const std::string& c) {
+                                   ++a.patch_parts;
+                                   reject(node.on_patch_part(p, c));
+                                 });
   sub.subscribe<camera_status_t>(
       std::string(proto::kStatusChannelPrefix) + ".*",
       [&](const camera_status_t& s, const std::string&) { a.tally.add_status(s); });
@@ -199,12 +214,12 @@ int run(const host_app::HostOptions& o) {
   std::optional<LastPulse> last_pulse;
   proto::Subscriber sub(lcm,
                         [](const std::string& e) { std::cerr << "syncap-host: " << e << "\n"; });
-  subscribe(sub, node, arrivals, last_pulse, o.max_lag);
+  subscribe(sub, node, arrivals, last_pulse, o.max_lag, o.surface.enabled);
   if (!o.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
   receive(lcm, node, o, last_pulse);
   node.finish();
   host_app::print_summary({node, sub, arrivals, stages.markers, stages.marker_message,
-                           stages.rigid_sets, stages.hull, stages.body},
+                           stages.rigid_sets, stages.hull, stages.body, stages.surface},
                           std::cout);
   return 0;
 }

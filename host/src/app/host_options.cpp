@@ -170,6 +170,19 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                "the pose on SYNCAP_BODY and in --out (docs/body-fit.md)");
   add_body_options(app, o.body);
   app.add_flag("!--no-body-message", o.body.message, "do not publish body_frame_t");
+  app.add_flag("--surface", o.surface.enabled,
+               "measure the person's surface on the frames with image patches (the edges' "
+               "--patch-every, or syncap ctl patches N) by least-squares matching on the hull, "
+               "on a thread of its own, dropping frames while busy (turns --hull on; "
+               "docs/matching.md)");
+  app.add_option("--surface-dir", o.surface.stage.out_dir,
+                 "write DIR/surface_<frame>.csv and .ply, the points of every matched frame")
+      ->option_text("DIR");
+  app.add_option("--surface-min-cameras", o.surface.stage.min_cameras,
+                 "patches (with whole silhouettes) a frame needs (default " +
+                     std::to_string(o.surface.stage.min_cameras) + ")")
+      ->option_text("N")
+      ->check(cli::whole_in(3, 99));
   app.add_flag("--search-regions", o.search.enabled,
                "send each camera's edge the tracked body's search region after every fit "
                "(needs --body and --key; docs/segmentation.md)");
@@ -222,6 +235,12 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
       }
     }
     apply_body_options(o.body, o.hull);
+    if (o.surface.enabled) {
+      if (o.calibration.empty())
+        throw CLI::ValidationError("--surface", "needs --calibration (the cameras' models)");
+      o.hull.enabled = true;
+      o.hull.stage.keep_triangles = true;
+    }
     if (o.hull.enabled && o.calibration.empty())
       throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");
   } catch (const CLI::CallForHelp&) {

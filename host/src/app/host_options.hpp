@@ -12,6 +12,7 @@
 #include "reconstruction/body_fit_stage.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
+#include "reconstruction/surface_stage.hpp"
 #include "syncap/proto/command_auth.hpp"
 #include "tracking/marker_tracker.hpp"
 #include "tracking/rigid_set.hpp"
@@ -51,6 +52,12 @@ struct BodyArgs {
   bool message = true;  // publish body_frame_t on SYNCAP_BODY (syncap-host's --no-body-message)
 };
 
+// The live surface stage's options (--surface and --surface-*, docs/matching.md "Live").
+struct SurfaceArgs {
+  bool enabled = false;  // --surface (turns the hull on)
+  reconstruction::SurfaceStageOptions stage;
+};
+
 // The edges' search regions from the tracked body (syncap-host --search-regions).
 struct SearchRegionArgs {
   bool enabled = false;
@@ -74,6 +81,7 @@ struct HostOptions {
   TrackingArgs tracking;
   HullArgs hull;
   BodyArgs body;
+  SurfaceArgs surface;
   SearchRegionArgs search;
 };
 

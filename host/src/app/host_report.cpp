@@ -13,6 +13,7 @@ void print_grouping(const SummaryInputs& in, std::ostream& out) {
   out << "host summary: " << s.groups << " frame groups (" << s.complete << " complete, "
       << s.groups - s.complete << " incomplete), " << a.triggers << " triggers, " << a.blob_parts
       << " blob messages, " << a.silhouette_parts << " silhouette parts, "
+      << (a.patch_parts > 0 ? std::to_string(a.patch_parts) + " image patch parts, " : "")
       << in.subscriber.malformed() << " malformed, " << a.rejected << " rejected ("
       << g.late_messages() << " late, " << g.foreign_messages() << " from cameras not expected, "
       << g.wrong_channel_messages() << " on another camera's channel, " << g.duplicate_messages()
@@ -86,6 +87,7 @@ void print_summary(const SummaryInputs& in, std::ostream& out) {
   if (in.rigid_sets != nullptr) out << in.rigid_sets->summary();
   if (in.hull != nullptr) out << in.hull->summary();
   if (in.body != nullptr) out << in.body->summary();
+  if (in.surface != nullptr) out << in.surface->summary();
   out.flush();
 }
 

@@ -11,6 +11,7 @@
 #include "reconstruction/hull_stage.hpp"
 #include "reconstruction/marker_stage.hpp"
 #include "reconstruction/rigid_set_stage.hpp"
+#include "reconstruction/surface_stage.hpp"
 #include "syncap/proto/subscriber.hpp"
 
 namespace syncap::host_app {
@@ -35,7 +36,7 @@ std::string host_time_line(const pipeline::HostNodeStats& stats);
 
 // Counts of the receiving side, kept by host_main.
 struct Arrivals {
-  long triggers = 0, blob_parts = 0, silhouette_parts = 0, rejected = 0;
+  long triggers = 0, blob_parts = 0, silhouette_parts = 0, patch_parts = 0, rejected = 0;
   host::ArrivalTally tally;
 };
 
@@ -48,6 +49,7 @@ struct SummaryInputs {
   const reconstruction::RigidSetStage* rigid_sets = nullptr;    // with --rigid-sets
   const reconstruction::HullStage* hull = nullptr;              // with --hull
   const reconstruction::BodyFitStage* body = nullptr;           // with --body
+  const reconstruction::SurfaceStage* surface = nullptr;        // with --surface
 };
 
 void print_summary(const SummaryInputs& in, std::ostream& out);

@@ -1,5 +1,7 @@
 #include "hull/mesh.hpp"
 
+#include <Eigen/Geometry>
+
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -38,6 +40,30 @@ std::string MeshReport::summary() const {
       "%zu faces, %zu component(s), Euler characteristic %d, volume %.6g, area %.6g",
       yes_no(closed), non_manifold_vertices, yes_no(self_intersecting), yes_no(outward_oriented),
       vertices, faces, components, euler_characteristic, volume, area);
+}
+
+std::vector<Triangle> triangles_of(const Mesh& mesh) {
+  std::vector<Triangle> triangles;
+  triangles.reserve(mesh.number_of_faces());
+  for (const Mesh::Face_index f : mesh.faces()) {
+    Triangle t;
+    std::size_t corners = 0;
+    for (const Mesh::Vertex_index v : mesh.vertices_around_face(mesh.halfedge(f))) {
+      if (corners < 3) {
+        const Point3& p = mesh.point(v);
+        t[corners] = Eigen::Vector3d(p.x(), p.y(), p.z());
+      }
+      ++corners;
+    }
+    if (corners == 3) triangles.push_back(t);
+  }
+  return triangles;
+}
+
+double triangle_area(const std::vector<Triangle>& triangles) {
+  double area = 0;
+  for (const Triangle& t : triangles) area += 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm();
+  return area;
 }
 
 MeshReport check_mesh(const Mesh& mesh, bool self_intersection) {

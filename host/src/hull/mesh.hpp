@@ -6,8 +6,11 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <Eigen/Core>
+#include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace syncap::hull {
 
@@ -40,6 +43,13 @@ struct MeshReport {
 // The full report; self-intersection is the expensive part (an AABB tree of the faces, several
 // ms for a person's hull): without `self_intersection` it is not looked for (reported false).
 MeshReport check_mesh(const Mesh& mesh, bool self_intersection = true);
+
+// A mesh's triangles as corner coordinates, in face order (faces that are not triangles left
+// out): what code without CGAL takes (surface matching, the pipeline's frames).
+using Triangle = std::array<Eigen::Vector3d, 3>;
+std::vector<Triangle> triangles_of(const Mesh& mesh);
+// The total area of triangles_of(mesh).
+double triangle_area(const std::vector<Triangle>& triangles);
 
 // Writes PLY (binary little-endian) or OBJ (text) by the file's extension; throws
 // std::runtime_error naming the file on failure.

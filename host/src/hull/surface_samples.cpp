@@ -9,31 +9,20 @@ namespace syncap::hull {
 
 namespace {
 
-struct Triangle {
-  std::array<Eigen::Vector3d, 3> corners;
-  double cumulative_area = 0;  // this face's and all before it
+// A triangle with the area of all before it and itself, to pick faces by area.
+struct WeightedTriangle {
+  Triangle corners;
+  double cumulative_area = 0;
 };
 
-Eigen::Vector3d vector_of(const Point3& p) { return {p.x(), p.y(), p.z()}; }
-
-std::vector<Triangle> triangles_of(const Mesh& mesh) {
-  std::vector<Triangle> out;
-  out.reserve(mesh.number_of_faces());
+std::vector<WeightedTriangle> weighted_triangles(const Mesh& mesh) {
+  std::vector<WeightedTriangle> out;
   double total = 0;
-  for (const Mesh::Face_index f : mesh.faces()) {
-    Triangle t;
-    int n = 0;
-    for (const Mesh::Vertex_index v : mesh.vertices_around_face(mesh.halfedge(f))) {
-      if (n < 3) t.corners[static_cast<std::size_t>(n)] = vector_of(mesh.point(v));
-      ++n;
-    }
-    if (n != 3) continue;
-    const double area =
-        0.5 * (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).norm();
+  for (const Triangle& t : triangles_of(mesh)) {
+    const double area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm();
     if (!(area > 0)) continue;
     total += area;
-    t.cumulative_area = total;
-    out.push_back(t);
+    out.push_back({t, total});
   }
   return out;
 }
@@ -54,7 +43,7 @@ Eigen::Vector2d barycentric(std::size_t k) {
 }  // namespace
 
 std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, std::size_t count) {
-  const std::vector<Triangle> triangles = triangles_of(mesh);
+  const std::vector<WeightedTriangle> triangles = weighted_triangles(mesh);
   std::vector<Eigen::Vector3d> out;
   if (triangles.empty() || count == 0) return out;
   out.reserve(count);
@@ -62,8 +51,9 @@ std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, std::size_t count)
   auto face = triangles.begin();
   for (std::size_t k = 0; k < count; ++k) {
     const double at = (static_cast<double>(k) + 0.5) * step;
-    face = std::lower_bound(face, triangles.end(), at,
-                            [](const Triangle& t, double a) { return t.cumulative_area < a; });
+    face = std::lower_bound(face, triangles.end(), at, [](const WeightedTriangle& t, double a) {
+      return t.cumulative_area < a;
+    });
     if (face == triangles.end()) break;
     const Eigen::Vector2d b = barycentric(k);
     const auto& c = face->corners;

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +57,10 @@ struct HullSummary {
   // Points spread evenly over the mesh's surface, when the stage is asked for them (the body
   // fit's input: HullStageOptions::surface_samples).
   std::vector<Eigen::Vector3d> surface_mm;
+  // The mesh's triangles (corners, mm), when the stage is asked for them (the surface stage's
+  // input: HullStageOptions::keep_triangles); shared, read only, so a stage on another thread
+  // can keep them.
+  std::shared_ptr<const std::vector<std::array<Eigen::Vector3d, 3>>> triangles;
 };
 
 // The articulated body fitted to one frame's hull (reconstruction::BodyFitStage,

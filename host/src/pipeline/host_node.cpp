@@ -19,6 +19,10 @@ bool HostNode::on_blob_part(const blob_frame_t& part, std::string_view channel) 
   return grouper_.add_blob_part(part, channel);
 }
 
+bool HostNode::on_patch_part(const image_patch_t& part, std::string_view channel) {
+  return grouper_.add_patch_part(part, channel);
+}
+
 bool HostNode::on_silhouette_part(const silhouette_part_t& part, std::string_view channel) {
   return grouper_.add_silhouette_part(part, channel);
 }

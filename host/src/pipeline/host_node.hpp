@@ -50,6 +50,7 @@ class HostNode {
   bool on_trigger(const trigger_t& trigger);
   bool on_blob_part(const blob_frame_t& part, std::string_view channel = {});
   bool on_silhouette_part(const silhouette_part_t& part, std::string_view channel = {});
+  bool on_patch_part(const image_patch_t& part, std::string_view channel = {});
   // Hands the groups that are ready to the worker; returns how many.
   std::size_t poll();
   // Hands out every group still held, waits until the worker has run them all through the

@@ -124,6 +124,9 @@ void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& v
     measure(mesh, views, summary);
     if (options_.surface_samples > 0)
       summary.surface_mm = hull::sample_surface(mesh, options_.surface_samples);
+    if (options_.keep_triangles)
+      summary.triangles =
+          std::make_shared<const std::vector<hull::Triangle>>(hull::triangles_of(mesh));
     ++stats_.hulls;
     if (!options_.mesh_dir.empty())
       hull::write_mesh(options_.mesh_dir / ("hull_" + std::to_string(frame_number) + ".ply"), mesh);

@@ -54,6 +54,8 @@ struct HullStageOptions {
   // Points spread evenly over each hull's surface into HullSummary::surface_mm (the body fit's
   // input); 0: none.
   std::size_t surface_samples = 0;
+  // The mesh's triangles into HullSummary::triangles (the surface stage's input).
+  bool keep_triangles = false;
   // Writes DIR/hull_<frame>.ply for every hull built; empty: no meshes.
   std::filesystem::path mesh_dir;
 };

@@ -13,6 +13,13 @@ double edge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double x, double
 
 }  // namespace
 
+std::vector<Facet> facets_of(std::span<const std::array<Eigen::Vector3d, 3>> triangles) {
+  std::vector<Facet> facets;
+  facets.reserve(triangles.size());
+  for (const auto& t : triangles) facets.push_back({t[0], t[1], t[2]});
+  return facets;
+}
+
 sensor::CameraModel ideal_camera(const sensor::CameraModel& camera) {
   sensor::CameraModel ideal = camera;
   auto& io = ideal.interior;

@@ -7,8 +7,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "sensor/camera_model.hpp"
@@ -21,6 +23,9 @@ struct Facet {
   Eigen::Vector3d a, b, c;
   Eigen::Vector3d normal() const { return (b - a).cross(c - a).normalized(); }
 };
+
+// Facets of triangles given by their corners (hull::triangles_of).
+std::vector<Facet> facets_of(std::span<const std::array<Eigen::Vector3d, 3>> triangles);
 
 // The camera without lens distortion, affinity and shear: its pixels are where the pinhole
 // puts a point, the space facet-ID images are rendered in.

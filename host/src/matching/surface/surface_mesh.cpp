@@ -70,19 +70,6 @@ double median_spacing(const std::vector<Eigen::Vector3d>& points, double extent)
   return d[d.size() / 2];
 }
 
-double mesh_area(const hull::Mesh& mesh) {
-  double area = 0;
-  for (const auto f : mesh.faces()) {
-    std::vector<Eigen::Vector3d> c;
-    for (const auto v : mesh.vertices_around_face(mesh.halfedge(f))) {
-      const auto& p = mesh.point(v);
-      c.emplace_back(p.x(), p.y(), p.z());
-    }
-    if (c.size() == 3) area += 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
-  }
-  return area;
-}
-
 }  // namespace
 
 hull::Mesh mesh_surface(const std::vector<Eigen::Vector3d>& matched, const hull::Mesh& hull,
@@ -90,7 +77,7 @@ hull::Mesh mesh_surface(const std::vector<Eigen::Vector3d>& matched, const hull:
   const auto start = std::chrono::steady_clock::now();
   SurfaceMeshStats s;
   s.matched = matched.size();
-  const double area = mesh_area(hull);
+  const double area = hull::triangle_area(hull::triangles_of(hull));
   s.spacing = median_spacing(matched, std::sqrt(std::max(area, 1e-12)));
   const double fill = options.fill_distance > 0 ? options.fill_distance : 2.0 * s.spacing;
   // Hull samples at the matched points' spacing, kept where matching left a gap.
