@@ -345,5 +345,38 @@ TEST(FrameGrouper, CompleteFrameWaitsBehindAnOlderFrameWhosePartsAreArriving) {
   EXPECT_EQ(ready[1].frame_number, 5);
 }
 
+image_patch_t patch_part(int camera, int64_t k, int index, int count) {
+  image_patch_t p{};
+  p.camera_id = static_cast<int16_t>(camera);
+  p.frame_number = k;
+  p.part_index = static_cast<int16_t>(index);
+  p.part_count = static_cast<int16_t>(count);
+  return p;
+}
+
+// Issue 21: an edge sends a frame's image patch before the frame's record; the parts go out with
+// the group, and bad ones are refused without touching the frame.
+TEST(FrameGrouper, ImagePatchPartsGoOutWithTheirGroup) {
+  FrameGrouper grouper({0, 1}, 5);
+  EXPECT_TRUE(grouper.add_patch_part(patch_part(1, 3, 1, 2), "SYNCAP_PATCH_01"));
+  EXPECT_TRUE(grouper.add_patch_part(patch_part(1, 3, 0, 2)));
+  EXPECT_FALSE(grouper.add_patch_part(patch_part(1, 3, 0, 2)));  // a duplicate
+  EXPECT_NE(grouper.error().find("image patch of camera 1 part 0"), std::string::npos)
+      << grouper.error();
+  EXPECT_FALSE(grouper.add_patch_part(patch_part(1, 3, 4, 2)));
+  EXPECT_NE(grouper.error().find("part index outside"), std::string::npos);
+  EXPECT_FALSE(grouper.add_patch_part(patch_part(0, 3, 0, 1), "SYNCAP_PATCH_01"));
+  EXPECT_TRUE(grouper.pop_ready().empty()) << "patches are not waited for, nor do they complete";
+  grouper.add_trigger(trigger(3));
+  grouper.add_blob_part(blobs(0, 3));
+  grouper.add_blob_part(blobs(1, 3));
+  const auto ready = grouper.pop_ready();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_TRUE(ready[0].complete());
+  ASSERT_EQ(ready[0].patches.size(), 1u);
+  EXPECT_EQ(ready[0].patches.at(1).size(), 2u);
+  EXPECT_FALSE(grouper.add_patch_part(patch_part(1, 3, 0, 1)));  // its frame went out: late
+}
+
 }  // namespace
 }  // namespace syncap::host

@@ -81,6 +81,7 @@ std::vector<SurfaceStage::View> SurfaceStage::views_of(const host::FrameGroup& g
 // On the matcher's thread: the patches into images, the silhouettes into masks (where the patch
 // holds pixels), the matching, the files.
 void SurfaceStage::run(const Job& job) {
+  if (options_.on_match_start) options_.on_match_start(job.frame_number);
   const auto start = std::chrono::steady_clock::now();
   try {
     std::vector<ms::MatchingView> views;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <map>
 #include <memory>
@@ -31,6 +32,9 @@ struct SurfaceStageOptions {
   // Writes DIR/surface_<frame>.csv and .ply (matching/surface/point_files.hpp) for every frame
   // matched; empty: no files.
   std::filesystem::path out_dir;
+  // Called on the matcher's thread with the frame number before it matches a frame (tests hold
+  // the matcher busy with it); empty: nothing.
+  std::function<void(int64_t)> on_match_start;
 };
 
 // One matched frame.
