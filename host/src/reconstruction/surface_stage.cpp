@@ -99,7 +99,7 @@ void SurfaceStage::run(const Job& job) {
       }
       const cv::Mat mask =
           hull::rasterize(hull::on_pixel_edges(hull_silhouette(v.silhouette)), size) & patch.known;
-      views.push_back(ms::make_matching_view(v.camera, patch.image, mask));
+      views.push_back(ms::make_matching_view(v.camera, patch.image, mask, options_.mask_margin_px));
     }
     const ms::SurfaceMatchingResult result =
         ms::match_surface(views, ms::facets_of(*job.triangles), options_.matching);
