@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <functional>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 namespace syncap::proto {
@@ -70,13 +72,39 @@ std::string where(const image_patch_t& part) {
          std::to_string(part.part_count);
 }
 
-// The tile of one part, checked against the patch's sensor; throws naming the part.
+// The size a PNG's header (its IHDR chunk) announces; nothing for data that is no PNG.
+std::optional<cv::Size> png_size(const std::vector<uint8_t>& data) {
+  static constexpr uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (data.size() < 24 || !std::equal(std::begin(kSignature), std::end(kSignature), data.begin()))
+    return std::nullopt;
+  const auto be32 = [&](std::size_t at) {
+    return (uint32_t{data[at]} << 24) | (uint32_t{data[at + 1]} << 16) |
+           (uint32_t{data[at + 2]} << 8) | uint32_t{data[at + 3]};
+  };
+  const uint32_t width = be32(16), height = be32(20);
+  if (width > 1u << 20 || height > 1u << 20) return cv::Size(-1, -1);
+  return cv::Size(static_cast<int>(width), static_cast<int>(height));
+}
+
+// The tile of one part, checked against the patch's sensor; throws naming the part. The PNG's
+// announced size is checked before it is decoded: a forged header must not make the host
+// allocate gigabytes.
 cv::Mat decode_tile(const image_patch_t& part, cv::Size sensor) {
   if (part.encoding != image_patch_t::ENCODING_PNG)
     throw std::runtime_error(where(part) + ": unknown encoding " + std::to_string(part.encoding));
   if (part.data_size < 0 || static_cast<std::size_t>(part.data_size) != part.data.size())
     throw std::runtime_error(where(part) + ": data_size " + std::to_string(part.data_size) +
                              " for " + std::to_string(part.data.size()) + " bytes");
+  const std::optional<cv::Size> announced = png_size(part.data);
+  if (!announced) throw std::runtime_error(where(part) + ": not an 8-bit grey PNG");
+  if (announced->width < 1 || announced->height < 1 ||
+      part.tile_x + announced->width > sensor.width ||
+      part.tile_y + announced->height > sensor.height || part.tile_x < 0 || part.tile_y < 0)
+    throw std::runtime_error(where(part) + ": a " + std::to_string(announced->width) + "x" +
+                             std::to_string(announced->height) + " tile at (" +
+                             std::to_string(part.tile_x) + ", " + std::to_string(part.tile_y) +
+                             ") outside the " + std::to_string(sensor.width) + "x" +
+                             std::to_string(sensor.height) + " image");
   cv::Mat tile;
   try {
     tile = cv::imdecode(cv::Mat(1, static_cast<int>(part.data.size()), CV_8UC1,
@@ -85,14 +113,8 @@ cv::Mat decode_tile(const image_patch_t& part, cv::Size sensor) {
   } catch (const cv::Exception&) {
     tile.release();
   }
-  if (tile.empty() || tile.type() != CV_8UC1)
+  if (tile.empty() || tile.type() != CV_8UC1 || tile.size() != *announced)
     throw std::runtime_error(where(part) + ": not an 8-bit grey PNG");
-  const cv::Rect rect(part.tile_x, part.tile_y, tile.cols, tile.rows);
-  if ((rect & cv::Rect({0, 0}, sensor)) != rect)
-    throw std::runtime_error(
-        where(part) + ": a " + std::to_string(rect.width) + "x" + std::to_string(rect.height) +
-        " tile at (" + std::to_string(rect.x) + ", " + std::to_string(rect.y) + ") outside the " +
-        std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + " image");
   return tile;
 }
 

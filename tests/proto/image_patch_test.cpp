@@ -97,6 +97,18 @@ TEST(ImagePatch, ACorruptPartIsNamedAndTheOthersKept) {
   EXPECT_EQ(patch.parts_received, patch.part_count - 3);
 }
 
+// A forged PNG header must not make the host allocate what it announces.
+TEST(ImagePatch, AForgedPngSizeIsRefusedBeforeDecoding) {
+  const Scene s = scene({640, 480}, {300, 250}, {60, 150});
+  auto parts = encode_image_patch(4, 77, s.image, s.mask);
+  auto& width = parts[0].data;  // IHDR: width at bytes 16..19, big-endian
+  width[16] = 0, width[17] = 0x01, width[18] = 0, width[19] = 0;  // 65536 pixels wide
+  const ImagePatch patch = decode_image_patch(parts);
+  ASSERT_EQ(patch.errors.size(), 1u);
+  EXPECT_NE(patch.errors[0].find("a 65536x"), std::string::npos) << patch.errors[0];
+  EXPECT_NE(patch.errors[0].find("outside the 640x480 image"), std::string::npos);
+}
+
 TEST(ImagePatch, NoForegroundNoParts) {
   const Scene s = scene({64, 48}, {30, 25}, {6, 15});
   EXPECT_TRUE(encode_image_patch(0, 1, s.image, cv::Mat::zeros(s.image.size(), CV_8UC1)).empty());

@@ -51,6 +51,22 @@ void to_json(nlohmann::ordered_json& json, const silhouette_part_t& msg) {
   };
 }
 
+void to_json(nlohmann::ordered_json& json, const image_patch_t& msg) {
+  json = {
+      {"camera_id", msg.camera_id},
+      {"frame_number", msg.frame_number},
+      {"image_width", msg.image_width},
+      {"image_height", msg.image_height},
+      {"tile_x", msg.tile_x},
+      {"tile_y", msg.tile_y},
+      {"part_index", msg.part_index},
+      {"part_count", msg.part_count},
+      {"encoding", msg.encoding},
+      {"data_size", msg.data_size},
+      {"data", io::base64_encode(msg.data)},
+  };
+}
+
 void to_json(nlohmann::ordered_json& json, const camera_status_t& msg) {
   json = {
       {"camera_id", msg.camera_id},
@@ -245,12 +261,13 @@ KnownType known() {
   return {Message::getHash(), &decode_as<Message>};
 }
 
-const std::array<KnownType, 12>& known_types() {
-  static const std::array<KnownType, 12> types{
+const std::array<KnownType, 13>& known_types() {
+  static const std::array<KnownType, 13> types{
       known<trigger_t>(),         known<blob_t>(),          known<blob_frame_t>(),
       known<silhouette_part_t>(), known<camera_status_t>(), known<edge_command_t>(),
       known<trigger_status_t>(),  known<clip_polygon_t>(),  known<marker_t>(),
-      known<marker_frame_t>(),    known<hull_frame_t>(),    known<body_frame_t>()};
+      known<marker_frame_t>(),    known<hull_frame_t>(),    known<body_frame_t>(),
+      known<image_patch_t>()};
   return types;
 }
 

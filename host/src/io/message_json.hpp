@@ -15,6 +15,7 @@
 #include "syncap/clip_polygon_t.hpp"
 #include "syncap/edge_command_t.hpp"
 #include "syncap/hull_frame_t.hpp"
+#include "syncap/image_patch_t.hpp"
 #include "syncap/marker_frame_t.hpp"
 #include "syncap/marker_t.hpp"
 #include "syncap/silhouette_part_t.hpp"
@@ -28,6 +29,7 @@ void to_json(nlohmann::ordered_json& json, const trigger_t& msg);
 void to_json(nlohmann::ordered_json& json, const blob_t& msg);
 void to_json(nlohmann::ordered_json& json, const blob_frame_t& msg);
 void to_json(nlohmann::ordered_json& json, const silhouette_part_t& msg);
+void to_json(nlohmann::ordered_json& json, const image_patch_t& msg);
 void to_json(nlohmann::ordered_json& json, const camera_status_t& msg);
 void to_json(nlohmann::ordered_json& json, const edge_command_t& msg);
 void to_json(nlohmann::ordered_json& json, const clip_polygon_t& msg);

@@ -86,6 +86,24 @@ TEST(MessageJson, SilhouettePartRoundTripsWithBase64Data) {
       "data_size":4,"data":"AP8QgA=="})"));
 }
 
+TEST(MessageJson, ImagePatchShowsItsTileWithBase64Data) {
+  image_patch_t msg{};
+  msg.camera_id = 3;
+  msg.frame_number = 64;
+  msg.image_width = 640;
+  msg.image_height = 480;
+  msg.tile_x = 300;
+  msg.tile_y = 120;
+  msg.part_index = 2;
+  msg.part_count = 9;
+  msg.encoding = image_patch_t::ENCODING_PNG;
+  msg.data = {0x89, 0x50, 0x4e, 0x47};
+  msg.data_size = static_cast<int16_t>(msg.data.size());
+  EXPECT_EQ(fields_of(msg), nlohmann::json::parse(R"({"camera_id":3,"frame_number":64,
+      "image_width":640,"image_height":480,"tile_x":300,"tile_y":120,"part_index":2,
+      "part_count":9,"encoding":1,"data_size":4,"data":"iVBORw=="})"));
+}
+
 TEST(MessageJson, CameraStatusRoundTrips) {
   camera_status_t msg{};
   msg.camera_id = 99;
