@@ -3,7 +3,8 @@
 // frame, in the same process; the defaults (the edge's) likewise; the defaults with and without
 // their illumination correction (least-squares matching, eqs 5.12-5.20), and inside a search
 // region against the whole frame; and training on 30
-// frames of 640x480 against the per-pixel nth_element of eq 5.5's definition.
+// frames of 640x480 against the per-pixel nth_element of eq 5.5's definition; and the person's
+// image patch (proto/image_patch.hpp) against masking the frame.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <opencv2/video/background_segm.hpp>
 
 #include "segmentation/medi_picture.hpp"
+#include "syncap/proto/image_patch.hpp"
 
 namespace {
 
@@ -187,5 +189,31 @@ BENCHMARK(BM_Mog2)
 BENCHMARK(BM_Mog2)->Name("default-mask-vs-mog2/baseline")->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+// An image patch of the person (issue 21: the grey values the host's surface matching needs,
+// every Nth frame) against masking the same frame with the defaults: what sending a patch adds
+// to that frame's work on the board.
+void BM_ImagePatch(benchmark::State& state) {
+  const std::vector<cv::Mat> training = empty_scene(20);
+  const syncap::edge::MediPictureOptions options;
+  syncap::edge::MediPicture medi(syncap::edge::train_medi_picture(training, options), options);
+  const cv::Mat mask = medi.apply(frame_with_person()).clone();
+  // Clothes with texture: uniform noise of 0..40 DN over the person (PNG's worst case).
+  cv::Mat frame = frame_with_person(), texture(frame.size(), CV_8UC1);
+  cv::RNG rng(3);
+  rng.fill(texture, cv::RNG::UNIFORM, 0, 40);
+  cv::subtract(frame, texture, frame, mask);
+  std::size_t bytes = 0, parts = 0;
+  for (auto _ : state) {
+    const auto patch = syncap::proto::encode_image_patch(1, 30, frame, mask);
+    parts = patch.size();
+    bytes = 0;
+    for (const auto& p : patch) bytes += p.data.size();
+  }
+  state.counters["parts"] = static_cast<double>(parts);
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_ImagePatch)->Name("patch-vs-mask/ours")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DefaultMask)->Arg(1)->Name("patch-vs-mask/baseline")->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

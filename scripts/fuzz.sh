@@ -16,7 +16,7 @@ set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SYNCAP_FUZZ_BUILD:-$root/build-fuzz}
-all_targets=(lcm_messages contour_codec frame_grouper lcm_log cameras_json frame_json
+all_targets=(lcm_messages contour_codec image_patch frame_grouper lcm_log cameras_json frame_json
   scenario_yaml csv_observations mcsc_observations truth_csv bvh edge_config sdl_parser)
 
 if [ "${1:-}" = "--list" ]; then
