@@ -121,8 +121,8 @@ std::vector<hull::HullView> read_hull_views(const MatchArgs& a) {
   hull::ViewFiles files;
   if (a.threshold >= 0) files.threshold = a.threshold;
   files.largest_only = a.largest;
-  // Without masks, the images stand in for them: only their cameras are used.
-  return hull::read_views(a.cameras, a.masks.empty() ? a.images : a.masks, files);
+  if (a.masks.empty()) return hull::read_camera_views(a.cameras, a.images);  // the hull's a file
+  return hull::read_views(a.cameras, a.masks, files);
 }
 
 std::vector<ms::MatchingView> read_images(const MatchArgs& a,

@@ -123,6 +123,12 @@ TEST_F(MatchCommand, AHullMeshInsteadOfMasks) {
   EXPECT_GT(csv.size(), 200u);
   // Without masks nothing to check the points against.
   EXPECT_EQ(r.out.find("inside the visual hull"), std::string::npos) << r.out;
+  // Without masks the images are only images: one black everywhere is no "empty mask".
+  const cv::Mat last = cv::imread(image_file(4).string(), cv::IMREAD_GRAYSCALE);
+  cv::imwrite(image_file(4).string(), cv::Mat::zeros(last.size(), CV_8UC1));
+  const MatchRun black = run(a);
+  EXPECT_EQ(black.status, kExitOk) << black.err;
+  cv::imwrite(image_file(4).string(), last);
   a[5] = (dir_ / "missing.ply").string();
   const MatchRun missing = run(a);
   EXPECT_EQ(missing.status, kExitUsage);

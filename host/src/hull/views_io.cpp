@@ -277,4 +277,29 @@ std::vector<HullView> read_views(const fs::path& cameras, const fs::path& masks,
   return views;
 }
 
+std::vector<HullView> read_camera_views(const fs::path& cameras, const fs::path& images) {
+  const Cameras c = read_cameras(cameras);
+  const std::vector<fs::path> files = mask_files(images);
+  if (files.size() != c.models.size()) {
+    throw HullError(util::printf_string("%s: %zu image(s) for %zu camera(s) of %s",
+                                        images.string().c_str(), files.size(), c.models.size(),
+                                        cameras.string().c_str()));
+  }
+  std::vector<HullView> views;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    HullView v;
+    v.camera = c.models[i];
+    if (c.sized_by_mask) {
+      const cv::Mat image = cv::imread(files[i].string(), cv::IMREAD_UNCHANGED);
+      if (image.empty()) throw HullError(files[i].string() + ": not a readable image");
+      v.camera = sized(c.sources[i], image.size(), c.models[i].id);
+    }
+    v.name = util::printf_string("camera %d (%s, %s)", v.camera.id, c.sources[i].c_str(),
+                                 files[i].string().c_str());
+    v.lens = c.lenses[i];
+    views.push_back(std::move(v));
+  }
+  return views;
+}
+
 }  // namespace syncap::hull

@@ -34,4 +34,11 @@ cv::Matx34d read_projection_matrix(const std::filesystem::path& file);
 std::vector<HullView> read_views(const std::filesystem::path& cameras,
                                  const std::filesystem::path& masks, const ViewFiles& options);
 
+// The cameras of `cameras` as read_views reads them, without masks: one per image of `images`
+// (name order), which sizes the cameras of a *.pa folder; names and lenses as read_views gives
+// them, silhouettes and masks empty (for a hull read from a file). Throws HullError naming the
+// file: unreadable, a count that differs.
+std::vector<HullView> read_camera_views(const std::filesystem::path& cameras,
+                                        const std::filesystem::path& images);
+
 }  // namespace syncap::hull

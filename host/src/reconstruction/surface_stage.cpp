@@ -5,6 +5,7 @@
 
 #include "hull/silhouette.hpp"
 #include "matching/surface/facet_id_image.hpp"
+#include "matching/surface/hull_consistency.hpp"
 #include "matching/surface/point_files.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "syncap/proto/image_patch.hpp"
@@ -85,6 +86,8 @@ void SurfaceStage::run(const Job& job) {
   const auto start = std::chrono::steady_clock::now();
   try {
     std::vector<ms::MatchingView> views;
+    std::vector<sensor::CameraModel> cameras;
+    std::vector<cv::Mat> silhouettes;  // the check's masks: the edges' outlines, not shrunk
     long partial = 0;
     for (const View& v : job.views) {
       const proto::ImagePatch patch = proto::decode_image_patch(v.parts);
@@ -97,8 +100,10 @@ void SurfaceStage::run(const Job& job) {
                                 patch.image.cols, patch.image.rows, size.width, size.height));
         return;
       }
-      const cv::Mat mask =
-          hull::rasterize(hull::on_pixel_edges(hull_silhouette(v.silhouette)), size) & patch.known;
+      silhouettes.push_back(
+          hull::rasterize(hull::on_pixel_edges(hull_silhouette(v.silhouette)), size));
+      cameras.push_back(v.camera);
+      const cv::Mat mask = silhouettes.back() & patch.known;
       views.push_back(ms::make_matching_view(v.camera, patch.image, mask, options_.mask_margin_px));
     }
     const ms::SurfaceMatchingResult result =
@@ -111,14 +116,16 @@ void SurfaceStage::run(const Job& job) {
     }
     std::vector<double> sigmas;
     for (const ms::MatchedPoint& p : result.points) sigmas.push_back(p.sigma_normal_mm);
-    SurfaceFrame frame{
-        job.frame_number,
-        static_cast<int>(views.size()),
-        result.seeds,
-        result.points.size(),
-        median(sigmas),
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count()};
+    const ms::HullConsistency check = ms::check_against_masks(result.points, cameras, silhouettes);
+    SurfaceFrame frame;
+    frame.frame_number = job.frame_number;
+    frame.cameras = static_cast<int>(views.size());
+    frame.seeds = result.seeds;
+    frame.points = result.points.size();
+    frame.median_sigma_mm = median(sigmas);
+    frame.outside_silhouettes = check.outside;
+    frame.match_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     record(frame, partial);
   } catch (const std::exception& e) {  // a camera outside its image, a file not written
     record_failure(job.frame_number, e.what());
@@ -130,6 +137,8 @@ void SurfaceStage::record(const SurfaceFrame& frame, long partial) {
   ++stats_.matched;
   stats_.patches_partial += partial;
   stats_.points += static_cast<long>(frame.points);
+  stats_.points_outside += static_cast<long>(frame.outside_silhouettes);
+  if (frame.outside_silhouettes > 0) ++stats_.frames_implausible;
   stats_.match_ms.add(frame.match_ms);
   stats_.points_per_frame.add(static_cast<double>(frame.points));
   if (stats_.frames.size() == kFramesKept) stats_.frames.erase(stats_.frames.begin());
@@ -162,6 +171,12 @@ std::string SurfaceStage::summary() const {
       pipeline::quantile(s.points_per_frame.values(), 0.5),
       pipeline::quantile(s.match_ms.values(), 0.5), pipeline::quantile(s.match_ms.values(), 1.0),
       s.patches_partial);
+  if (s.points_outside > 0)
+    line += util::printf_string(
+        "host surface: implausible: %ld points in %ld frames fall outside a camera's silhouette "
+        "by more than 3 sigma and 0.71 px (wrong matches, or cameras that disagree with the "
+        "images)\n",
+        s.points_outside, s.frames_implausible);
   if (!s.last_error.empty()) line += "host surface: last failure: " + s.last_error + "\n";
   return line;
 }

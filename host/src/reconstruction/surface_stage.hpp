@@ -49,7 +49,11 @@ struct SurfaceFrame {
   std::size_t seeds = 0;
   std::size_t points = 0;
   double median_sigma_mm = 0;  // along the normal
-  double match_ms = 0;         // decoding the patches, matching, writing (wall)
+  // Of the points, those whose projection falls outside a camera's silhouette by more than 3
+  // of their sigmas and 0.71 px (matching/surface/hull_consistency.hpp): implausible, a wrong
+  // match or cameras that disagree with the images.
+  std::size_t outside_silhouettes = 0;
+  double match_ms = 0;  // decoding the patches, matching, writing (wall)
 };
 
 struct SurfaceStageStats {
@@ -62,6 +66,8 @@ struct SurfaceStageStats {
   long failed = 0;
   std::string last_error;  // names the frame
   long points = 0;
+  long points_outside = 0;      // SurfaceFrame::outside_silhouettes, summed
+  long frames_implausible = 0;  // frames with such a point
   pipeline::RecentValues match_ms;
   pipeline::RecentValues points_per_frame;
   std::vector<SurfaceFrame> frames;  // the latest 100 matched

@@ -111,6 +111,7 @@ TEST_F(SurfaceStageTest, MatchesTheFramesPatchesOntoTheTrueSurfaceAndWritesThePo
   EXPECT_GT(s.frames[0].points, 200u);
   EXPECT_GT(s.frames[0].median_sigma_mm, 0.0);
   EXPECT_LT(s.frames[0].median_sigma_mm, 1.0);
+  EXPECT_EQ(s.frames[0].outside_silhouettes, 0u) << "every point inside every silhouette";
   // The points lie on the true sphere (the hull is 20 mm outside it).
   std::ifstream csv(dir / "surface_30.csv");
   ASSERT_TRUE(csv.good());
@@ -179,6 +180,23 @@ TEST_F(SurfaceStageTest, ALostPatchPartIsCountedAndTheRestMatched) {
   EXPECT_EQ(s.matched, 1) << s.last_error;
   EXPECT_EQ(s.patches_partial, 1);
   EXPECT_GT(s.frames.at(0).points, 100u);
+}
+
+// A camera whose silhouette disagrees with the others (cut 15 px short all round): the points
+// the others match near its outline fall outside it, and the stage says so.
+TEST_F(SurfaceStageTest, PointsOutsideASilhouetteAreReportedImplausible) {
+  SurfaceStage stage(*cameras_, options());
+  pipeline::FrameWork work = frame(9);
+  cv::Mat cut;
+  cv::erode((*masks_)[3], cut, cv::getStructuringElement(cv::MORPH_ELLIPSE, {31, 31}));
+  work.group.silhouettes[3] = silhouette_of(cut, 3, 9);
+  stage.process(work);
+  stage.finish();
+  const SurfaceStageStats s = stage.stats();
+  ASSERT_EQ(s.matched, 1) << s.last_error;
+  EXPECT_GT(s.frames.at(0).outside_silhouettes, 0u);
+  EXPECT_EQ(s.frames_implausible, 1);
+  EXPECT_NE(stage.summary().find("implausible: "), std::string::npos) << stage.summary();
 }
 
 TEST_F(SurfaceStageTest, APatchForAnotherSensorSizeFailsTheFrameNamingTheCamera) {

@@ -271,10 +271,6 @@ LsmSolution solve_multi_image_lsm(const ScanWindow& window,
   out.inflation = options.correlated_residuals ? correlation_inflation(window, lin.residuals) : 1.0;
   out.sigma_t = out.sigma0 * std::sqrt(std::max(0.0, first(0)) * out.inflation);
   out.curvature = shared.curvature;
-  for (int j = 0; j < m; ++j) {
-    out.gains.push_back(states[j].r1);
-    out.rms.push_back(std::sqrt(lin.view_squared[j] / static_cast<double>(window.offsets.size())));
-  }
   return out;
 }
 

@@ -49,8 +49,6 @@ struct LsmSolution {
   int iterations = 0;
   int redundancy = 0;                                   // observations less unknowns
   Eigen::Vector3d curvature = Eigen::Vector3d::Zero();  // kuu, kuv, kvv [mm/px^2]
-  std::vector<double> gains;                            // r1 per search image
-  std::vector<double> rms;                              // each search image's residual RMS [DN]
 };
 
 // Starts at t (a GC3 candidate) with each search window's affine map from the tangent plane.

@@ -69,10 +69,6 @@ struct MatchedPoint {
   int reference = 0;                                // view index
   Eigen::Vector2i pixel = Eigen::Vector2i::Zero();  // in the reference image
   std::vector<int> search;                          // view indices
-  // The point's covariance [mm^2]: along the ray only (the reference pixel fixes the rest).
-  Eigen::Matrix3d covariance() const {
-    return sigma_ray_mm * sigma_ray_mm * ray_direction * ray_direction.transpose();
-  }
 };
 
 struct SurfaceMatchingResult {
