@@ -184,14 +184,14 @@ int open_group_socket() {
 }
 
 TEST(LcmExchange, EveryMaximalMessageIsOneDatagram) {
-  // The SIL/CMD channels are not in the Subscriber test above; here every channel counts.
+  // The SIL/PATCH/CMD channels are not in the Subscriber test above; here every channel counts.
   const int fd = open_group_socket();
   ASSERT_GE(fd, 0) << "cannot join " << kGroup << ": " << std::strerror(errno);
   const pid_t child = spawn_publisher(1);
   std::map<std::string, int> short_messages;
   int fragments = 0;
   std::vector<uint8_t> buf(65536);
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < 8; ++i) {
     const ssize_t n = recv(fd, buf.data(), buf.size(), 0);
     ASSERT_GT(n, 8) << "datagram " << i << " missing";
     if (std::memcmp(buf.data(), "LC02", 4) == 0) {
@@ -203,8 +203,9 @@ TEST(LcmExchange, EveryMaximalMessageIsOneDatagram) {
   close(fd);
   ASSERT_EQ(wait_for_exit(child), 0);
   EXPECT_EQ(fragments, 0) << "a message was fragmented (LC03)";
-  EXPECT_EQ(short_messages.size(), 7u);
+  EXPECT_EQ(short_messages.size(), 8u);
   EXPECT_EQ(short_messages[proto::silhouette_channel(99)], 1);
+  EXPECT_EQ(short_messages[proto::patch_channel(99)], 1);
   EXPECT_EQ(short_messages[proto::blob_channel(99)], 1);
   EXPECT_EQ(short_messages[kTriggerStatusChannel], 1);
   EXPECT_EQ(short_messages[proto::kEdgeClipChannel], 1);
