@@ -116,7 +116,9 @@ void SurfaceStage::run(const Job& job) {
     }
     std::vector<double> sigmas;
     for (const ms::MatchedPoint& p : result.points) sigmas.push_back(p.sigma_normal_mm);
-    const ms::HullConsistency check = ms::check_against_masks(result.points, cameras, silhouettes);
+    // The silhouettes' outline is uncertain by about the margin the masks were shrunk by.
+    const ms::HullConsistency check =
+        ms::check_against_masks(result.points, cameras, silhouettes, 3.0, options_.mask_margin_px);
     SurfaceFrame frame;
     frame.frame_number = job.frame_number;
     frame.cameras = static_cast<int>(views.size());
@@ -173,10 +175,10 @@ std::string SurfaceStage::summary() const {
       s.patches_partial);
   if (s.points_outside > 0)
     line += util::printf_string(
-        "host surface: implausible: %ld points in %ld frames fall outside a camera's silhouette "
-        "by more than 3 sigma and 0.71 px (wrong matches, or cameras that disagree with the "
-        "images)\n",
-        s.points_outside, s.frames_implausible);
+        "host surface: implausible: %ld of %ld points (in %ld frames) fall outside a camera's "
+        "silhouette by more than 3 sigma + %d.71 px (wrong matches, sigmas too small, or cameras "
+        "that disagree with the images)\n",
+        s.points_outside, s.points, s.frames_implausible, options_.mask_margin_px);
   if (!s.last_error.empty()) line += "host surface: last failure: " + s.last_error + "\n";
   return line;
 }

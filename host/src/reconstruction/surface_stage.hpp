@@ -50,8 +50,9 @@ struct SurfaceFrame {
   std::size_t points = 0;
   double median_sigma_mm = 0;  // along the normal
   // Of the points, those whose projection falls outside a camera's silhouette by more than 3
-  // of their sigmas and 0.71 px (matching/surface/hull_consistency.hpp): implausible, a wrong
-  // match or cameras that disagree with the images.
+  // of their sigmas, 0.71 px and mask_margin_px (the outline's own error;
+  // matching/surface/hull_consistency.hpp): implausible, a wrong match or cameras that
+  // disagree with the images.
   std::size_t outside_silhouettes = 0;
   double match_ms = 0;  // decoding the patches, matching, writing (wall)
 };

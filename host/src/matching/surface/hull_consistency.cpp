@@ -15,7 +15,8 @@ constexpr double kHalfDiagonalPx = 0.7072;
 
 HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
                                     const std::vector<sensor::CameraModel>& cameras,
-                                    const std::vector<cv::Mat>& masks, double k_sigma) {
+                                    const std::vector<cv::Mat>& masks, double k_sigma,
+                                    double mask_uncertainty_px) {
   HullConsistency out;
   out.points = points.size();
   // Each background pixel's distance to the nearest silhouette pixel.
@@ -36,7 +37,8 @@ HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
       const int v = static_cast<int>(std::lround(j.projection.pixel.y()));
       if (u < 0 || v < 0 || u >= outside[i].cols || v >= outside[i].rows) continue;
       const double sigma_px = m.sigma_ray_mm * (j.d_point * m.ray_direction).norm();
-      excess = std::max(excess, outside[i].at<float>(v, u) - k_sigma * sigma_px - kHalfDiagonalPx);
+      excess = std::max(excess, outside[i].at<float>(v, u) - k_sigma * sigma_px - kHalfDiagonalPx -
+                                    mask_uncertainty_px);
     }
     if (excess > 0) {
       ++out.outside;

@@ -21,8 +21,11 @@ struct HullConsistency {
 
 // `masks[i]` belongs to `cameras[i]` (8-bit, the camera's image size, non-zero inside); views
 // without a mask, or where the point projects outside the image, are not checked.
+// `mask_uncertainty_px` widens the allowance by the masks' own error: 0 for exact masks, the
+// classification's outline error for the edges' silhouettes.
 HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
                                     const std::vector<sensor::CameraModel>& cameras,
-                                    const std::vector<cv::Mat>& masks, double k_sigma = 3.0);
+                                    const std::vector<cv::Mat>& masks, double k_sigma = 3.0,
+                                    double mask_uncertainty_px = 0.0);
 
 }  // namespace syncap::matching::surface
