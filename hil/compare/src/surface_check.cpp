@@ -68,6 +68,7 @@ SurfaceErrors check_surface(const std::vector<SurfacePoint>& points, const TrueB
   double sum_normal = 0, sum_normalised = 0, sum_sweep = 0;
   std::size_t kept = 0, within = 0;
   std::vector<double> sigmas;
+  std::vector<std::pair<double, double>> kept_sigma_normalised;
   for (const SurfacePoint& p : points) {
     const auto hit = first_true_hit(body, p.origin, p.direction);
     if (!hit) {
@@ -90,6 +91,7 @@ SurfaceErrors check_surface(const std::vector<SurfacePoint>& points, const TrueB
       continue;
     }
     ++kept;
+    kept_sigma_normalised.emplace_back(sigma_normal, normalised);
     sum_normal += error_normal * error_normal;
     sum_normalised += normalised * normalised;
     sum_sweep += sweep_error * sweep_error;
@@ -100,6 +102,17 @@ SurfaceErrors check_surface(const std::vector<SurfacePoint>& points, const TrueB
     out.sweep_rms_normal_mm = std::sqrt(sum_sweep / kept);
   }
   if (!points.empty()) out.within_3_sigma = static_cast<double>(within) / points.size();
+  if (kept_sigma_normalised.size() >= 4) {
+    std::ranges::sort(kept_sigma_normalised);
+    const std::size_t n = kept_sigma_normalised.size();
+    for (std::size_t q = 0; q < 4; ++q) {
+      double sum = 0;
+      const std::size_t from = q * n / 4, to = (q + 1) * n / 4;
+      for (std::size_t i = from; i < to; ++i)
+        sum += kept_sigma_normalised[i].second * kept_sigma_normalised[i].second;
+      out.rms_normalised_by_sigma[q] = std::sqrt(sum / static_cast<double>(to - from));
+    }
+  }
   if (!sigmas.empty()) {
     std::ranges::sort(sigmas);
     out.median_sigma_normal_mm = sigmas[sigmas.size() / 2];

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -31,6 +32,10 @@ struct SurfaceErrors {
   double within_3_sigma = 0.0;  // share of all points
   double sweep_rms_normal_mm = 0.0;  // the same points' GC3 peaks, without blunders
   double median_sigma_normal_mm = 0.0;
+  // rms_normalised over the points in each quarter of the predicted sigmas, smallest first:
+  // alike in all four when the sigmas miss a factor (a variance component proportional to
+  // them), rising when they miss an additive one. Zeros with fewer than 4 points.
+  std::array<double, 4> rms_normalised_by_sigma{};
 };
 
 // The distance along the ray from `origin` to the body's first true surface, with the surface's

@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
         o.frame, e.points, e.off_body, e.blunders, e.points ? 100.0 * e.blunders / e.points : 0.0,
         e.rms_normal_mm, e.rms_normalised, 100.0 * e.within_3_sigma, e.median_sigma_normal_mm,
         e.sweep_rms_normal_mm);
+    const auto& q = e.rms_normalised_by_sigma;
+    std::printf(
+        "frame %ld: RMS error/sigma by quarter of the sigmas, smallest first: %.2f %.2f %.2f "
+        "%.2f\n",
+        o.frame, q[0], q[1], q[2], q[3]);
     if (!o.json.empty()) {
       const nlohmann::json j{{"frame", o.frame},
                              {"points", e.points},
@@ -74,7 +79,8 @@ int main(int argc, char** argv) {
                              {"rms_normalised", e.rms_normalised},
                              {"within_3_sigma", e.within_3_sigma},
                              {"median_sigma_normal_mm", e.median_sigma_normal_mm},
-                             {"sweep_rms_normal_mm", e.sweep_rms_normal_mm}};
+                             {"sweep_rms_normal_mm", e.sweep_rms_normal_mm},
+                             {"rms_normalised_by_sigma", e.rms_normalised_by_sigma}};
       std::ofstream(o.json) << j.dump() << '\n';
     }
     return 0;
