@@ -247,43 +247,18 @@ cv::Matx34d read_projection_matrix(const fs::path& file) {
   return p;
 }
 
-std::vector<HullView> read_views(const fs::path& cameras, const fs::path& masks,
-                                 const ViewFiles& options) {
-  const Cameras c = read_cameras(cameras);
-  const std::vector<fs::path> files = mask_files(masks);
-  if (files.size() != c.models.size()) {
-    throw HullError(util::printf_string("%s: %zu mask image(s) for %zu camera(s) of %s",
-                                        masks.string().c_str(), files.size(), c.models.size(),
-                                        cameras.string().c_str()));
-  }
-  std::vector<HullView> views;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    HullView v;
-    v.mask = read_mask(files[i], options);
-    v.camera = c.sized_by_mask ? sized(c.sources[i], v.mask.size(), c.models[i].id) : c.models[i];
-    v.name = util::printf_string("camera %d (%s, %s)", v.camera.id, c.sources[i].c_str(),
-                                 files[i].string().c_str());
-    if (v.mask.cols != v.camera.sensor.width_px || v.mask.rows != v.camera.sensor.height_px) {
-      throw HullError(util::printf_string("%s: mask is %dx%d, the camera's image %dx%d",
-                                          v.name.c_str(), v.mask.cols, v.mask.rows,
-                                          v.camera.sensor.width_px, v.camera.sensor.height_px));
-    }
-    v.silhouette = silhouette_from_mask(v.mask, options.simplify_px);
-    if (v.silhouette.empty()) throw HullError(v.name + ": empty mask (no foreground)");
-    if (c.lenses[i]) to_ideal_pixels(*c.lenses[i], v);
-    v.lens = c.lenses[i];
-    views.push_back(std::move(v));
-  }
-  return views;
-}
+namespace {
 
-std::vector<HullView> read_camera_views(const fs::path& cameras, const fs::path& images) {
+// The cameras with the file of each (one per image of `folder`, name order; an image sizes the
+// camera of a *.pa file), named; `what` names the files in the count's error.
+std::vector<HullView> camera_views(const fs::path& cameras, const fs::path& folder,
+                                   const char* what, std::vector<fs::path>& files) {
   const Cameras c = read_cameras(cameras);
-  const std::vector<fs::path> files = mask_files(images);
+  files = mask_files(folder);
   if (files.size() != c.models.size()) {
-    throw HullError(util::printf_string("%s: %zu image(s) for %zu camera(s) of %s",
-                                        images.string().c_str(), files.size(), c.models.size(),
-                                        cameras.string().c_str()));
+    throw HullError(util::printf_string("%s: %zu %s for %zu camera(s) of %s",
+                                        folder.string().c_str(), files.size(), what,
+                                        c.models.size(), cameras.string().c_str()));
   }
   std::vector<HullView> views;
   for (std::size_t i = 0; i < files.size(); ++i) {
@@ -300,6 +275,32 @@ std::vector<HullView> read_camera_views(const fs::path& cameras, const fs::path&
     views.push_back(std::move(v));
   }
   return views;
+}
+
+}  // namespace
+
+std::vector<HullView> read_views(const fs::path& cameras, const fs::path& masks,
+                                 const ViewFiles& options) {
+  std::vector<fs::path> files;
+  std::vector<HullView> views = camera_views(cameras, masks, "mask image(s)", files);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    HullView& v = views[i];
+    v.mask = read_mask(files[i], options);
+    if (v.mask.cols != v.camera.sensor.width_px || v.mask.rows != v.camera.sensor.height_px) {
+      throw HullError(util::printf_string("%s: mask is %dx%d, the camera's image %dx%d",
+                                          v.name.c_str(), v.mask.cols, v.mask.rows,
+                                          v.camera.sensor.width_px, v.camera.sensor.height_px));
+    }
+    v.silhouette = silhouette_from_mask(v.mask, options.simplify_px);
+    if (v.silhouette.empty()) throw HullError(v.name + ": empty mask (no foreground)");
+    if (v.lens) to_ideal_pixels(*v.lens, v);
+  }
+  return views;
+}
+
+std::vector<HullView> read_camera_views(const fs::path& cameras, const fs::path& images) {
+  std::vector<fs::path> files;
+  return camera_views(cameras, images, "image(s)", files);
 }
 
 }  // namespace syncap::hull
