@@ -100,11 +100,12 @@ class LiveTest(unittest.TestCase):
                 for port in ("19090", "19876"):
                     self.assertIn(f"127.0.0.1:{port}", listening)
                     self.assertNotIn(f"0.0.0.0:{port}", listening)
-                # `rerun URL --save FILE` streams until stopped; 8 s is plenty for 10 frames on
-                # a quiet machine, but beside a loaded test run (two cores, -j2) rerun took
-                # longer to start and saved nothing: then once more with 30 s.
+                # `rerun URL --save FILE` streams until stopped. Stopped by SIGTERM it may not
+                # flush what it holds: beside a loaded test run (two cores, -j2) the file then had
+                # no frame, three times in two days, even after 30 s. SIGINT (Ctrl-C) makes it
+                # write everything and close the file; 8 s, then once more with 30 s.
                 for seconds in ("8", "30"):
-                    subprocess.run(["timeout", seconds, rerun_executable(), "--bind",
+                    subprocess.run(["timeout", "-s", "INT", "-k", "10", seconds, rerun_executable(), "--bind",
                                     "127.0.0.1", "--port", "19877", "--save", saved,
                                     "rerun+http://127.0.0.1:19876/proxy"],
                                    capture_output=True)
