@@ -166,6 +166,8 @@ TEST(FrameGrouper, LostSilhouettePartIsNamedAndTheRestKept) {
   ASSERT_GE(ready.size(), 1u);
   EXPECT_FALSE(ready[0].complete());
   EXPECT_EQ(ready[0].incomplete_silhouettes, std::vector<int>{0});
+  EXPECT_FALSE(ready[0].silhouette_whole(0));
+  EXPECT_TRUE(ready[0].silhouette_whole(1));
   EXPECT_TRUE(ready[0].missing_cameras.empty());
   const proto::Silhouette& s = ready[0].silhouettes.at(0);
   EXPECT_EQ(s.parts_received, static_cast<int>(parts.size()) - 1);

@@ -20,6 +20,7 @@
 //   (duplicate_messages()); the first is kept.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -51,6 +52,11 @@ struct FrameGroup {
   std::map<int, std::vector<image_patch_t>> patches;
   bool complete() const {
     return trigger.has_value() && missing_cameras.empty() && incomplete_silhouettes.empty();
+  }
+  // The camera's silhouette arrived whole: a contour with a lost part would cut a hull.
+  bool silhouette_whole(int camera_id) const {
+    return std::find(incomplete_silhouettes.begin(), incomplete_silhouettes.end(), camera_id) ==
+           incomplete_silhouettes.end();
   }
 };
 

@@ -27,13 +27,6 @@ void put_box(const hull::Mesh& mesh, pipeline::HullSummary& summary) {
   summary.max_mm = high;
 }
 
-// A camera's silhouette is usable when it arrived whole: a contour with a lost part would cut
-// the hull.
-bool whole(const host::FrameGroup& group, int camera_id) {
-  return std::find(group.incomplete_silhouettes.begin(), group.incomplete_silhouettes.end(),
-                   camera_id) == group.incomplete_silhouettes.end();
-}
-
 }  // namespace
 
 std::optional<HullMethod> hull_method_from_name(const std::string& name) {
@@ -101,7 +94,7 @@ std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
   for (const sensor::CameraModel& camera : cameras_) {
     const auto found = group.silhouettes.find(camera.id);
     hull::Silhouette silhouette;
-    if (found != group.silhouettes.end() && whole(group, camera.id))
+    if (found != group.silhouettes.end() && group.silhouette_whole(camera.id))
       silhouette = hull::on_pixel_edges(hull_silhouette(found->second));
     if (silhouette.empty()) {
       summary.flags |= hull_frame_t::FLAG_CAMERAS_MISSING;

@@ -18,11 +18,6 @@ namespace ms = matching::surface;
 
 constexpr std::size_t kFramesKept = 100;
 
-bool whole(const host::FrameGroup& group, int camera_id) {
-  return std::find(group.incomplete_silhouettes.begin(), group.incomplete_silhouettes.end(),
-                   camera_id) == group.incomplete_silhouettes.end();
-}
-
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
@@ -72,7 +67,7 @@ std::vector<SurfaceStage::View> SurfaceStage::views_of(const host::FrameGroup& g
     const auto parts = group.patches.find(camera.id);
     const auto silhouette = group.silhouettes.find(camera.id);
     if (parts == group.patches.end() || silhouette == group.silhouettes.end() ||
-        !whole(group, camera.id))
+        !group.silhouette_whole(camera.id))
       continue;
     views.push_back({camera, parts->second, silhouette->second});
   }
