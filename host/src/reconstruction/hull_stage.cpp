@@ -56,7 +56,7 @@ hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette) {
     for (const proto::ContourPoint& p : c.points) contour.points.emplace_back(p.x, p.y);
     if (contour.points.size() >= 3) out.contours.push_back(std::move(contour));
   }
-  return out;
+  return hull::on_pixel_edges(std::move(out));
 }
 
 HullStage::HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options)
@@ -95,7 +95,7 @@ std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
     const auto found = group.silhouettes.find(camera.id);
     hull::Silhouette silhouette;
     if (found != group.silhouettes.end() && group.silhouette_whole(camera.id))
-      silhouette = hull::on_pixel_edges(hull_silhouette(found->second));
+      silhouette = hull_silhouette(found->second);
     if (silhouette.empty()) {
       summary.flags |= hull_frame_t::FLAG_CAMERAS_MISSING;
       ++stats_.cameras_missing;

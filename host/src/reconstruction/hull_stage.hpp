@@ -99,7 +99,8 @@ class HullStage : public pipeline::Stage {
 };
 
 // A silhouette as the edges send it (proto: contours through the boundary pixels' centres), as
-// the hull takes it; the stage moves it onto the pixels' edges (hull::on_pixel_edges).
+// the hull takes it: moved onto the pixels' edges (hull::on_pixel_edges). The hull and surface
+// stages both read silhouettes through it.
 hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette);
 
 }  // namespace syncap::reconstruction

@@ -1,6 +1,5 @@
 #include "reconstruction/surface_stage.hpp"
 
-#include <algorithm>
 #include <chrono>
 
 #include "hull/silhouette.hpp"
@@ -17,12 +16,6 @@ namespace {
 namespace ms = matching::surface;
 
 constexpr std::size_t kFramesKept = 100;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
@@ -95,8 +88,7 @@ void SurfaceStage::run(const Job& job) {
                                 patch.image.cols, patch.image.rows, size.width, size.height));
         return;
       }
-      silhouettes.push_back(
-          hull::rasterize(hull::on_pixel_edges(hull_silhouette(v.silhouette)), size));
+      silhouettes.push_back(hull::rasterize(hull_silhouette(v.silhouette), size));
       cameras.push_back(v.camera);
       const cv::Mat mask = silhouettes.back() & patch.known;
       views.push_back(ms::make_matching_view(v.camera, patch.image, mask, options_.mask_margin_px));
@@ -119,7 +111,7 @@ void SurfaceStage::run(const Job& job) {
     frame.cameras = static_cast<int>(views.size());
     frame.seeds = result.seeds;
     frame.points = result.points.size();
-    frame.median_sigma_mm = median(sigmas);
+    frame.median_sigma_mm = pipeline::quantile(sigmas, 0.5);
     frame.outside_silhouettes = check.outside;
     frame.match_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
