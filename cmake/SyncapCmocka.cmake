@@ -15,9 +15,19 @@ set(_SYNCAP_CMOCKA_SCRIPT "${CMAKE_CURRENT_LIST_FILE}")
 set(_SYNCAP_CMOCKA_MAIN_DIR "${CMAKE_CURRENT_LIST_DIR}/../tests/firmware")
 
 # Script mode: run the program with --list and write one add_test per case into OUT.
-# Inputs: EXE, OUT, PREFIX, LABEL, TIMEOUT, SERIAL (ON or OFF) and LAUNCHER (empty for none).
+# Inputs: EXE, OUT, PREFIX, LABEL, TIMEOUT, SERIAL (ON or OFF), LAUNCHER (empty for none) and
+# EMULATOR (a cross build's, its arguments separated by '|'; empty for none).
 function(_syncap_cmocka_write_tests)
-  execute_process(COMMAND "${EXE}" --list
+  string(REPLACE "|" ";" emulator "${EMULATOR}")
+  set(labels "${LABEL}")
+  set(emulator_args "")
+  foreach(arg IN LISTS emulator)
+    string(APPEND emulator_args " [==[${arg}]==]")
+  endforeach()
+  if(emulator AND LABEL STREQUAL "unit")
+    set(labels emulated)
+  endif()
+  execute_process(COMMAND ${emulator} "${EXE}" --list
     OUTPUT_VARIABLE listing ERROR_VARIABLE errors RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     file(REMOVE "${OUT}")
@@ -37,8 +47,8 @@ function(_syncap_cmocka_write_tests)
     endif()
     set(test "${PREFIX}.${case}")
     string(APPEND content
-      "add_test([==[${test}]==] ${LAUNCHER} [==[${EXE}]==] [==[${case}]==])\n"
-      "set_tests_properties([==[${test}]==] PROPERTIES LABELS ${LABEL} TIMEOUT ${TIMEOUT}"
+      "add_test([==[${test}]==] ${LAUNCHER}${emulator_args} [==[${EXE}]==] [==[${case}]==])\n"
+      "set_tests_properties([==[${test}]==] PROPERTIES LABELS ${labels} TIMEOUT ${TIMEOUT}"
       " RUN_SERIAL ${SERIAL})\n")
     math(EXPR count "${count} + 1")
   endforeach()
@@ -68,6 +78,12 @@ function(syncap_cmocka_test name)
     set(ARG_TIMEOUT 60)
   endif()
   set(launcher "")
+  # A cross build's tests run under its emulator (qemu-aarch64); its unit tests are labelled
+  # "emulated" instead.
+  set(emulator "")
+  if(CMAKE_CROSSCOMPILING)
+    string(REPLACE ";" "|" emulator "${CMAKE_CROSSCOMPILING_EMULATOR}")
+  endif()
   if(ARG_LABEL STREQUAL "hil")
     set(launcher "[==[${SYNCAP_NETNS_RUN}]==]")
   endif()
@@ -84,7 +100,7 @@ function(syncap_cmocka_test name)
     COMMAND ${CMAKE_COMMAND} -D SYNCAP_CMOCKA_EXE=$<TARGET_FILE:${name}> -D OUT=${tests_file}
             -D PREFIX=${name} -D LABEL=${ARG_LABEL} -D TIMEOUT=${ARG_TIMEOUT}
             -D SERIAL=$<IF:$<BOOL:${ARG_SERIAL}>,ON,OFF>
-            -D LAUNCHER=${launcher} -P ${_SYNCAP_CMOCKA_SCRIPT}
+            -D LAUNCHER=${launcher} -D EMULATOR=${emulator} -P ${_SYNCAP_CMOCKA_SCRIPT}
     COMMENT "cmocka: listing the test cases of ${name}"
     VERBATIM)
 

@@ -2,6 +2,11 @@
 # Installs exactly the Debian (bookworm) packages syncap needs to build, test and run.
 # Idempotent: packages already present are skipped, and nothing is done when all are there.
 # Uses sudo when not run as root.
+#   scripts/deps.sh           what the native build and its tests need
+#   scripts/deps.sh cross     ... and the arm64 cross toolchain, qemu and mmdebstrap
+#                             (scripts/cross-build.sh, scripts/arm64-sysroot.sh)
+#   scripts/deps.sh package   ... and what builds, checks and install-tests the Debian packages
+#                             (scripts/package.sh)
 set -euo pipefail
 
 # One line per purpose, so a reader sees why each package is here.
@@ -32,6 +37,16 @@ PACKAGES=(
   # board's clock (clock-step)
   jq libfaketime
 )
+
+for group in "$@"; do
+  case "$group" in
+    # arm64: Debian's cross compilers, user-mode emulation for the tests, the sysroot's maker
+    cross) PACKAGES+=(crossbuild-essential-arm64 qemu-user-static mmdebstrap) ;;
+    # Debian packages: dpkg-shlibdeps (dpkg-dev), the policy checker, a fresh root to install in
+    package) PACKAGES+=(dpkg-dev fakeroot lintian mmdebstrap) ;;
+    *) echo "deps: unknown group '$group' (cross, package)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${PACKAGES[@]}"; do
