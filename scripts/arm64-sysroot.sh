@@ -31,7 +31,16 @@ rm -rf "$dir"
 mkdir -p "$(dirname "$dir")"
 include=$(IFS=,; echo "${PACKAGES[*]}")
 echo "arm64-sysroot: extracting ${#PACKAGES[@]} packages and their dependencies into $dir"
-mmdebstrap --quiet --variant=extract --arch=arm64 --include="$include" bookworm "$dir" "$mirror"
+mmdebstrap --quiet --variant=extract --arch=arm64 --skip=cleanup/apt/cache --include="$include" \
+  bookworm "$dir" "$mirror"
+# The libraries' shlibs files, the dependency information dpkg would hold on a board: the arm64
+# packages' Depends come from them (dpkg-shlibdeps -L, cmake/SyncapCPackProject.cmake.in).
+archives="$dir/var/cache/apt/archives"
+: >"$dir/.syncap-shlibs"
+for deb in "$archives"/*.deb; do
+  dpkg-deb --ctrl-tarfile "$deb" | { tar -xO ./shlibs 2>/dev/null || true; } >>"$dir/.syncap-shlibs"
+done
+rm -f "$archives"/*.deb
 # Absolute symbolic links (libz.so -> /lib/aarch64-linux-gnu/libz.so.1) would point into the
 # build machine's root: make them relative, inside the sysroot.
 find "$dir" -type l -lname '/*' -print0 | while IFS= read -r -d '' link; do

@@ -40,8 +40,8 @@ PACKAGES=(
 
 for group in "$@"; do
   case "$group" in
-    # arm64: Debian's cross compilers, user-mode emulation for the tests, the sysroot's maker
-    cross) PACKAGES+=(crossbuild-essential-arm64 qemu-user-static mmdebstrap) ;;
+    # arm64: the cross compilers, user-mode emulation (tests, instruction counts), the sysroot
+    cross) PACKAGES+=(crossbuild-essential-arm64 qemu-user-static qemu-user mmdebstrap) ;;
     # Debian packages: dpkg-shlibdeps (dpkg-dev), the policy checker, a fresh root to install in
     package) PACKAGES+=(dpkg-dev fakeroot lintian mmdebstrap) ;;
     *) echo "deps: unknown group '$group' (cross, package)" >&2; exit 2 ;;

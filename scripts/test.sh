@@ -5,6 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${SYNCAP_BUILD_DIR:-build}
+# The package test (label package) builds, checks and installs the Debian packages.
+scripts/deps.sh package
 # Without debug information: the build takes half the time and runs the same code.
 scripts/build.sh -DSYNCAP_WERROR=ON -DSYNCAP_DEBUG_INFO=OFF
 export SYNCAP_DATA=${SYNCAP_DATA:-$(cd .. && pwd)/shared/data}

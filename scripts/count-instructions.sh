@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# scripts/count-instructions.sh [N]
+# The edge's instructions per 1280x1024 frame, blob path (--mode blobs) and blob + mask path
+# (--mode both), on amd64 and arm64, counted the same way for both: bench/edge_instructions
+# runs under qemu's user-mode emulation (qemu-x86_64, qemu-aarch64) with one instruction per
+# translation block and every executed block logged (-singlestep -d nochain,exec), so the log
+# has one line per guest instruction. Each mode runs with 1 and 1 + N person frames (N = 4 by
+# default); the difference over N is one frame's count. Needs build/ and build-arm64/ (the
+# latter from scripts/cross-build.sh arm64) and qemu-user (scripts/deps.sh cross).
+# Prints a table for docs/edge.md. The counts are of the code the compiler emitted for each
+# processor (SSE2 on amd64 with OpenCV's CPU dispatch as qemu's default CPU model reports it,
+# NEON on arm64), not of time: retake time on a board (docs/edge.md).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+n=${1:-4}
+amd64=${SYNCAP_BUILD_DIR:-build}/bin/edge_instructions
+arm64=${SYNCAP_CROSS_BUILD_DIR:-build-arm64}/bin/edge_instructions
+sysroot=${SYNCAP_SYSROOT:-$PWD/build-sysroot-arm64}
+for program in "$amd64" "$arm64"; do
+  [ -x "$program" ] || { echo "count-instructions: $program is not built" >&2; exit 1; }
+done
+command -v qemu-x86_64 >/dev/null || scripts/deps.sh cross
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$amd64" render "$work/frames"
+
+# count EMULATOR... -- PROGRAM ARGS...: guest instructions of one run.
+count() {
+  mkfifo "$work/log"
+  grep -c '^Trace' <"$work/log" >"$work/count" &
+  local reader=$!
+  "$@" 2>/dev/null
+  wait "$reader"
+  rm -f "$work/log"
+  cat "$work/count"
+}
+per_frame() {  # ARCH MODE: instructions of one frame
+  local emulator program
+  if [ "$1" = amd64 ]; then emulator=(qemu-x86_64); program=$amd64
+  else emulator=(qemu-aarch64-static -L "$sysroot"); program=$arm64; fi
+  local flags=(-singlestep -d nochain,exec -D "$work/log")
+  local one more
+  one=$(count "${emulator[@]}" "${flags[@]}" "$program" "$2" 1 "$work/frames")
+  more=$(count "${emulator[@]}" "${flags[@]}" "$program" "$2" $((1 + n)) "$work/frames")
+  echo $(( (more - one) / n ))
+}
+echo "| path | amd64 (SSE2) | arm64 (NEON) | arm64 / amd64 |"
+echo "|---|---|---|---|"
+for mode in blobs both; do
+  a=$(per_frame amd64 "$mode")
+  b=$(per_frame arm64 "$mode")
+  ratio=$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.2f", b / a }')
+  label=$([ "$mode" = blobs ] && echo "blobs (--mode blobs)" || echo "blobs + mask (--mode both)")
+  echo "| $label | $a | $b | $ratio |"
+done
