@@ -15,9 +15,9 @@ PACKAGES=(
   libc6-dev libstdc++-12-dev
   # acquisition, messaging, authentication, trigger GPIO
   libaravis-dev libusb-1.0-0-dev libv4l-dev liblcm-dev libsodium-dev libgpiod-dev
-  # vision and geometry, configuration, options
+  # vision and geometry, configuration, options (Ceres' SuiteSparse asks for BLAS and LAPACK)
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
-  libcli11-dev
+  libcli11-dev libblas-dev liblapack-dev
   # tests and benchmarks, run under qemu-aarch64
   libcmocka-dev libgtest-dev libgmock-dev libbenchmark-dev
 )
@@ -47,11 +47,19 @@ find "$dir" -type l -lname '/*' -print0 | while IFS= read -r -d '' link; do
   target=$(readlink "$link")
   ln -sfn --relative "$dir$target" "$link"
 done
+# Some exported CMake targets (Ceres: its BLAS and LAPACK) name libraries by their absolute path
+# on a board: point those into the sysroot (CMAKE_SYSROOT, set by the toolchain file).
+grep -rl 'INTERFACE_LINK_LIBRARIES.*[";]/usr/lib/aarch64-linux-gnu/' \
+  "$dir/usr/lib/aarch64-linux-gnu/cmake" --include='*[Tt]argets*.cmake' | while read -r file; do
+  sed -i '/INTERFACE_LINK_LIBRARIES/ s#\([";]\)/usr/lib/aarch64-linux-gnu/#\1${CMAKE_SYSROOT}/usr/lib/aarch64-linux-gnu/#g' "$file"
+done
 # update-alternatives never ran: give the linker the reference BLAS and LAPACK that
 # libopencv_core and Ceres were linked against (on a board, its alternatives choose).
 lib="$dir/usr/lib/aarch64-linux-gnu"
 for name in blas lapack; do
-  [ -e "$lib/lib$name.so.3" ] || ln -sfn "$name/lib$name.so.3" "$lib/lib$name.so.3"
+  for file in "lib$name.so.3" "lib$name.so"; do
+    [ -e "$lib/$file" ] || ln -sfn "$name/$file" "$lib/$file"
+  done
 done
 echo "$want" >"$stamp"
 echo "arm64-sysroot: done ($(du -sh "$dir" | cut -f1))"
