@@ -7,8 +7,9 @@
 # that no block runs without a log line); the count is the sum of the executed blocks' sizes.
 # (On arm64 it equals qemu's one-instruction-per-block count, -singlestep, exactly; on amd64 it
 # is within 1 % of it, on fw_config --list: 155741 against 154784.) Each mode runs with 1 and
-# 1 + N person frames (N = 2 by default); the difference over N is one frame's count. Needs build/ and build-arm64/ (the
-# latter from scripts/cross-build.sh arm64) and qemu-user (scripts/deps.sh cross).
+# 1 + N person frames (N = 2 by default); the difference over N is one frame's count. Needs
+# build/ and build-arm64/ (the latter from scripts/cross-build.sh arm64) and qemu-user
+# (scripts/deps.sh cross).
 # Prints a table for docs/edge.md. The counts are of the code the compiler emitted for each
 # processor (SSE2 on amd64 with OpenCV's CPU dispatch as qemu's default CPU model reports it,
 # NEON on arm64), not of time: retake time on a board (docs/edge.md).

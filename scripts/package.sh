@@ -26,8 +26,7 @@ else
   if [ ! -f "$build_dir/build.ninja" ]; then
     scripts/build.sh
   else
-    cmake --build "$build_dir" --parallel "$(nproc)" --target syncap-trigger syncap-gpiosim \
-      syncap-edge syncap-segment-eval syncap-host syncap
+    cmake --build "$build_dir" --parallel "$(nproc)"
   fi
 fi
 rm -rf "$build_dir/packages"
