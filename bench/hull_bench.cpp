@@ -1,6 +1,6 @@
-// The visual hull (docs/visual-hull.md), on 8 person silhouettes at 640x480 (contours simplified
-// by 1 px, the library's default; hull-8cam-0.5px: by 0.5 px, as the edges send them: 3x the
-// candidates, 2.6x the time):
+// The visual hull (docs/design/visual-hull.md), on 8 person silhouettes at 640x480 (contours
+// simplified by 1 px, the library's default; hull-8cam-0.5px: by 0.5 px, as the edges send them: 3x
+// the candidates, 2.6x the time):
 // - hull-8cam/ours: the exact hull by the polyhedral method, the live stage's (issue 17's goal:
 //   <= 10 ms per frame on one core); its counters: the candidates it tested, its agreement with
 //   the masks and with the voxel hull at 256 (the worst view's reprojection IoU);
@@ -14,6 +14,7 @@
 #include <map>
 
 #include "hull/polyhedral_hull.hpp"
+#include "hull/visual_hull.hpp"
 #include "hull/voxel_hull.hpp"
 #include "hull_scenes.hpp"
 

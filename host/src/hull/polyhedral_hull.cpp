@@ -1,4 +1,4 @@
-// The polyhedral visual hull, cone face by cone face (docs/visual-hull.md, "The polyhedral
+// The polyhedral visual hull, cone face by cone face (docs/design/visual-hull.md, "The polyhedral
 // method"). Notation: view i's contour edge k spans the cone face f = (i, k) between the rays D_k
 // and D_{k+1} from the projection centre C_i, the rays scaled to depth 1 along the viewing axis.
 // The face's domain is (s, v) in [0, 1]^2: X = C_i + Dir(s) / u, Dir(s) = D_k + s (D_{k+1} - D_k),
@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <list>
 #include <optional>
-#include <random>
 #include <unordered_map>
 
 #include "hull/nesting_triangulation.hpp"
@@ -32,9 +31,6 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Key = std::uint64_t;  // a vertex: the sorted triple of the plane ids that meet there
 
-// The same perturbation as exact_visual_hull (same seeds), so both see the same input.
-constexpr double kPerturbationPx = 0.005;
-constexpr unsigned kAttempts = 3;
 constexpr int kPlaneBits = 21;
 
 // A configuration the combinatorial assembly cannot name consistently (four planes through one
@@ -189,25 +185,21 @@ Vec2 ideal_point(const HullView& view, const Mat3& r_t, const Vec2& pixel) {
   return {local.x() / -local.z(), local.y() / -local.z()};
 }
 
-ViewData prepare_view(const HullView& view, const WorkingVolume& volume, unsigned seed,
-                      int first_plane) {
+// View `index` with attempt `attempt`'s perturbation (hull_view.hpp: the exact method's too).
+ViewData prepare_view(const HullView& view, std::size_t index, const WorkingVolume& volume,
+                      unsigned attempt, int first_plane) {
   ViewData v;
   const Mat3 r = view.camera.rotation();
   v.centre = view.camera.projection_centre();
   v.to_camera = Vec3(1.0, 1.0, -1.0).asDiagonal() * r.transpose();
-  const double d = (-r.col(2)).dot(volume.centre - v.centre);
-  v.near = std::max(d - volume.radius, 0.02 * d);  // as exact_visual_hull truncates its cones
-  v.far = d + volume.radius;
+  const ConeDepths depths = cone_depths(view.camera, volume);
+  v.near = depths.near;
+  v.far = depths.far;
   v.first_plane = first_plane;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> shift(-kPerturbationPx, kPerturbationPx);
   std::vector<std::pair<std::size_t, std::size_t>> contours;
-  for (const Contour& c : view.silhouette.contours) {
+  for (const Contour& c : perturbed(view.silhouette, attempt, index).contours) {
     std::vector<Vec2> pts;
-    for (const Vec2& p : c.points) {
-      const double dx = shift(rng), dy = shift(rng);  // in this order, as visual_hull.cpp
-      pts.push_back(ideal_point(view, r.transpose(), p + Vec2(dx, dy)));
-    }
+    for (const Vec2& p : c.points) pts.push_back(ideal_point(view, r.transpose(), p));
     if (pts.size() < 3) continue;
     const int base = static_cast<int>(v.points.size()), n = static_cast<int>(pts.size());
     const int e0 = static_cast<int>(v.edges.size());
@@ -787,9 +779,9 @@ void build_face(Assembly& as, int i, int k) {
       worst = i;
     }
   }
-  throw HullError(views[worst].name +
-                  ": its cone misses the others' intersection (empty hull; do the cameras and "
-                  "masks agree?)");
+  throw EmptyHullError(views[worst].name +
+                       ": its cone misses the others' intersection (empty hull; do the cameras "
+                       "and masks agree?)");
 }
 
 Mesh to_mesh(const Assembly& as) {
@@ -812,8 +804,7 @@ Mesh assemble(const std::vector<HullView>& views, const WorkingVolume& volume, u
   Assembly as;
   int first_plane = 0;
   for (std::size_t i = 0; i < views.size(); ++i) {
-    as.views.push_back(
-        prepare_view(views[i], volume, static_cast<unsigned>(1000 * attempt + i), first_plane));
+    as.views.push_back(prepare_view(views[i], i, volume, attempt, first_plane));
     first_plane += static_cast<int>(as.views.back().edges.size());
   }
   add_planes(as);
@@ -848,11 +839,11 @@ Mesh polyhedral_visual_hull(const std::vector<HullView>& views, const HullOption
     } catch (const Degenerate& d) {
       s.failed_attempts = attempt + 1;
       s.last_failure = d.what;
-      if (attempt + 1 == kAttempts) {
+      if (attempt + 1 == kPerturbationAttempts) {
         throw HullError(util::printf_string(
             "the polyhedral hull's faces did not assemble into a closed mesh on %u "
             "perturbations of the input (degenerate configuration: %s)",
-            kAttempts, d.what));
+            kPerturbationAttempts, d.what));
       }
     }
   }

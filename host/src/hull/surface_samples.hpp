@@ -1,6 +1,6 @@
 // Points spread evenly over a hull's surface: what the body fit takes from a frame's visual hull
-// (docs/body-fit.md, "From the live hull"). The hull's faces are few and large (the polyhedral
-// hull's cone faces), so its vertices alone would say little about most of the surface.
+// (docs/design/body-fit.md, "From the live hull"). The hull's faces are few and large (the
+// polyhedral hull's cone faces), so its vertices alone would say little about most of the surface.
 #pragma once
 
 #include <Eigen/Core>

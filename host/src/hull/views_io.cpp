@@ -143,7 +143,7 @@ sensor::OpenCvCamera opencv_camera_of(const cv::FileNode& node, const std::strin
 }
 
 // An OpenCV-style camera file (YAML or JSON, cv::FileStorage): a sequence `cameras`, each with
-// K, distortion (k1 k2 p1 p2 [k3]), R (or rvec), t and the image size (docs/visual-hull.md).
+// K, distortion (k1 k2 p1 p2 [k3]), R (or rvec), t and the image size (docs/design/visual-hull.md).
 Cameras read_opencv_cameras(const fs::path& path) {
   cv::FileStorage file;
   try {

@@ -369,7 +369,7 @@ Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& v
   // Twice: the first box is a coarse cell too large all round, the second a 32nd of it.
   for (const int cells : {std::max(16, voxel.resolution / 8), 32}) {
     if (!occupied_bounds(samplers, make_grid(min, max, cells), &min, &max)) {
-      throw HullError(
+      throw EmptyHullError(
           "no part of the working volume is foreground in every view (empty hull; do the "
           "cameras and masks agree?)");
     }
@@ -382,7 +382,7 @@ Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& v
   s.inside_points = static_cast<std::size_t>(std::ranges::count(grid.inside, 1));
   s.carve_seconds = seconds_since(start);
   if (s.inside_points == 0) {
-    throw HullError(
+    throw EmptyHullError(
         "no grid point is foreground in every view (empty hull; do the cameras and "
         "masks agree?)");
   }

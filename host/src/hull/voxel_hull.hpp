@@ -4,8 +4,8 @@
 // a closed triangle mesh. For comparison with the exact hull and as a fallback.
 #pragma once
 
+#include "hull/hull_view.hpp"
 #include "hull/mesh.hpp"
-#include "hull/visual_hull.hpp"
 
 namespace syncap::hull {
 
@@ -29,7 +29,7 @@ struct VoxelStats {
 // box, found by a first grid at 1/8 of the resolution over the working volume: the box of its
 // cells that no view sees wholly as background (thin parts are not missed). Surface vertices
 // sit where the grid edges they cross leave the hull (bisection against the masks). Throws
-// HullError as exact_visual_hull() does.
+// HullError for bad views, EmptyHullError when no grid point is inside every view.
 Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& voxel = {},
                        const HullOptions& options = {}, VoxelStats* stats = nullptr);
 

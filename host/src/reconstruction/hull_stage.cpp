@@ -59,8 +59,9 @@ hull::Silhouette hull_silhouette(const proto::Silhouette& silhouette) {
   return hull::on_pixel_edges(std::move(out));
 }
 
-HullStage::HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options)
-    : cameras_(std::move(cameras)), options_(std::move(options)) {
+HullStage::HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options,
+                     HullProducts products)
+    : cameras_(std::move(cameras)), options_(std::move(options)), products_(products) {
   options_.every = std::max(1, options_.every);
   if (!options_.mesh_dir.empty()) std::filesystem::create_directories(options_.mesh_dir);
 }
@@ -115,9 +116,9 @@ void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& v
     summary.hull_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     measure(mesh, views, summary);
-    if (options_.surface_samples > 0)
-      summary.surface_mm = hull::sample_surface(mesh, options_.surface_samples);
-    if (options_.keep_triangles)
+    if (products_.surface_samples > 0)
+      summary.surface_mm = hull::sample_surface(mesh, products_.surface_samples);
+    if (products_.triangles)
       summary.triangles =
           std::make_shared<const std::vector<hull::Triangle>>(hull::triangles_of(mesh));
     ++stats_.hulls;
@@ -145,9 +146,10 @@ hull::Mesh HullStage::hull_of(const std::vector<hull::HullView>& views,
     // (check_views, inside both) fail the voxel hull again and end as FLAG_FAILED.
     try {
       return hull::polyhedral_visual_hull(views, hull_options);
+    } catch (const hull::EmptyHullError&) {
+      throw;
     } catch (const hull::HullError& e) {
       const std::string what = e.what();
-      if (what.find("empty hull") != std::string::npos) throw;
       summary.flags |= hull_frame_t::FLAG_FALLBACK;
       summary.error = "polyhedral: " + what + "; voxel hull instead";
       ++stats_.fallbacks;

@@ -1,10 +1,10 @@
 // Real data: the 18 calibrated views of silhouettes/david (KKeishiro/Shape-from-Silhouettes),
 // masks by thresholding the dark background and keeping the largest component. Issue 17's goal:
-// the hull reprojects onto every mask with IoU >= 0.97. Measured (docs/visual-hull.md): the voxel
-// hull at 256 reaches 0.940-0.956, so this test holds that floor (0.93) and records the figures;
-// the exact hull by corefinement of 18 views had not finished after 11 minutes of CPU, so its
-// test is disabled (run it with --gtest_also_run_disabled_tests); the polyhedral method (the same
-// intersection, cone face by cone face) finishes in about half a second and is tested instead.
+// the hull reprojects onto every mask with IoU >= 0.97. Measured (docs/design/visual-hull.md): the
+// voxel hull at 256 reaches 0.940-0.956, so this test holds that floor (0.93) and records the
+// figures; the exact hull by corefinement of 18 views had not finished after 11 minutes of CPU, so
+// its test is disabled (run it with --gtest_also_run_disabled_tests); the polyhedral method (the
+// same intersection, cone face by cone face) finishes in about half a second and is tested instead.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,8 +18,8 @@
 namespace syncap::hull {
 namespace {
 
-// docs/visual-hull.md: the white statue is above 150 where lit and above 120 in its shadows; the
-// walls (20-40, JPEG-noisy) and the turntable (60-110) below; the largest component drops the
+// docs/design/visual-hull.md: the white statue is above 150 where lit and above 120 in its shadows;
+// the walls (20-40, JPEG-noisy) and the turntable (60-110) below; the largest component drops the
 // few bright specks of the rig.
 constexpr int kDavidThreshold = 120;
 
@@ -53,7 +53,7 @@ TEST(DavidData, VoxelHullReprojectsOntoEveryMask) {
 
 // The polyhedral hull (about 0.5 s): measured min 0.944, median 0.960 when this
 // was written; the floor holds what it reaches, the goal (0.97) is not met yet (the masks
-// disagree at the statue's edges; docs/visual-hull.md).
+// disagree at the statue's edges; docs/design/visual-hull.md).
 TEST(DavidData, PolyhedralHullReprojectsOntoEveryMask) {
   SYNCAP_REQUIRE_DATA(folder, "silhouettes/david");
   const std::vector<HullView> views = david_views(folder);

@@ -7,6 +7,7 @@
 
 #include "hull/polyhedral_hull.hpp"
 #include "hull/visual_hull.hpp"
+#include "hull/voxel_hull.hpp"
 #include "hull_scenes.hpp"
 
 namespace syncap::hull {
@@ -132,7 +133,11 @@ TEST(PolyhedralHullErrors, CamerasThatDisagreeGiveAnEmptyHullNamingTheView) {
   views[0].silhouette = silhouette_from_mask(moved);
   const std::string error = polyhedral_error(views, ball_of(800.0));
   EXPECT_PRED2(contains, error, "camera 0 (synthetic)");
-  EXPECT_PRED2(contains, error, "empty hull");
+  EXPECT_PRED2(contains, error, "empty hull");  // Typed, so that a caller tells it from a failure
+                                                // another method could mend (the hull stage
+  // falls back to the voxel hull for those, never for this).
+  EXPECT_THROW(polyhedral_visual_hull(views, ball_of(800.0)), EmptyHullError);
+  EXPECT_THROW(voxel_visual_hull(views, {64}, ball_of(800.0)), EmptyHullError);
 }
 
 TEST(PolyhedralHullErrors, AWorkingVolumeThatCutsTheHullIsAnError) {

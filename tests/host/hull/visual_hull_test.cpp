@@ -194,6 +194,7 @@ TEST(VisualHullErrors, CamerasThatDisagreeGiveAnEmptyHullNamingAView) {
   const std::string error = hull_error(views, ball_of(800.0));
   EXPECT_PRED2(contains, error, "camera ");
   EXPECT_PRED2(contains, error, "empty hull");
+  EXPECT_THROW(exact_visual_hull(views, ball_of(800.0)), EmptyHullError);
 }
 
 TEST(VisualHullErrors, OneViewHasNoWorkingVolume) {

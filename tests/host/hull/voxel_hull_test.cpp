@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "hull/visual_hull.hpp"
 #include "hull/voxel_hull.hpp"
 #include "hull_scenes.hpp"
 
