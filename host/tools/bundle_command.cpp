@@ -34,8 +34,9 @@ struct BundleArgs {
 
 // What the scene's design block asks for, above the options in --help.
 constexpr const char* kDescription =
-    "Reads the scene FILE.sdl (docs/sdl.md), adjusts it (self-calibrating bundle adjustment,\n"
-    "docs/calibration.md) as its design block says and prints the summary. Design tags:\n"
+    "Reads the scene FILE.sdl (docs/reference/sdl.md), adjusts it (self-calibrating bundle "
+    "adjustment,\n"
+    "docs/design/calibration.md) as its design block says and prints the summary. Design tags:\n"
     "  SIMULATE            measurements and distances generated from the approximate values\n"
     "                      with noise of their sigmas (seed: SEED n) before adjusting\n"
     "  SORT                models, stations and points sorted by name\n"

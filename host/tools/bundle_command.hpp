@@ -1,4 +1,4 @@
-// `syncap bundle FILE.sdl [--out DIR]`: reads a scene description (docs/sdl.md), runs the
+// `syncap bundle FILE.sdl [--out DIR]`: reads a scene description (docs/reference/sdl.md), runs the
 // self-calibrating bundle adjustment (estimators::adjust) as its design block says, prints the
 // summary, and writes the adjusted network as SDL.
 #pragma once

@@ -142,7 +142,7 @@ void parse_frame_range(const std::string& text, CalibrateArgs& a) {
 // SOURCE and what is written, above the options in --help.
 constexpr const char* kDescription =
     "Calibrates the cameras from wand (or LED) observations and writes the calibration folder "
-    "(docs/calibration.md).\n"
+    "(docs/design/calibration.md).\n"
     "usage: syncap calibrate --input SOURCE (--wand-length MM | --led) --out DIR [options]\n"
     "SOURCE:\n"
     "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --cameras; stops\n"

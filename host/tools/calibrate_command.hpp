@@ -1,5 +1,6 @@
 // `syncap calibrate`: calibrates the cameras from wand (or LED) observations and writes the
-// calibration folder (host/src/calibration/outputs.hpp; docs/calibration.md, "syncap calibrate").
+// calibration folder (host/src/calibration/outputs.hpp; docs/design/calibration.md, "syncap
+// calibrate").
 #pragma once
 
 #include <ostream>

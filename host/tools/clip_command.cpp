@@ -85,7 +85,7 @@ void add_clip_options(CLI::App& app, ClipArgs& a) {
                "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key");
   app.add_option("--key", a.key_path,
                  "the installation's command key (syncap keygen; needed by --publish:\n"
-                 "an edge applies only signed polygons, docs/security.md)")
+                 "an edge applies only signed polygons, docs/design/security.md)")
       ->option_text("FILE");
   app.add_option("--lcm-url", a.lcm_url, "LCM provider for --publish (default " + a.lcm_url + ")")
       ->option_text("URL");

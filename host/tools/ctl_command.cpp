@@ -94,7 +94,7 @@ std::optional<int> parse_ctl_args(std::span<const std::string> args, CtlArgs& a,
                                   std::ostream& err) {
   CLI::App app(
       "Sends the edges a command signed with the installation's key and shows each camera's "
-      "answer from its heartbeats (docs/security.md).\n" +
+      "answer from its heartbeats (docs/design/security.md).\n" +
           std::string(kActions),
       kCtlName);
   add_ctl_options(app, a);
@@ -268,7 +268,7 @@ int keygen_command(std::span<const std::string> args, std::ostream& out, std::os
   CLI::App app(
       "Creates the installation's command key: 32 random bytes as hexadecimal, in a "
       "file only its owner may read (mode 0600). Copy it to every edge board and the "
-      "host over a trusted channel (docs/security.md).",
+      "host over a trusted channel (docs/design/security.md).",
       "syncap keygen");
   app.add_option("--out", path, "the key file (default " + path + ")");
   app.add_flag("--force", force, "replace an existing key (every board then needs the new one)");

@@ -1,6 +1,6 @@
 // syncap ctl: sends the edges a signed command (start, stop, train the background, thresholds,
 // ROI, exposure, gain, shutdown) and shows each camera's acknowledgement from its heartbeats.
-// syncap keygen: creates the installation's command key. docs/security.md.
+// syncap keygen: creates the installation's command key. docs/design/security.md.
 #pragma once
 
 #include <cstdint>

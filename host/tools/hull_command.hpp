@@ -1,6 +1,6 @@
 // `syncap hull`: the visual hull of one set of masks with calibrated cameras, offline
-// (docs/visual-hull.md): writes hull.ply and hull.obj, prints each view's reprojection IoU, the
-// mesh's checks, its volume and the time.
+// (docs/design/visual-hull.md): writes hull.ply and hull.obj, prints each view's reprojection IoU,
+// the mesh's checks, its volume and the time.
 #pragma once
 
 #include <ostream>

@@ -46,7 +46,7 @@ struct ReplayOutcome {
 };
 
 // One camera's silhouettes left out of a replay for a range of frames: the robustness check of
-// a camera's masks missing for a while (docs/body-fit.md). Parsed from "CAMERA:FIRST:LAST".
+// a camera's masks missing for a while (docs/design/body-fit.md). Parsed from "CAMERA:FIRST:LAST".
 struct SilhouetteGap {
   int camera = -1;
   int64_t first = 0, last = -1;

@@ -6,17 +6,13 @@
 
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
+#include "controllers/stage_chain.hpp"
 #include "io/c3d_writer.hpp"
 #include "io/export_error.hpp"
 #include "io/lcm_log_reader.hpp"
 #include "io/trc_writer.hpp"
 #include "log_feed.hpp"
-#include "outputs/json_lines_stage.hpp"
 #include "pipeline/host_node.hpp"
-#include "reconstruction/hull_stage.hpp"
-#include "reconstruction/marker_stage.hpp"
-#include "reconstruction/rigid_set_stage.hpp"
-#include "reconstruction/tracking_stage.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
@@ -32,11 +28,10 @@ struct MarkersArgs {
   std::string out;          // folder
   std::string cameras;      // expected ids; default: the calibration's
   std::set<int> camera_ids;
-  host_app::MarkerArgs markers;
   std::vector<double> volume;
   int max_lag = 30;
-  host_app::TrackingArgs tracking;
-  host_app::HullArgs hull;
+  std::string rigid_sets_path;
+  controllers::PipelineOptions pipeline;
 };
 
 std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a, std::ostream& out,
@@ -44,9 +39,9 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   CLI::App app(
       "Reconstructs and tracks the 3D markers of every frame of a recorded LCM log, as "
       "syncap-host --calibration does live, into DIR/markers.jsonl, and exports the "
-      "trajectories to DIR/markers.c3d and DIR/markers.trc (docs/reconstruction.md); with "
+      "trajectories to DIR/markers.c3d and DIR/markers.trc (docs/design/reconstruction.md); with "
       "--hull, the person's visual hull of every frame from the recorded silhouettes too "
-      "(docs/visual-hull.md).",
+      "(docs/design/visual-hull.md).",
       kName);
   app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
   app.add_option("--calibration", a.calibration, "cameras.json")
@@ -57,10 +52,11 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
       ->delimiter(',')
       ->expected(6);
-  host_app::add_marker_options(app, a.markers);
-  host_app::add_tracking_options(app, a.tracking);
-  a.hull.stage.max_wait_ms = 0;  // offline: every frame gets its hull, however long it took
-  host_app::add_hull_options(app, a.hull);
+  controllers::PipelineOptions& p = a.pipeline;
+  host_app::add_marker_options(app, p.markers);
+  host_app::add_tracking_options(app, p.markers, a.rigid_sets_path);
+  p.hull.stage.max_wait_ms = 0;  // offline: every frame gets its hull, however long it took
+  host_app::add_hull_options(app, p.hull);
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
@@ -68,8 +64,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
-    if (!a.volume.empty()) a.markers.matching.volume = host_app::parse_volume(a.volume);
-    host_app::load_rigid_sets(a.tracking);
+    if (!a.volume.empty()) p.markers.matching.volume = host_app::parse_volume(a.volume);
+    host_app::load_rigid_sets(a.rigid_sets_path, p.markers);
   } catch (const CLI::CallForHelp&) {
     out << app.help();
     return kExitOk;
@@ -110,45 +106,28 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   if (const auto status =
           open_offline_inputs(kName, a.calibration, a.input, a.out, "markers.jsonl", in, err))
     return *status;
-  const std::vector<sensor::CameraModel>& cameras = in.cameras;
-  auto marker_stage =
-      std::make_unique<reconstruction::MarkerStage>(cameras, a.markers.matching, a.markers.stage);
-  const reconstruction::MarkerStage* markers = marker_stage.get();
   tracking::TrackHistory history;
-  auto tracking_stage =
-      std::make_unique<reconstruction::TrackingStage>(a.tracking.tracker, &history);
-  const reconstruction::TrackingStage* tracker = tracking_stage.get();
-  std::vector<std::unique_ptr<pipeline::Stage>> stages;
-  stages.push_back(std::move(marker_stage));
-  stages.push_back(std::move(tracking_stage));
-  const reconstruction::RigidSetStage* rigid = nullptr;
-  if (!a.tracking.rigid_sets.empty()) {
-    auto stage = std::make_unique<reconstruction::RigidSetStage>(a.tracking.rigid_sets);
-    rigid = stage.get();
-    stages.push_back(std::move(stage));
-  }
-  const reconstruction::HullStage* hull = nullptr;
-  if (a.hull.enabled) {
-    auto stage = std::make_unique<reconstruction::HullStage>(cameras, a.hull.stage);
-    hull = stage.get();
-    stages.push_back(std::move(stage));
-  }
-  stages.push_back(std::make_unique<outputs::JsonLinesStage>(in.jsonl, true));
-  pipeline::HostNode node({expected_cameras(a.camera_ids, cameras), a.max_lag, 1'000'000},
-                          std::move(stages));
-  auto [rejected, damaged] = replay_log(in.log, node, a.hull.enabled, kName, err);
-  if (!export_trajectories(history, tracker->rate_hz(), a.out, err)) damaged = true;
+  controllers::Sinks sinks;
+  sinks.json_lines = &in.jsonl;
+  sinks.tracks = &history;
+  controllers::StageChain chain = controllers::make_stages(in.cameras, a.pipeline, sinks);
+  const reconstruction::MarkerStage& markers = *chain.markers;
+  const reconstruction::TrackingStage& tracker = *chain.tracking;
+  pipeline::HostNode node({expected_cameras(a.camera_ids, in.cameras), a.max_lag, 1'000'000},
+                          std::move(chain.stages));
+  auto [rejected, damaged] = replay_log(in.log, node, a.pipeline.hull.enabled, kName, err);
+  if (!export_trajectories(history, tracker.rate_hz(), a.out, err)) damaged = true;
   const auto s = node.stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "
-      << markers->stats().markers << " markers (" << markers->stats().two_camera_markers
-      << " seen by two cameras only, " << markers->stats().partial_spots_left_out
+      << markers.stats().markers << " markers (" << markers.stats().two_camera_markers
+      << " seen by two cameras only, " << markers.stats().partial_spots_left_out
       << " partly hidden spots left out of their position), " << rejected << " messages rejected; "
-      << tracker->tracker().counters().tracks_started << " tracks; "
+      << tracker.tracker().counters().tracks_started << " tracks; "
       << (std::filesystem::path(a.out) / "markers.jsonl").string() << " (and markers.c3d, "
       << "markers.trc)\n";
   out << kName << ": " << host_app::host_time_line(s);
-  if (rigid != nullptr) out << rigid->summary();
-  if (hull != nullptr) out << hull->summary();
+  if (chain.rigid_sets != nullptr) out << chain.rigid_sets->summary();
+  if (chain.hull != nullptr) out << chain.hull->summary();
   return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;
 }
 

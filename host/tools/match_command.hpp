@@ -1,6 +1,6 @@
 // `syncap match`: the surface of an object seen by calibrated cameras, measured offline by GC3 and
-// multi-image least-squares matching on its visual hull (docs/matching.md): writes the points
-// with their standard deviations (PLY and CSV) and prints the rejections by reason.
+// multi-image least-squares matching on its visual hull (docs/design/matching.md): writes the
+// points with their standard deviations (PLY and CSV) and prints the rejections by reason.
 #pragma once
 
 #include <ostream>

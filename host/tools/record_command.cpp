@@ -28,7 +28,7 @@ std::optional<int> parse_record_args(std::span<const std::string> args, RecordAr
                                      std::ostream& out, std::ostream& err) {
   cli::App app("syncap record",
                "Records the LCM traffic on a URL into an LCM log file until Ctrl-C, SIGTERM or "
-               "--duration-s (docs/reliability.md).",
+               "--duration-s (docs/design/reliability.md).",
                "Exit status: 0 recorded, 1 a write failed (what was recorded before is kept), "
                "2 usage error or the log or LCM cannot be opened.");
   app.add_option("--out", a.out_path, "the log file to write (replaced)")->required();

@@ -1,7 +1,7 @@
 // `syncap regions`: the tracked body's search region in every camera's image for every fitted
 // frame of a host's frame lines (syncap-host --out, syncap fit's body.jsonl), as clip_polygon_t
 // of kind REGION_SEARCH: printed as JSON lines (for `syncap segment-eval --regions`), or sent
-// to the edges signed, which then classify only inside (docs/segmentation.md).
+// to the edges signed, which then classify only inside (docs/design/segmentation.md).
 #pragma once
 
 #include <ostream>

@@ -1,9 +1,9 @@
 // syncap-host: the aggregator. Receives the trigger and every camera's messages, groups them by
-// frame number (pipeline::HostNode) and runs the stages on each group on a worker thread: with
-// --calibration the markers are matched, triangulated, tracked and published live
-// (docs/reconstruction.md), and with --hull the person's visual hull is built from the
-// silhouettes (docs/visual-hull.md), and with --body the articulated body is fitted to it and
-// tracked (docs/body-fit.md).
+// frame number (pipeline::HostNode) and runs the stage chain (controllers/stage_chain.hpp) on
+// each group on a worker thread: with --calibration the markers are matched, triangulated,
+// tracked and published live (docs/design/reconstruction.md), with --hull the person's visual hull
+// is built from the silhouettes (docs/design/visual-hull.md), and with --body the articulated body
+// is fitted to it and tracked (docs/design/body-fit.md).
 #include <lcm/lcm-cpp.hpp>
 
 #include <atomic>
@@ -14,13 +14,7 @@
 
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
-#include "body/hanim_model.hpp"
-#include "outputs/body_message_stage.hpp"
-#include "outputs/hull_message_stage.hpp"
-#include "outputs/json_lines_stage.hpp"
-#include "outputs/search_region_stage.hpp"
-#include "reconstruction/rigid_set_stage.hpp"
-#include "reconstruction/tracking_stage.hpp"
+#include "controllers/stage_chain.hpp"
 #include "sensor/camera_file.hpp"
 #include "syncap/camera_status_t.hpp"
 #include "syncap/image_patch_t.hpp"
@@ -34,84 +28,32 @@ using namespace syncap;
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
-// The stages --calibration and --out ask for, in order; the marker stages are also returned to
-// read their figures at the end.
-struct Stages {
-  std::vector<std::unique_ptr<pipeline::Stage>> chain;
-  reconstruction::MarkerStage* markers = nullptr;
-  reconstruction::RigidSetStage* rigid_sets = nullptr;
-  outputs::MarkerMessageStage* marker_message = nullptr;
-  reconstruction::HullStage* hull = nullptr;
-  reconstruction::BodyFitStage* body = nullptr;
-  reconstruction::SurfaceStage* surface = nullptr;
-};
-
-// The hull after the markers: the markers' message leaves before the slower hull is built.
-void add_hull_stages(const host_app::HullArgs& args, std::vector<sensor::CameraModel> cameras,
-                     lcm::LCM& lcm, Stages& s) {
-  auto stage = std::make_unique<reconstruction::HullStage>(std::move(cameras), args.stage);
-  s.hull = stage.get();
-  s.chain.push_back(std::move(stage));
-  if (args.message)
-    s.chain.push_back(std::make_unique<outputs::HullMessageStage>(
-        [&lcm](const hull_frame_t& m) { lcm.publish(proto::kHullChannel, &m); }));
-}
-
-// The body after the hull it is fitted to; the edges' search regions after the body.
-void add_body_stages(const host_app::HostOptions& o,
-                     const std::vector<sensor::CameraModel>& cameras, lcm::LCM& lcm, Stages& s) {
-  auto stage = std::make_unique<reconstruction::BodyFitStage>(body::hanim_skeleton(), o.body.stage);
-  s.body = stage.get();
-  s.chain.push_back(std::move(stage));
-  if (o.body.message)
-    s.chain.push_back(std::make_unique<outputs::BodyMessageStage>(
-        [&lcm](const body_frame_t& m) { lcm.publish(proto::kBodyChannel, &m); }));
-  if (o.search.enabled) {
-    // The key was loaded when the options were parsed: a bad file is named there.
-    auto signer = std::make_shared<proto::CommandSigner>(*o.search.key);
-    s.chain.push_back(std::make_unique<outputs::SearchRegionStage>(
-        cameras, o.search.stage, [&lcm, signer](clip_polygon_t& m) {
-          signer->sign(m);
-          lcm.publish(proto::kEdgeClipChannel, &m);
-        }));
+// Where syncap-host sends the chain's results: LCM for the messages (unless --no-*-message), the
+// console's frame lines (unless --quiet), --out's JSON lines; the search regions signed with the
+// installation's key (loaded, and a bad file named, when the options were parsed).
+controllers::Sinks host_sinks(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& lcm) {
+  controllers::Sinks sinks;
+  if (o.messages.markers)
+    sinks.publish_markers = [&lcm](const marker_frame_t& m) {
+      lcm.publish(proto::kMarkersChannel, &m);
+    };
+  if (o.messages.hull)
+    sinks.publish_hull = [&lcm](const hull_frame_t& m) { lcm.publish(proto::kHullChannel, &m); };
+  if (o.messages.body)
+    sinks.publish_body = [&lcm](const body_frame_t& m) { lcm.publish(proto::kBodyChannel, &m); };
+  if (o.files.key) {
+    auto signer = std::make_shared<proto::CommandSigner>(*o.files.key);
+    sinks.send_search_region = [&lcm, signer](clip_polygon_t& m) {
+      signer->sign(m);
+      lcm.publish(proto::kEdgeClipChannel, &m);
+    };
   }
-}
-
-Stages make_stages(const host_app::HostOptions& o, std::ostream* out, lcm::LCM& lcm) {
-  Stages s;
-  const bool markers = !o.calibration.empty();
-  if (markers) {
-    const std::vector<sensor::CameraModel> cameras = sensor::read_cameras(o.calibration);
-    auto stage =
-        std::make_unique<reconstruction::MarkerStage>(cameras, o.markers.matching, o.markers.stage);
-    s.markers = stage.get();
-    s.chain.push_back(std::move(stage));
-    s.chain.push_back(std::make_unique<reconstruction::TrackingStage>(o.tracking.tracker));
-    if (!o.tracking.rigid_sets.empty()) {
-      auto rigid = std::make_unique<reconstruction::RigidSetStage>(o.tracking.rigid_sets);
-      s.rigid_sets = rigid.get();
-      s.chain.push_back(std::move(rigid));
-    }
-    if (o.marker_message) {
-      auto message = std::make_unique<outputs::MarkerMessageStage>(
-          [&lcm](const marker_frame_t& m) { lcm.publish(proto::kMarkersChannel, &m); });
-      s.marker_message = message.get();
-      s.chain.push_back(std::move(message));
-    }
-    if (o.hull.enabled) add_hull_stages(o.hull, cameras, lcm, s);
-    if (o.body.enabled) add_body_stages(o, cameras, lcm, s);
-    if (o.surface.enabled) {
-      // Last: it hands the frame to its own thread and returns at once.
-      auto surface = std::make_unique<reconstruction::SurfaceStage>(cameras, o.surface.stage);
-      s.surface = surface.get();
-      s.chain.push_back(std::move(surface));
-    }
+  if (!o.quiet) {
+    sinks.frame_lines = &std::cout;
+    sinks.frame_line_cameras = o.cameras.size();
   }
-  if (!o.quiet)
-    s.chain.push_back(
-        std::make_unique<host_app::FrameLineStage>(std::cout, o.cameras.size(), markers));
-  if (out != nullptr) s.chain.push_back(std::make_unique<outputs::JsonLinesStage>(*out, markers));
-  return s;
+  sinks.json_lines = out;
+  return sinks;
 }
 
 // The trigger's last pulse, and when the records of its frame have had as long as the grouper
@@ -208,13 +150,17 @@ int run(const host_app::HostOptions& o) {
       return 2;
     }
   }
-  Stages stages = make_stages(o, out.is_open() ? &out : nullptr, lcm);
-  pipeline::HostNode node({o.cameras, o.max_lag, 1000}, std::move(stages.chain));
+  const std::vector<sensor::CameraModel> cameras = o.calibration.empty()
+                                                       ? std::vector<sensor::CameraModel>{}
+                                                       : sensor::read_cameras(o.calibration);
+  controllers::StageChain stages = controllers::make_stages(
+      cameras, o.pipeline, host_sinks(o, out.is_open() ? &out : nullptr, lcm));
+  pipeline::HostNode node({o.cameras, o.max_lag, 1000}, std::move(stages.stages));
   host_app::Arrivals arrivals;
   std::optional<LastPulse> last_pulse;
   proto::Subscriber sub(lcm,
                         [](const std::string& e) { std::cerr << "syncap-host: " << e << "\n"; });
-  subscribe(sub, node, arrivals, last_pulse, o.max_lag, o.surface.enabled);
+  subscribe(sub, node, arrivals, last_pulse, o.max_lag, o.pipeline.surface.enabled);
   if (!o.quiet) std::cout << "syncap-host: listening on " << lcm_url << std::endl;
   receive(lcm, node, o, last_pulse);
   node.finish();
@@ -236,6 +182,9 @@ int main(int argc, char** argv) {
     return run(*parsed.options);
   } catch (const sensor::CameraFileError& e) {
     std::cerr << "syncap-host: --calibration " << e.what() << "\n";
+    return 2;
+  } catch (const controllers::StageChainError& e) {
+    std::cerr << "syncap-host: " << e.what() << "\n";
     return 2;
   }
 }

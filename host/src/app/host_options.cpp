@@ -28,7 +28,7 @@ std::set<int> parse_camera_list(const std::string& text) {
   return ids;
 }
 
-void add_marker_options(CLI::App& app, MarkerArgs& args) {
+void add_marker_options(CLI::App& app, controllers::MarkerOptions& args) {
   app.add_option("--tolerance-px", args.matching.tolerance_px,
                  "how far a ray may miss another, or a point, in its image (default 2)")
       ->check(cli::number_in(0.01, 100));
@@ -52,24 +52,27 @@ void add_marker_options(CLI::App& app, MarkerArgs& args) {
       ->check(cli::whole_in<int>(2, 64));
 }
 
-void add_tracking_options(CLI::App& app, TrackingArgs& args) {
+void add_tracking_options(CLI::App& app, controllers::MarkerOptions& args,
+                          std::string& rigid_sets_path) {
   app.add_option_function<double>(
          "--acceleration",
          [&args](double m_s2) { args.tracker.acceleration_mm_s2 = m_s2 * 1000.0; },
          "the markers' accelerations the tracker allows for, m/s^2 (default 10): larger "
          "widens every track's gate")
       ->check(cli::number_in(0.1, 1000));
-  app.add_option("--rigid-sets", args.rigid_sets_path,
-                 "rigid marker sets (YAML, docs/reconstruction.md): each set's 6-DoF pose in "
-                 "every frame, found among the tracked markers")
+  app.add_option(
+         "--rigid-sets", rigid_sets_path,
+         "rigid marker sets (YAML, docs/design/reconstruction.md): each set's 6-DoF pose in "
+         "every frame, found among the tracked markers")
       ->check(CLI::ExistingFile);
 }
 
-void add_hull_options(CLI::App& app, HullArgs& args) {
+void add_hull_options(CLI::App& app, controllers::HullOptions& args) {
   reconstruction::HullStageOptions& stage = args.stage;
-  app.add_flag("--hull", args.enabled,
-               "build the person's visual hull from the cameras' silhouettes (needs "
-               "--calibration): its measures on SYNCAP_HULL and in --out (docs/visual-hull.md)");
+  app.add_flag(
+      "--hull", args.enabled,
+      "build the person's visual hull from the cameras' silhouettes (needs "
+      "--calibration): its measures on SYNCAP_HULL and in --out (docs/design/visual-hull.md)");
   app.add_option_function<std::string>(
          "--hull-method",
          [&stage](const std::string& name) {
@@ -101,10 +104,10 @@ void add_hull_options(CLI::App& app, HullArgs& args) {
   app.add_option("--hull-meshes", stage.mesh_dir, "write every hull as DIR/hull_<frame>.ply");
 }
 
-void add_body_options(CLI::App& app, BodyArgs& args) {
-  app.add_option("--body-points", args.points,
+void add_body_options(CLI::App& app, controllers::BodyOptions& args) {
+  app.add_option("--body-points", args.stage.hull_points,
                  "points spread over each hull's surface for the fit (default " +
-                     std::to_string(args.points) + ")")
+                     std::to_string(args.stage.hull_points) + ")")
       ->check(cli::whole_in<std::size_t>(100, 100000));
   app.add_option("--body-point-sigma", args.stage.point_sigma_mm,
                  "the hull points' standard deviation [mm] (default " +
@@ -112,16 +115,10 @@ void add_body_options(CLI::App& app, BodyArgs& args) {
       ->check(cli::number_in(0.1, 1000));
 }
 
-void apply_body_options(const BodyArgs& body, HullArgs& hull) {
-  if (!body.enabled) return;
-  hull.enabled = true;
-  hull.stage.surface_samples = body.points;
-}
-
-void load_rigid_sets(TrackingArgs& args) {
-  if (args.rigid_sets_path.empty()) return;
+void load_rigid_sets(const std::string& path, controllers::MarkerOptions& markers) {
+  if (path.empty()) return;
   try {
-    args.rigid_sets = tracking::read_rigid_sets(args.rigid_sets_path);
+    markers.rigid_sets = tracking::read_rigid_sets(path);
   } catch (const tracking::TrackingFileError& e) {
     throw CLI::ValidationError("--rigid-sets", e.what());
   }
@@ -160,43 +157,44 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                  "points outside are no markers")
       ->delimiter(',')
       ->expected(6);
-  add_marker_options(app, o.markers);
-  add_tracking_options(app, o.tracking);
-  app.add_flag("!--no-marker-message", o.marker_message, "do not publish marker_frame_t");
-  add_hull_options(app, o.hull);
-  app.add_flag("!--no-hull-message", o.hull.message, "do not publish hull_frame_t");
-  app.add_flag("--body", o.body.enabled,
+  controllers::PipelineOptions& p = o.pipeline;
+  add_marker_options(app, p.markers);
+  add_tracking_options(app, p.markers, o.files.rigid_sets_path);
+  app.add_flag("!--no-marker-message", o.messages.markers, "do not publish marker_frame_t");
+  add_hull_options(app, p.hull);
+  app.add_flag("!--no-hull-message", o.messages.hull, "do not publish hull_frame_t");
+  app.add_flag("--body", p.body.enabled,
                "fit the articulated body to every visual hull and track it (turns --hull on): "
-               "the pose on SYNCAP_BODY and in --out (docs/body-fit.md)");
-  add_body_options(app, o.body);
-  app.add_flag("!--no-body-message", o.body.message, "do not publish body_frame_t");
-  app.add_flag("--surface", o.surface.enabled,
+               "the pose on SYNCAP_BODY and in --out (docs/design/body-fit.md)");
+  add_body_options(app, p.body);
+  app.add_flag("!--no-body-message", o.messages.body, "do not publish body_frame_t");
+  app.add_flag("--surface", p.surface.enabled,
                "measure the person's surface on the frames with image patches (the edges' "
                "--patch-every, or syncap ctl patches N) by least-squares matching on the hull, "
                "on a thread of its own, dropping frames while busy (turns --hull on; "
-               "docs/matching.md)");
-  app.add_option("--surface-dir", o.surface.stage.out_dir,
+               "docs/design/matching.md)");
+  app.add_option("--surface-dir", p.surface.stage.out_dir,
                  "write DIR/surface_<frame>.csv and .ply, the points of every matched frame")
       ->option_text("DIR");
-  app.add_option("--surface-min-cameras", o.surface.stage.min_cameras,
+  app.add_option("--surface-min-cameras", p.surface.stage.min_cameras,
                  "patches (with whole silhouettes) a frame needs (default " +
-                     std::to_string(o.surface.stage.min_cameras) + ")")
+                     std::to_string(p.surface.stage.min_cameras) + ")")
       ->option_text("N")
       ->check(cli::whole_in(3, 99));
-  app.add_flag("--search-regions", o.search.enabled,
+  app.add_flag("--search-regions", p.search_regions.enabled,
                "send each camera's edge the tracked body's search region after every fit "
-               "(needs --body and --key; docs/segmentation.md)");
-  app.add_option("--key", o.search.key_path,
+               "(needs --body and --key; docs/design/segmentation.md)");
+  app.add_option("--key", o.files.key_path,
                  "the installation's command key (syncap keygen), to sign --search-regions")
       ->option_text("FILE");
-  app.add_option("--search-margin", o.search.stage.region.margin_px,
+  app.add_option("--search-margin", p.search_regions.stage.region.margin_px,
                  "grow each search region by PX pixels (default " +
-                     cli::number_text(o.search.stage.region.margin_px) + ")")
+                     cli::number_text(p.search_regions.stage.region.margin_px) + ")")
       ->option_text("PX")
       ->check(cli::number_in(0, 1000));
-  app.add_option("--search-frames", o.search.stage.valid_frames,
+  app.add_option("--search-frames", p.search_regions.stage.valid_frames,
                  "a search region serves this many frames after its fit's (default " +
-                     std::to_string(o.search.stage.valid_frames) + ")")
+                     std::to_string(p.search_regions.stage.valid_frames) + ")")
       ->option_text("N")
       ->check(cli::whole_in(1, 1000));
 }
@@ -211,37 +209,33 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
   std::vector<double> volume;
   CLI::App app(
       "syncap-host: groups every camera's messages by frame number and runs the "
-      "host's stages on each group (docs/reconstruction.md).",
+      "host's stages on each group (docs/design/reconstruction.md).",
       "syncap-host");
   add_options(app, o, cameras, volume);
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
   try {
     app.parse(reversed);
     o.cameras = parse_camera_list(cameras);
-    if (!volume.empty()) o.markers.matching.volume = parse_volume(volume);
-    load_rigid_sets(o.tracking);
-    if (o.body.enabled && o.calibration.empty())
+    controllers::PipelineOptions& p = o.pipeline;
+    if (!volume.empty()) p.markers.matching.volume = parse_volume(volume);
+    load_rigid_sets(o.files.rigid_sets_path, p.markers);
+    if (p.body.enabled && o.calibration.empty())
       throw CLI::ValidationError("--body", "needs --calibration (the cameras' models)");
-    if (o.search.enabled && !o.body.enabled)
+    if (p.search_regions.enabled && !p.body.enabled)
       throw CLI::ValidationError("--search-regions", "needs --body (the tracked body)");
-    if (o.search.enabled && o.search.key_path.empty())
+    if (p.search_regions.enabled && o.files.key_path.empty())
       throw CLI::ValidationError("--search-regions",
                                  "needs --key FILE: an edge applies only signed regions");
-    if (o.search.enabled) {
+    if (p.search_regions.enabled) {
       try {
-        o.search.key = proto::CommandKey::load(o.search.key_path);  // named now, not at a fit
+        o.files.key = proto::CommandKey::load(o.files.key_path);  // named now, not at a fit
       } catch (const proto::CommandKeyError& e) {
         throw CLI::ValidationError("--key", e.what());
       }
     }
-    apply_body_options(o.body, o.hull);
-    if (o.surface.enabled) {
-      if (o.calibration.empty())
-        throw CLI::ValidationError("--surface", "needs --calibration (the cameras' models)");
-      o.hull.enabled = true;
-      o.hull.stage.keep_triangles = true;
-    }
-    if (o.hull.enabled && o.calibration.empty())
+    if (p.surface.enabled && o.calibration.empty())
+      throw CLI::ValidationError("--surface", "needs --calibration (the cameras' models)");
+    if (p.hull.enabled && o.calibration.empty())
       throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");
   } catch (const CLI::CallForHelp&) {
     out << app.help();

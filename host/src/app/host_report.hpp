@@ -16,20 +16,6 @@
 
 namespace syncap::host_app {
 
-// "frame 12: trigger ok, cameras 3/3 | c0: 4 blobs first (12.50, 40.25) ... | 4 markers".
-class FrameLineStage : public pipeline::Stage {
- public:
-  FrameLineStage(std::ostream& out, std::size_t expected_cameras, bool with_markers)
-      : out_(out), expected_(expected_cameras), with_markers_(with_markers) {}
-  const char* name() const override { return "frame line"; }
-  void process(pipeline::FrameWork& work) override;
-
- private:
-  std::ostream& out_;
-  std::size_t expected_;
-  bool with_markers_;
-};
-
 // "host time per group: p50 ... ms, p99 ... ms; its CPU time ...\n": the wall time from a group's
 // hand-out to its last stage's end and the worker's CPU time in the stages.
 std::string host_time_line(const pipeline::HostNodeStats& stats);

@@ -1,7 +1,7 @@
 // Sends each camera's edge the tracked body's search region after every fitted frame
 // (clip_polygon_t of kind REGION_SEARCH on SYNCAP_EDGE_CLIP, signed by the caller's publish):
 // the body's ellipsoids at the fitted pose, projected and grown (fitting::search_region). The
-// edge then classifies only inside, for the frames it is valid for (docs/segmentation.md,
+// edge then classifies only inside, for the frames it is valid for (docs/design/segmentation.md,
 // "Regions from the host"). syncap-host's --search-regions.
 #pragma once
 

@@ -1,5 +1,5 @@
 // A frame group on its way through the host's stages: what the grouper handed out and what each
-// stage added (docs/ARCHITECTURE.md, "The host's pipeline").
+// stage added (docs/design/architecture.md, "The host's pipeline").
 #pragma once
 
 #include <Eigen/Core>
@@ -55,16 +55,16 @@ struct HullSummary {
   std::map<int, double> view_iou;
   std::string error;  // why there is no hull (FLAG_FAILED)
   // Points spread evenly over the mesh's surface, when the stage is asked for them (the body
-  // fit's input: HullStageOptions::surface_samples).
+  // fit's input: HullProducts::surface_samples).
   std::vector<Eigen::Vector3d> surface_mm;
   // The mesh's triangles (corners, mm), when the stage is asked for them (the surface stage's
-  // input: HullStageOptions::keep_triangles); shared, read only, so a stage on another thread
+  // input: HullProducts::triangles); shared, read only, so a stage on another thread
   // can keep them.
   std::shared_ptr<const std::vector<std::array<Eigen::Vector3d, 3>>> triangles;
 };
 
 // The articulated body fitted to one frame's hull (reconstruction::BodyFitStage,
-// docs/body-fit.md).
+// docs/design/body-fit.md).
 struct BodyFitSummary {
   int flags = 0;                   // body_frame_t::FLAG_*, ORed
   std::vector<double> parameters;  // the pose (fitting::PoseVector); empty without a fit

@@ -1,6 +1,6 @@
-// The articulated body fitted to every frame's visual hull and tracked (docs/body-fit.md, "Live"):
-// the stage after the hull stage. Points spread over the hull's surface (HullStageOptions::
-// surface_samples) are the observations. The first frame with a hull starts the body
+// The articulated body fitted to every frame's visual hull and tracked (docs/design/body-fit.md,
+// "Live"): the stage after the hull stage. Points spread over the hull's surface (what needs() asks
+// of the hull stage) are the observations. The first frame with a hull starts the body
 // automatically (fitting::start_body); every later frame is fitted from the tracker's
 // prediction, and a frame whose fit loses the track (too few points kept) starts again from its
 // own hull. Each frame the stage worked on gets a pipeline::BodyFitSummary (the pose, the
@@ -15,14 +15,18 @@
 #include "fitting/body_tracker.hpp"
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
+#include "reconstruction/hull_stage.hpp"
 
 namespace syncap::reconstruction {
 
 struct BodyFitStageOptions {
+  // Points spread over each hull's surface for the fit (asked of the hull stage: needs()).
+  std::size_t hull_points = 1600;
   fitting::BodyTrackerOptions tracker;
   fitting::BodyStartOptions start;
   // The hull's points' standard deviation [mm]: the hull is the silhouettes' cones' intersection,
-  // it lies on or outside the body, by up to centimetres between the views (docs/body-fit.md).
+  // it lies on or outside the body, by up to centimetres between the views
+  // (docs/design/body-fit.md).
   double point_sigma_mm = 10.0;
   // Drops the track on every frame whose number is a multiple of this, so that the frame starts
   // the body automatically: measures the automatic start all through a recording (syncap fit
@@ -45,6 +49,12 @@ class BodyFitStage : public pipeline::Stage {
  public:
   // Throws std::invalid_argument when the skeleton lacks a fitted joint.
   explicit BodyFitStage(const body::Skeleton& skeleton, BodyFitStageOptions options = {});
+  // What the stage needs of the hull stage before it: points over each hull's surface.
+  static HullProducts needs(const BodyFitStageOptions& options) {
+    HullProducts products;
+    products.surface_samples = options.hull_points;
+    return products;
+  }
   const char* name() const override { return "body fit"; }
   void process(pipeline::FrameWork& work) override;
   const BodyFitStageStats& stats() const { return stats_; }

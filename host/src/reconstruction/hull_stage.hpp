@@ -1,4 +1,4 @@
-// The visual hull of every frame group with silhouettes (docs/visual-hull.md): the edges'
+// The visual hull of every frame group with silhouettes (docs/design/visual-hull.md): the edges'
 // silhouette contours, with the calibrated cameras, intersected by the method of the options.
 // Each group gets a pipeline::HullSummary (volume, area, box, size, time, flags, and per view
 // the reprojection IoU when asked) and, when asked, the mesh as a PLY file. A camera of the
@@ -8,6 +8,7 @@
 // pipeline.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -51,13 +52,23 @@ struct HullStageOptions {
   // The full mesh check (self-intersections: an AABB tree of the faces, several ms); otherwise
   // closedness, orientation and manifoldness only.
   bool check_self_intersection = false;
-  // Points spread evenly over each hull's surface into HullSummary::surface_mm (the body fit's
-  // input); 0: none.
-  std::size_t surface_samples = 0;
-  // The mesh's triangles into HullSummary::triangles (the surface stage's input).
-  bool keep_triangles = false;
   // Writes DIR/hull_<frame>.ply for every hull built; empty: no meshes.
   std::filesystem::path mesh_dir;
+};
+
+// What later stages need of every hull beyond its measures. A consumer states it
+// (BodyFitStage::needs, SurfaceStage::needs) and the pipeline's composer hands the union to the
+// hull stage (controllers/stage_chain.hpp): no consumer sets the hull's options.
+struct HullProducts {
+  // Points spread evenly over each hull's surface into HullSummary::surface_mm; 0: none.
+  std::size_t surface_samples = 0;
+  // The mesh's triangles into HullSummary::triangles.
+  bool triangles = false;
+
+  // What both need: the larger sample, the triangles if either wants them.
+  HullProducts with(const HullProducts& other) const {
+    return {std::max(surface_samples, other.surface_samples), triangles || other.triangles};
+  }
 };
 
 struct HullStageStats {
@@ -77,7 +88,8 @@ struct HullStageStats {
 
 class HullStage : public pipeline::Stage {
  public:
-  HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options);
+  HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions options,
+            HullProducts products = {});
   const char* name() const override { return "hull"; }
   void process(pipeline::FrameWork& work) override;
   const HullStageStats& stats() const { return stats_; }
@@ -95,6 +107,7 @@ class HullStage : public pipeline::Stage {
 
   std::vector<sensor::CameraModel> cameras_;
   HullStageOptions options_;
+  HullProducts products_;
   HullStageStats stats_;
 };
 

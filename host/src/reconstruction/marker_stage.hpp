@@ -3,7 +3,7 @@
 // does not know are left out, and counted. So are blobs the edge flagged NOT_ROUND (unless kept):
 // a marker partly hidden by the body, or two markers run together, make a spot whose centroid is
 // off by up to a pixel; on the mocap replay (markers-8cam-body) leaving them out took the ghosts
-// from 4.7 % to 1.8 % and the found markers from 97.3 % to 98.8 % (docs/reconstruction.md).
+// from 4.7 % to 1.8 % and the found markers from 97.3 % to 98.8 % (docs/design/reconstruction.md).
 // A point with spots the body hides in part (smaller, with their centroids off; see
 // partial_spots.hpp) is triangulated again from its whole spots when enough remain.
 #pragma once

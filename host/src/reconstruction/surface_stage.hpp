@@ -1,6 +1,6 @@
-// The person's surface measured live (docs/matching.md, "Live"): on frames whose group carries
-// image patches from the edges (syncap-edge --patch-every N, or `syncap ctl patches N`), GC3
-// and multi-image least-squares matching on the frame's visual hull, on a thread of its own.
+// The person's surface measured live (docs/design/matching.md, "Live"): on frames whose group
+// carries image patches from the edges (syncap-edge --patch-every N, or `syncap ctl patches N`),
+// GC3 and multi-image least-squares matching on the frame's visual hull, on a thread of its own.
 // Matching a frame takes far longer than a camera period, so the stage never waits for it: a
 // frame that comes while the matcher is busy is dropped and counted, and markers, hull and body
 // go on at the camera rate. The rate it reaches is the edges' patch rate, or the matcher's,
@@ -19,6 +19,7 @@
 #include "matching/surface/surface_matcher.hpp"
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
+#include "reconstruction/hull_stage.hpp"
 #include "sensor/camera_model.hpp"
 #include "syncap/image_patch_t.hpp"
 #include "syncap/proto/contour_codec.hpp"
@@ -78,6 +79,13 @@ class SurfaceStage : public pipeline::Stage {
  public:
   SurfaceStage(std::vector<sensor::CameraModel> cameras, SurfaceStageOptions options);
   ~SurfaceStage() override;
+  // What the stage needs of the hull stage before it: the mesh's triangles (the seeds and the
+  // facet-ID visibility are computed on them).
+  static HullProducts needs() {
+    HullProducts products;
+    products.triangles = true;
+    return products;
+  }
   const char* name() const override { return "surface"; }
   void process(pipeline::FrameWork& work) override;
   // Waits for the frame being matched.

@@ -25,18 +25,18 @@ TEST(HostOptions, MarkersOptionsAreParsed) {
        "--acceleration", "25", "--partial-spot-ratio", "0.9", "--partial-spot-min-rays", "4"});
   ASSERT_TRUE(p.options.has_value());
   EXPECT_EQ(p.options->cameras, (std::set<int>{0, 2, 5}));
-  ASSERT_TRUE(p.options->markers.matching.volume.has_value());
-  EXPECT_EQ(p.options->markers.matching.volume->max().z(), 2000);
-  EXPECT_DOUBLE_EQ(p.options->markers.matching.sigma_px, 0.3);
-  EXPECT_DOUBLE_EQ(p.options->markers.matching.tolerance_px, 1.5);
-  EXPECT_FALSE(p.options->marker_message);
+  ASSERT_TRUE(p.options->pipeline.markers.matching.volume.has_value());
+  EXPECT_EQ(p.options->pipeline.markers.matching.volume->max().z(), 2000);
+  EXPECT_DOUBLE_EQ(p.options->pipeline.markers.matching.sigma_px, 0.3);
+  EXPECT_DOUBLE_EQ(p.options->pipeline.markers.matching.tolerance_px, 1.5);
+  EXPECT_FALSE(p.options->messages.markers);
   EXPECT_EQ(p.options->max_lag, 30);
-  EXPECT_TRUE(p.options->markers.stage.keep_not_round);
-  EXPECT_DOUBLE_EQ(p.options->markers.stage.partial_spots.min_width_ratio, 0.9);
-  EXPECT_EQ(p.options->markers.stage.partial_spots.min_whole_rays, 4);
+  EXPECT_TRUE(p.options->pipeline.markers.stage.keep_not_round);
+  EXPECT_DOUBLE_EQ(p.options->pipeline.markers.stage.partial_spots.min_width_ratio, 0.9);
+  EXPECT_EQ(p.options->pipeline.markers.stage.partial_spots.min_whole_rays, 4);
   EXPECT_EQ(parse({"--partial-spot-ratio", "1.5"}).exit_status, 2);
   EXPECT_EQ(parse({"--partial-spot-min-rays", "1"}).exit_status, 2);
-  EXPECT_DOUBLE_EQ(p.options->tracking.tracker.acceleration_mm_s2, 25000);
+  EXPECT_DOUBLE_EQ(p.options->pipeline.markers.tracker.acceleration_mm_s2, 25000);
 }
 
 TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
@@ -50,7 +50,7 @@ TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
              "48", "--hull-every", "3", "--hull-max-wait-ms", "0", "--hull-iou", "--hull-min-iou",
              "0.8", "--hull-meshes", "out/meshes", "--no-hull-message"});
   ASSERT_TRUE(p.options.has_value());
-  const HullArgs& h = p.options->hull;
+  const controllers::HullOptions& h = p.options->pipeline.hull;
   EXPECT_TRUE(h.enabled);
   EXPECT_EQ(h.stage.method, reconstruction::HullMethod::kExact);
   EXPECT_EQ(h.stage.voxel_resolution, 48);
@@ -59,11 +59,11 @@ TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {
   EXPECT_TRUE(h.stage.view_iou);
   EXPECT_DOUBLE_EQ(h.stage.min_view_iou, 0.8);
   EXPECT_EQ(h.stage.mesh_dir, "out/meshes");
-  EXPECT_FALSE(h.message);
+  EXPECT_FALSE(p.options->messages.hull);
   EXPECT_EQ(parse({"--hull-method", "octree"}, &err).exit_status, 2);
   EXPECT_NE(err.find("--hull-method"), std::string::npos) << err;
-  EXPECT_FALSE(parse({}).options->hull.enabled);
-  EXPECT_EQ(parse({}).options->hull.stage.method, reconstruction::HullMethod::kPolyhedral);
+  EXPECT_FALSE(parse({}).options->pipeline.hull.enabled);
+  EXPECT_EQ(parse({}).options->pipeline.hull.stage.method, reconstruction::HullMethod::kPolyhedral);
 }
 
 // --search-regions needs the tracked body and a readable key, and names what is missing.
@@ -89,9 +89,9 @@ TEST(HostOptions, SearchRegionsNeedTheBodyAndTheKey) {
       parse({"--calibration", calibration, "--body", "--search-regions", "--key", key,
              "--search-margin", "30", "--search-frames", "20"});
   ASSERT_TRUE(p.options.has_value()) << err;
-  EXPECT_TRUE(p.options->search.enabled);
-  EXPECT_DOUBLE_EQ(p.options->search.stage.region.margin_px, 30);
-  EXPECT_EQ(p.options->search.stage.valid_frames, 20);
+  EXPECT_TRUE(p.options->pipeline.search_regions.enabled);
+  EXPECT_DOUBLE_EQ(p.options->pipeline.search_regions.stage.region.margin_px, 30);
+  EXPECT_EQ(p.options->pipeline.search_regions.stage.valid_frames, 20);
   EXPECT_EQ(parse({"--search-frames", "0"}).exit_status, 2);
   std::remove(key.c_str());
 }
