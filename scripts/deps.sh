@@ -17,7 +17,7 @@ PACKAGES=(
   libaravis-dev libusb-1.0-0-dev aravis-tools-cli libv4l-dev
   # messaging: LCM library, lcm-gen, lcm-logger, lcm-logplayer
   liblcm-dev liblcm-bin
-  # authenticated commands to the edges (crypto_auth, docs/security.md)
+  # authenticated commands to the edges (crypto_auth, docs/design/security.md)
   libsodium-dev
   # trigger GPIO
   libgpiod-dev gpiod
@@ -36,6 +36,8 @@ PACKAGES=(
   # fault injection (hil/run --fault): jq reads the groups and the log, libfaketime steps one
   # board's clock (clock-step)
   jq libfaketime
+  # the web viewer's browser test (host.viewer.BrowserScreenshot): a browser on a virtual display
+  chromium xvfb
 )
 
 for group in "$@"; do

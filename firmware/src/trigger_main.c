@@ -1,6 +1,6 @@
 // syncap-trigger: drives the camera trigger lines on an absolute CLOCK_MONOTONIC schedule and
 // publishes one syncap_trigger_t per pulse, and a syncap_trigger_status_t heartbeat once a second.
-// Optional start/stop input lines start and stop runs. See firmware/README.md.
+// Optional start/stop input lines start and stop runs. See docs/design/trigger.md.
 #include <errno.h>
 #include <inttypes.h>
 #include <lcm/lcm.h>
@@ -15,6 +15,7 @@
 #include <sys/mman.h>
 #include <time.h>
 
+#include "syncap/proto/channels.h"
 #include "syncap/trigger/gpio.h"
 #include "syncap/trigger/gpiosim.h"
 #include "syncap/trigger/trigger.h"
@@ -22,9 +23,6 @@
 #include "syncap_trigger_t.h"
 #include "trigger_options.h"
 
-// Same name as syncap::proto::kTriggerChannel (proto/include/syncap/proto/channels.hpp).
-#define TRIGGER_CHANNEL "SYNCAP_TRIGGER"
-#define STATUS_CHANNEL "SYNCAP_TRIGGER_STATUS"
 #define STATUS_PERIOD_NS NS_PER_S
 // A heartbeat is not sent when the next rising edge is closer than this, so it never delays one.
 #define STATUS_GUARD_NS (2 * NS_PER_MS)
@@ -161,9 +159,10 @@ static void publish_status(struct daemon* d, int8_t state, const char* text) {
       .rate_hz = d->options->rate_hz,
       .message = message,
   };
-  if (syncap_trigger_status_t_publish(d->lcm, STATUS_CHANNEL, &status) != 0 && !d->status_warned) {
+  if (syncap_trigger_status_t_publish(d->lcm, SYNCAP_CHANNEL_TRIGGER_STATUS, &status) != 0 &&
+      !d->status_warned) {
     fprintf(stderr, "syncap-trigger: warning: publishing on %s failed (reported once)\n",
-            STATUS_CHANNEL);
+            SYNCAP_CHANNEL_TRIGGER_STATUS);
     d->status_warned = true;
   }
 }
@@ -273,9 +272,10 @@ static void publish_pulse(struct daemon* d, const struct syncap_trigger_pulse* p
       .trigger_id = d->options->trigger_id,
       .flags = (int8_t)pulse->flags,
   };
-  if (syncap_trigger_t_publish(d->lcm, TRIGGER_CHANNEL, &message) != 0 && !d->publish_warned) {
+  if (syncap_trigger_t_publish(d->lcm, SYNCAP_CHANNEL_TRIGGER, &message) != 0 &&
+      !d->publish_warned) {
     fprintf(stderr, "syncap-trigger: warning: publishing on %s failed (reported once)\n",
-            TRIGGER_CHANNEL);
+            SYNCAP_CHANNEL_TRIGGER);
     d->publish_warned = true;
   }
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rrd_summary.py FILE.rrd [ENTITY...]: reads a Rerun recording back with Rerun's own reader
 (rerun.chunk.RrdReader) and prints "rrd: N frames, M entities"; exits 1, naming them, when an
-ENTITY given is not in it. hil/run checks each run's view.rrd with it (docs/viewer.md)."""
+ENTITY given is not in it. hil/run checks each run's view.rrd with it (docs/guide/view.md)."""
 
 import sys
 

@@ -21,7 +21,7 @@ from syncap_view import cameras
 
 RDF_OF_CODE = {1: (0, -1, 0), 2: (0, 1, 0), 3: (1, 0, 0), 4: (-1, 0, 0), 5: (0, 0, 1), 6: (0, 0, -1)}
 
-# docs/camera-model.md's example camera, its lens distortion left out (the pinhole has none),
+# docs/reference/camera-model.md's example camera, its lens distortion left out (the pinhole has none),
 # and a second one looking down at a steep angle with the principal point off centre.
 DOC_CAMERA = {"id": 3, "image_size": [1280, 1024], "pixel_size": [0.0067, 0.0067], "c": 6.1,
               "xp": 0.021, "yp": -0.034, "X0": 4200.0, "Y0": -800.0, "Z0": 2300.0,

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "syncap/proto/channels.h"
+
 namespace syncap::proto {
 
 // LCM (1.3/1.4 udpm) sends a message as one UDP datagram only while its 8-byte short header, the
@@ -16,7 +18,7 @@ inline constexpr std::size_t kLcmShortHeaderSize = 8;
 // Longest channel name we publish on (SYNCAP_STATUS_99 is 16 characters).
 inline constexpr std::size_t kMaxChannelLength = 24;
 // Every syncap message type at its documented maximum content encodes to at most this many
-// bytes (1366), so it always travels as one datagram: the budget of docs/ARCHITECTURE.md.
+// bytes (1366), so it always travels as one datagram: the budget of docs/design/architecture.md.
 inline constexpr std::size_t kMaxEncodedSize =
     kLcmSingleDatagramLimit - kLcmShortHeaderSize - (kMaxChannelLength + 1) - 1;
 
@@ -28,31 +30,28 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 // bookkeeping too: the usual 208 KiB default held 25 frames (0.8 s) of six cameras' triggers,
 // blobs and silhouettes for a stopped host on the replay bench, then dropped; 4 MiB holds ~20
 // times that. The kernel caps it at net.core.rmem_max, and LCM then warns on stderr (raising
-// it: docs/edge.md, "Running syncap-edge on a board").
+// it: docs/design/edge.md, "Running syncap-edge on a board").
 inline constexpr std::size_t kReceiveBufferBytes = 4u << 20;
 
 // `url` with LCM's recv_buf_size option set to `bytes`, for a udpm URL that names none; any
 // other URL (one that sets it, another provider such as file:// or memq://) is returned as is.
 std::string receiving_lcm_url(std::string_view url, std::size_t bytes = kReceiveBufferBytes);
 
-inline constexpr const char* kTriggerChannel = "SYNCAP_TRIGGER";
-inline constexpr const char* kEdgeCommandChannel = "SYNCAP_EDGE_CMD";
-// clip_polygon_t, host -> edge (each message names its camera).
-inline constexpr const char* kEdgeClipChannel = "SYNCAP_EDGE_CLIP";
-// marker_frame_t: the host's 3D markers of each frame (docs/reconstruction.md).
-inline constexpr const char* kMarkersChannel = "SYNCAP_MARKERS";
-// hull_frame_t: the measures of the host's visual hull of each frame (docs/visual-hull.md).
-inline constexpr const char* kHullChannel = "SYNCAP_HULL";
-// body_frame_t: the body fitted to each frame's visual hull (docs/body-fit.md).
-inline constexpr const char* kBodyChannel = "SYNCAP_BODY";
+// The names, from the one table C, C++ and Python share (channels.h).
+inline constexpr const char* kTriggerChannel = SYNCAP_CHANNEL_TRIGGER;
+inline constexpr const char* kTriggerStatusChannel = SYNCAP_CHANNEL_TRIGGER_STATUS;
+inline constexpr const char* kEdgeCommandChannel = SYNCAP_CHANNEL_EDGE_COMMAND;
+inline constexpr const char* kEdgeClipChannel = SYNCAP_CHANNEL_EDGE_CLIP;
+inline constexpr const char* kMarkersChannel = SYNCAP_CHANNEL_MARKERS;
+inline constexpr const char* kHullChannel = SYNCAP_CHANNEL_HULL;
+inline constexpr const char* kBodyChannel = SYNCAP_CHANNEL_BODY;
 
 // Per-camera channels carry the camera id as two decimal digits: SYNCAP_BLOBS_03.
 inline constexpr int kMaxCameraId = 99;
-inline constexpr const char* kBlobChannelPrefix = "SYNCAP_BLOBS_";
-inline constexpr const char* kSilhouetteChannelPrefix = "SYNCAP_SIL_";
-inline constexpr const char* kStatusChannelPrefix = "SYNCAP_STATUS_";
-// image_patch_t: grey values where the person is, every Nth frame on request.
-inline constexpr const char* kPatchChannelPrefix = "SYNCAP_PATCH_";
+inline constexpr const char* kBlobChannelPrefix = SYNCAP_CHANNEL_BLOBS_PREFIX;
+inline constexpr const char* kSilhouetteChannelPrefix = SYNCAP_CHANNEL_SILHOUETTE_PREFIX;
+inline constexpr const char* kStatusChannelPrefix = SYNCAP_CHANNEL_STATUS_PREFIX;
+inline constexpr const char* kPatchChannelPrefix = SYNCAP_CHANNEL_PATCH_PREFIX;
 
 // Throws std::out_of_range for a camera id outside 0..kMaxCameraId.
 std::string blob_channel(int camera_id);

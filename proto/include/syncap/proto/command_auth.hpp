@@ -1,8 +1,8 @@
-// Who may command the edges (docs/security.md). LCM names no sender and anyone on the segment can
-// publish, so the messages that change an edge (edge_command_t, clip_polygon_t) carry a MAC under
-// a key the installation shares: libsodium's crypto_auth (HMAC-SHA-512-256) over the message's
-// LCM encoding with the mac field zeroed, so every field, present and future, is covered. A
-// sender id, a per-sender sequence and the send time stop a captured command from being replayed.
+// Who may command the edges (docs/design/security.md). LCM names no sender and anyone on the
+// segment can publish, so the messages that change an edge (edge_command_t, clip_polygon_t) carry a
+// MAC under a key the installation shares: libsodium's crypto_auth (HMAC-SHA-512-256) over the
+// message's LCM encoding with the mac field zeroed, so every field, present and future, is covered.
+// A sender id, a per-sender sequence and the send time stop a captured command from being replayed.
 // Data messages (triggers, blobs, silhouettes, status) stay unauthenticated and are validated.
 #pragma once
 

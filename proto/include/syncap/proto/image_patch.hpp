@@ -1,5 +1,5 @@
 // The image patch codec: how image_patch_t carries the grey values where the person is, for the
-// host's surface matching (docs/matching.md, "Live").
+// host's surface matching (docs/design/matching.md, "Live").
 //
 // The edge cuts the silhouette's bounding box (widened by a margin) out of the frame, sets the
 // pixels farther than the margin from the silhouette to 0 (they compress to almost nothing),
