@@ -1,5 +1,5 @@
-// The body fit of one frame (docs/body-fit.md; issue 18's body-fit-frame: >= 30 frames/s on one
-// core). ours: a tracked frame, fitted from the prediction of the two before (as BodyTracker
+// The body fit of one frame (docs/design/body-fit.md; issue 18's body-fit-frame: >= 30 frames/s on
+// one core). ours: a tracked frame, fitted from the prediction of the two before (as BodyTracker
 // does) on points of a random pose moving smoothly; baseline: the same frame fitted from the rest
 // pose at the body's place (no warm start). Both fit the same ~700 points of the body's surface (2
 // mm noise). The counter joint_rms_mm says how near the truth each one lands.

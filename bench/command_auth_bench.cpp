@@ -1,6 +1,6 @@
-// What a flood of forged commands costs an edge (docs/security.md): one MAC check each, no state.
-// scripts/bench.sh prints "command-check-forged: S s on one core" per check; S x the flood's rate
-// is the share of a core it takes.
+// What a flood of forged commands costs an edge (docs/design/security.md): one MAC check each, no
+// state. scripts/bench.sh prints "command-check-forged: S s on one core" per check; S x the flood's
+// rate is the share of a core it takes.
 #include <benchmark/benchmark.h>
 
 #include "syncap/edge_command_t.hpp"

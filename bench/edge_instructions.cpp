@@ -1,5 +1,5 @@
 // The edge's per-frame work for an instruction counter (scripts/count-instructions.sh,
-// docs/edge.md "Instructions per frame"):
+// docs/design/edge.md "Instructions per frame"):
 //
 //   edge_instructions render DIR            writes the frames of bench_edge_pipeline (raw 8-bit
 //                                           1280x1024: 20 of the empty room, 8 with the person)

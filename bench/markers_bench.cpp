@@ -1,7 +1,7 @@
-// The live marker reconstruction's per-group work (docs/reconstruction.md, "Speed"): matching and
-// triangulation of one group of 8 cameras x 32 markers with 3 reflections per camera and 15 % of
-// the views hidden, against the brute force (every blob pair of every camera pair triangulated
-// and checked in all other cameras) on the same groups. scripts/bench.sh prints
+// The live marker reconstruction's per-group work (docs/design/reconstruction.md, "Speed"):
+// matching and triangulation of one group of 8 cameras x 32 markers with 3 reflections per camera
+// and 15 % of the views hidden, against the brute force (every blob pair of every camera pair
+// triangulated and checked in all other cameras) on the same groups. scripts/bench.sh prints
 // "markers-8cam-vs-bruteforce: R x".
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Surface matching (docs/matching.md) on a textured sphere rendered exactly, seen by five
+// Surface matching (docs/design/matching.md) on a textured sphere rendered exactly, seen by five
 // 640x480 cameras 30 degrees apart (tests/host/matching/surface/textured_scene.hpp), its hull an
 // icosphere 20 mm larger; one thread:
 // - lsm-vs-ncc-sweep/ours: GC3 along every seed's scan line, the candidate rules, then

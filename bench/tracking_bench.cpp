@@ -1,5 +1,5 @@
-// The live reconstruction's tracking step (docs/reconstruction.md, "Tracking"): one frame of 32
-// markers (10 % hidden in runs of 1..5 frames, ~1 spurious point, 100 Hz) through the
+// The live reconstruction's tracking step (docs/design/reconstruction.md, "Tracking"): one frame of
+// 32 markers (10 % hidden in runs of 1..5 frames, ~1 spurious point, 100 Hz) through the
 // MarkerTracker. Goal: matching + triangulation + tracking of a group of 8 cameras x 32 markers
 // <= 0.5 ms on one core, of which matching and triangulation take ~0.39 ms; tracking must stay
 // well under 0.1 ms. scripts/bench.sh prints "tracking-32-markers: S s on one core".

@@ -1,4 +1,4 @@
-# Installing and packaging syncap (docs/deploy.md).
+# Installing and packaging syncap (docs/guide/deploy.md).
 #
 # Three install components become three Debian packages (CPack's DEB generator,
 # scripts/package.sh):

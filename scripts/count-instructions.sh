@@ -10,9 +10,9 @@
 # 1 + N person frames (N = 2 by default); the difference over N is one frame's count. Needs
 # build/ and build-arm64/ (the latter from scripts/cross-build.sh arm64) and qemu-user
 # (scripts/deps.sh cross).
-# Prints a table for docs/edge.md. The counts are of the code the compiler emitted for each
+# Prints a table for docs/design/edge.md. The counts are of the code the compiler emitted for each
 # processor (SSE2 on amd64 with OpenCV's CPU dispatch as qemu's default CPU model reports it,
-# NEON on arm64), not of time: retake time on a board (docs/edge.md).
+# NEON on arm64), not of time: retake time on a board (docs/design/edge.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-2}

@@ -6,7 +6,7 @@
 # --test then runs the emulated tests (ctest -L emulated: the unit tests of proto, firmware and
 # edge, and the edge benchmarks' checks, under qemu-aarch64). Installs what it needs
 # (scripts/deps.sh cross) and makes the arm64 sysroot (scripts/arm64-sysroot.sh, in
-# build-sysroot-arm64/ or $SYNCAP_SYSROOT). Warnings are errors, as in CI. docs/deploy.md.
+# build-sysroot-arm64/ or $SYNCAP_SYSROOT). Warnings are errors, as in CI. docs/guide/deploy.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 arch=${1:-}

@@ -74,7 +74,7 @@ elif [ -s "$markers_out/traffic.lcmlog" ]; then
 fi
 [ "$markers_status" -eq 0 ] || status=$markers_status
 
-# The runs in Rerun (docs/viewer.md): hil/run replayed each run's traffic into RUN/view.rrd; the
+# The runs in Rerun (docs/guide/view.md): hil/run replayed each run's traffic into RUN/view.rrd; the
 # ring's fitted body (syncap fit's frame lines) and its calibration go into one more.
 if [ -s "$ring_out/calibrated-body/body.jsonl" ] && [ -x "$build/py-venv/bin/python3" ]; then
   "$build/bin/syncap" view --groups "$ring_out/calibrated-body/body.jsonl" \

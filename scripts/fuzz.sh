@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes every decoder that takes outside input with libFuzzer under AddressSanitizer,
-# LeakSanitizer and UndefinedBehaviorSanitizer, in its own build folder (docs/reliability.md,
+# LeakSanitizer and UndefinedBehaviorSanitizer, in its own build folder (docs/design/reliability.md,
 # "Fuzzing"; the targets: tests/fuzz/CMakeLists.txt and tests/host/sdl).
 #   scripts/fuzz.sh [RUNS] [TARGET...]     RUNS default 1000000; TARGETs default all of them
 #   scripts/fuzz.sh --list                 the target names

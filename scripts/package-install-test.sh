@@ -11,7 +11,7 @@
 #      installed syncap-trigger (simulated chip) over LCM multicast in a private network
 #      namespace, recorded by the installed syncap record and read back with syncap log: 6 blob
 #      frames of 3 blobs each at the discs' centres;
-#   5. the installed units and conffiles where the docs say (docs/deploy.md).
+#   5. the installed units and conffiles where the docs say (docs/guide/deploy.md).
 # Ends with "package-install-test: passed". Needs root (chroot; without it: exit 77, which ctest
 # counts as skipped) and the Debian mirror; ctest runs it with the label package.
 # $SYNCAP_DEBIAN_MIRROR overrides the mirror.
@@ -126,7 +126,7 @@ for f, event in enumerate(frames):
 print("package-install-test: 6 blob frames of 3 blobs at the discs' centres")
 PY
 
-# 5. Units, conffiles and docs where docs/deploy.md says.
+# 5. Units, conffiles and docs where docs/guide/deploy.md says.
 for deb in "${debs[@]}"; do
   case "$(dpkg-deb -f "$deb" Package)" in
     syncap-trigger) expect=(usr/lib/systemd/system/syncap-trigger.service

@@ -4,7 +4,7 @@
 # $SYNCAP_BUILD_DIR) or, with arm64, syncap-trigger and syncap-edge (and syncap-host with --host)
 # cross-compiled in build-arm64/ (scripts/cross-build.sh), then checks each with lintian (an
 # error fails). The packages install to /usr whatever the build's own install prefix; they land
-# in <build>/packages. Install-test them with scripts/package-install-test.sh. docs/deploy.md.
+# in <build>/packages. Install-test them with scripts/package-install-test.sh. docs/guide/deploy.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 arch=amd64

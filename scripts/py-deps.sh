@@ -2,7 +2,7 @@
 # Installs the Python packages the tests use into a venv (Debian 12's system pip is "externally
 # managed", PEP 668): the independent C3D readers ezc3d and c3d and the BVH reader bvh from PyPI,
 # which read the trajectory and motion exports back (tests/host/io/check_exports.py); the viewer
-# `syncap view` (host/viewer, docs/viewer.md): rerun-sdk, the lcm bindings, and what rerun-sdk
+# `syncap view` (host/viewer, docs/guide/view.md): rerun-sdk, the lcm bindings, and what rerun-sdk
 # pulls in (numpy, pyarrow, attrs, pillow, psutil, typing_extensions), pinned too, so that every
 # venv holds the same versions. The venv is $SYNCAP_PY_VENV, default
 # <build dir>/py-venv, where the tests and host/viewer/syncap-view look for it.

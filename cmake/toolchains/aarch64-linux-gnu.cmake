@@ -6,7 +6,7 @@
 #         -DSYNCAP_SYSROOT=/path/to/sysroot
 #
 # Tests run under qemu-aarch64-static with the sysroot's libraries (CMAKE_CROSSCOMPILING_EMULATOR):
-# ctest runs them as it runs native ones (label "emulated", docs/deploy.md).
+# ctest runs them as it runs native ones (label "emulated", docs/guide/deploy.md).
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR aarch64)
 

@@ -1,5 +1,5 @@
 // syncap-gpiosim: looks at, watches and removes the shared simulated GPIO chips (gpiosim.h), so
-// that a person can see what syncap-trigger --chip sim:NAME drives. See firmware/README.md.
+// that a person can see what syncap-trigger --chip sim:NAME drives. See docs/design/trigger.md.
 #include <errno.h>
 #include <inttypes.h>
 #include <signal.h>

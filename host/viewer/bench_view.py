@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """How many frames per second `syncap view --save` logs, replaying a made-up recording of
-CAMERAS cameras x MARKERS markers per frame (docs/viewer.md, "Speed").
+CAMERAS cameras x MARKERS markers per frame (docs/guide/view.md, "Speed").
 
     build/py-venv/bin/python3 host/viewer/bench_view.py [--frames 300] [--cameras 8] [--markers 32]
     hil/netns-run build/py-venv/bin/python3 host/viewer/bench_view.py --live 100

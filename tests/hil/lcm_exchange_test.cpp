@@ -22,7 +22,7 @@ namespace {
 
 constexpr const char* kGroup = "239.255.76.67";
 constexpr uint16_t kPort = 7667;
-// syncap-trigger's heartbeat channel (firmware/src/trigger_main.c, docs/ARCHITECTURE.md).
+// syncap-trigger's heartbeat channel (firmware/src/trigger_main.c, docs/design/architecture.md).
 constexpr const char* kTriggerStatusChannel = "SYNCAP_TRIGGER_STATUS";
 
 // Publishes one of each message type at maximum content, `rounds` times, from a child process.

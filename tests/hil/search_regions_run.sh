@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tests/hil/search_regions_run.sh BUILD OUT
-# The edges' search regions live (docs/segmentation.md, "Regions from the host"): hil/run's short
+# The edges' search regions live (docs/design/segmentation.md, "Regions from the host"): hil/run's short
 # ring-6cam-person with --search-regions, paced at 6 Hz so that the host's live body fit (every
 # 4th frame, ~110-280 ms each on 2 cores beside six edges) keeps up. The run must pass as any (silhouette IoU >= 0.95
 # per camera among its checks), and every edge must have obeyed at least one signed region.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tests/hil/segment_lamps_run.sh BUILD OUT MIN_IOU
-# The masking under changed illumination (docs/segmentation.md "Changed illumination"): renders
+# The masking under changed illumination (docs/design/segmentation.md "Changed illumination"): renders
 # ring-6cam-person-lamps (lamps drifting by 20 % and flickering by 5 %) at the short length and
 # scores syncap-segment-eval with its defaults against the exact silhouettes: every camera's mean
 # IoU must reach MIN_IOU. The same without the illumination correction must fall below it, or

@@ -4,7 +4,7 @@
 # 30 Hz, their blobs and silhouettes) in the middle of the short ring-6cam-person run, and still
 # gets every message the edges sent: hil/run's comparison passes (every frame complete) and the
 # host's summary names no camera with records lost between edge and host. Before the receive path
-# was sized (docs/ARCHITECTURE.md, "Receiving without loss") this lost 160-210 of the 540 blob
+# was sized (docs/design/architecture.md, "Receiving without loss") this lost 160-210 of the 540 blob
 # messages, every time. Exit 77 (skipped) when hil/run skips (no motion data).
 set -euo pipefail
 [ $# -eq 2 ] || { sed -n '2,2p' "$0" >&2; exit 2; }

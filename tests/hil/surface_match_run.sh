@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tests/hil/surface_match_run.sh BUILD OUT [FRAMES...]
-# Surface matching on the replay bench (docs/matching.md, "Measured"): renders ring-6cam-person
+# Surface matching on the replay bench (docs/design/matching.md, "Measured"): renders ring-6cam-person
 # at the short length, runs `syncap match` on FRAMES of the person phase (default 62 70 78 86)
 # with the exact masks (the hull's seeds) and scores each frame's points against the true body
 # with syncap-hil-surface-check: RMS on the true normal <= 1.5 mm, blunders <= 1 %, at least 100

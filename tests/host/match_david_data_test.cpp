@@ -1,9 +1,10 @@
-// Real data: `syncap match` on the 18 calibrated views of silhouettes/david (docs/matching.md,
-// "Real data"): masks by thresholding the dark background (as the hull's test), the polyhedral
-// hull as seeds. Measured when written: 439 points, median sigma along the normal 0.0041 (the
-// .pa cameras' object units; the hull's bounding box has a diagonal of 4.8), 430 of 439 inside
-// every mask within 3 sigma and 0.71 px, the rest at most 0.64 px beyond (the masks themselves
-// disagree at the statue's edges: the hull reprojects with IoU 0.944-0.960, docs/visual-hull.md).
+// Real data: `syncap match` on the 18 calibrated views of silhouettes/david
+// (docs/design/matching.md, "Real data"): masks by thresholding the dark background (as the hull's
+// test), the polyhedral hull as seeds. Measured when written: 439 points, median sigma along the
+// normal 0.0041 (the .pa cameras' object units; the hull's bounding box has a diagonal of 4.8), 430
+// of 439 inside every mask within 3 sigma and 0.71 px, the rest at most 0.64 px beyond (the masks
+// themselves disagree at the statue's edges: the hull reprojects with IoU 0.944-0.960,
+// docs/design/visual-hull.md).
 #include <gtest/gtest.h>
 
 #include <regex>

@@ -1,6 +1,6 @@
 // The edge's blob detection for one camera: the full-frame detector on every frame, or the
-// windowed tracker (docs/edge.md, "Windowed mode"), whose union of search windows can steer the
-// camera's sensor region of interest.
+// windowed tracker (docs/design/edge.md, "Windowed mode"), whose union of search windows can steer
+// the camera's sensor region of interest.
 //
 // Frames may be a sensor window (Frame::origin, Frame::sensor_size). The tracker works in sensor
 // pixels on a sensor-sized canvas: a window's pixels are copied into it and the pixels outside

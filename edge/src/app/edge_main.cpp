@@ -72,7 +72,7 @@ std::optional<syncap::proto::CommandKey> load_command_key(const syncap::edge::Ed
   if (o.command_key_path.empty()) {
     std::cerr << "syncap-edge camera " << o.camera_id
               << ": no --command-key: every command and clip polygon will be refused "
-                 "(docs/security.md)\n";
+                 "(docs/design/security.md)\n";
     return std::nullopt;
   }
   return syncap::proto::CommandKey::load(o.command_key_path);

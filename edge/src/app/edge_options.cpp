@@ -99,11 +99,12 @@ void Parser::add_camera_options() {
   cli::add_checked(app_, "--camera-id", o.camera_id, "N",
                    cli::whole_in<int>(0, proto::kMaxCameraId),
                    "camera id 0..99 (channels SYNCAP_BLOBS_NN ...); required");
-  app_.add_option("--source", o.source,
-                  "replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
-                  "replay:VIDEO   a video file, frame k = its k-th frame (from 0)\n"
-                  "aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
-                  "v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/v4l2.md); required")
+  app_.add_option(
+          "--source", o.source,
+          "replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
+          "replay:VIDEO   a video file, frame k = its k-th frame (from 0)\n"
+          "aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
+          "v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/design/v4l2.md); required")
       ->option_text("SPEC");
   app_.add_option("--trigger-source", o.trigger_source,
                   "aravis: the camera's TriggerSource (Line1, Software, ...);\n"
@@ -145,7 +146,7 @@ void Parser::add_detection_options() {
             o.detection = v == "full" ? DetectionMode::kFull : DetectionMode::kWindowed;
           },
           "full (default): every frame whole; windowed: tracked blobs\n"
-          "searched around their prediction (docs/edge.md)")
+          "searched around their prediction (docs/design/edge.md)")
       ->option_text("D")
       ->check(cli::one_of({"full", "windowed"}));
   cli::add_checked(
@@ -180,7 +181,7 @@ void Parser::add_mask_options() {
   cli::add_checked(app_, "--contour-tolerance", o.contour_tolerance_px, "PX",
                    cli::number_in(0, 100),
                    "mask: polygon simplification, pixels" + by_default(o.contour_tolerance_px));
-  // --mask-NAME: the medi-picture option NAME, from the defaults (docs/segmentation.md),
+  // --mask-NAME: the medi-picture option NAME, from the defaults (docs/design/segmentation.md),
   // checked by apply_masking_option as segment-eval's are.
   for (const MaskingOptionHelp& m : kMaskingOptions) {
     const std::string option = std::string("--mask-") + m.name;
@@ -217,7 +218,7 @@ void Parser::add_network_options() {
   app_.add_option("--command-key", o.command_key_path,
                   "the installation's key (syncap keygen): only commands and clip\n"
                   "polygons signed with it are obeyed; without it none are\n"
-                  "(docs/security.md)")
+                  "(docs/design/security.md)")
       ->option_text("FILE");
   cli::add_checked(app_, "--command-window-s", o.command_window_s, "S", cli::number_in(0.1, 3600),
                    "a command is obeyed only when sent within S s of this\n"

@@ -40,7 +40,7 @@ class SilhouetteStage {
   // sensor position of image(0, 0), in a sensor of `sensor_size` (empty: the image's).
   std::vector<silhouette_part_t> process(const cv::Mat& image, int camera_id, int64_t frame_number,
                                          cv::Point origin = {}, cv::Size sensor_size = {});
-  // The host's regions (clip_polygon_t, docs/segmentation.md "Regions from the host").
+  // The host's regions (clip_polygon_t, docs/design/segmentation.md "Regions from the host").
   enum class Region { kClip = 0, kFloor = 1, kSearch = 2 };
   // Replaces the region of a kind: sensor pixels of a sensor of `sensor_size`, applied from the
   // next frame on; an empty polygon removes it. A kSearch region applies to the frames

@@ -44,7 +44,7 @@ enum class ShadowTest {
 };
 
 // The defaults are the one setting measured best on both a real scene (CDnet highway) and the
-// replay bench's person (docs/segmentation.md "The default"): a narrow interval (k 1.5), the
+// replay bench's person (docs/design/segmentation.md "The default"): a narrow interval (k 1.5), the
 // common-ratio shadow test at 3 sigmas, a closing of 5 px, holes up to 100 px filled and each
 // frame's illumination corrected by least-squares matching. thesis_masking_options() gives the
 // parameters the thesis' text suggests, for comparison.

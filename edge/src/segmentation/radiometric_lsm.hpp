@@ -9,7 +9,7 @@
 // (eq 5.15 with the gain column), with robust weights so that a person inside the window is an
 // outlier, not a change of light. Used to bring a frame (and the training frames) to the
 // background's radiometry before classification, so that lamps warming up or flickering do not
-// fill the mask (docs/segmentation.md "Changed illumination").
+// fill the mask (docs/design/segmentation.md "Changed illumination").
 #pragma once
 
 #include <array>

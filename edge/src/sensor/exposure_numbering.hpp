@@ -5,7 +5,8 @@
 // an offset fixed by the acquisition's first exposure:
 // - A camera acquiring before the trigger's first pulse: its first exposure (block id 1) is frame
 //   0, so frame number = unwrapped block id - 1. The replay bench's fake cameras send block id =
-//   frame number mod 65535 + 1 (docs/fakecam.md), which the same rule turns back into the number.
+//   frame number mod 65535 + 1 (docs/design/fakecam.md), which the same rule turns back into the
+//   number.
 // - A camera reopened in the middle of a run (after it vanished) restarts its block ids, and its
 //   first exposure belongs to whichever trigger came first after it was acquiring again, which
 //   the edge cannot know from the block id: the first exposure is numbered by time instead, by

@@ -1,7 +1,7 @@
 // The host's fitted body (syncap-host --body, syncap fit) against the simulator's true joints
-// (truth/body.jsonl: every node's centre per frame; docs/body-fit.md, "Measured on the replay
-// bench"). Per frame with a fit: the distances of the fitted joints' centres to the true ones
-// (their RMS over the frame's joints); over the run: the joint-centre RMS, and per limb the
+// (truth/body.jsonl: every node's centre per frame; docs/design/body-fit.md, "Measured on the
+// replay bench"). Per frame with a fit: the distances of the fitted joints' centres to the true
+// ones (their RMS over the frame's joints); over the run: the joint-centre RMS, and per limb the
 // error of the angle a joint makes between its two bones (hip: trunk and thigh, knee: thigh and
 // shank, shoulder: trunk and upper arm, elbow: upper arm and forearm), computed the same way from
 // the fitted and the true centres, so that it needs no convention for joint axes.

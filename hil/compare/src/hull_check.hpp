@@ -1,6 +1,6 @@
 // The host's visual hulls (syncap-host --hull --hull-meshes DIR) against the simulator's true
-// body (truth/body.jsonl: the person's ellipsoids per frame; docs/visual-hull.md, "Measured on
-// the replay bench"). A hull must hold the body: the body's surface, sampled evenly on every
+// body (truth/body.jsonl: the person's ellipsoids per frame; docs/design/visual-hull.md, "Measured
+// on the replay bench"). A hull must hold the body: the body's surface, sampled evenly on every
 // ellipsoid where no other ellipsoid covers it and above the floor, counts as covered where a
 // point is inside the hull or within the tolerance of its surface. The hull's volume is compared
 // with the body's (the union of the ellipsoids, sampled on a grid), and the hull's reprojection

@@ -1,9 +1,9 @@
-// The host's 3D markers against the simulator's true targets (docs/reconstruction.md, "Measured
-// on the replay bench"): for every reported frame, each true target that two or more cameras see
-// (projections.csv) is found when a marker lies within the match radius of it (one marker per
-// target, nearest first); a marker near no target is a ghost. A found target whose marker has
-// another trajectory id than when it was last found is an id switch (the id meant another target)
-// or a track break (a new id).
+// The host's 3D markers against the simulator's true targets (docs/design/reconstruction.md,
+// "Measured on the replay bench"): for every reported frame, each true target that two or more
+// cameras see (projections.csv) is found when a marker lies within the match radius of it (one
+// marker per target, nearest first); a marker near no target is a ghost. A found target whose
+// marker has another trajectory id than when it was last found is an id switch (the id meant
+// another target) or a track break (a new id).
 #pragma once
 
 #include <filesystem>

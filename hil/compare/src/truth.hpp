@@ -22,7 +22,7 @@ struct TruthFrame {
 };
 
 // A target's disc as one camera sees it, in pixels: (0, 0) is the centre of the top-left pixel
-// (docs/camera-model.md), so the image spans [-0.5, width - 0.5) x [-0.5, height - 0.5).
+// (docs/reference/camera-model.md), so the image spans [-0.5, width - 0.5) x [-0.5, height - 0.5).
 struct Projection {
   long frame = 0;
   int camera = 0;

@@ -1,5 +1,5 @@
 // syncap-fakecam: serves a directory of rendered 8-bit images as a GigE Vision camera on a
-// loopback address inside hil/netns-run, one frame per trigger. See docs/fakecam.md.
+// loopback address inside hil/netns-run, one frame per trigger. See docs/design/fakecam.md.
 #include <csignal>
 #include <cstdio>
 #include <ctime>

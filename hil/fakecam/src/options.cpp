@@ -168,7 +168,7 @@ constexpr const char* kDescription =
     "usage: syncap-fakecam --address 127.0.0.X --images DIR [OPTIONS]\n"
     "Serves the 8-bit images DIR/<prefix><frame number>.pgm|.png as a GigE Vision camera\n"
     "(Aravis fake camera) on the address, one frame per trigger. Run it inside\n"
-    "hil/netns-run. See docs/fakecam.md.\n";
+    "hil/netns-run. See docs/design/fakecam.md.\n";
 
 constexpr const char* kFooter =
     "Exit status: 0 after SIGINT/SIGTERM; 1 for bad input or a runtime failure (message on\n"

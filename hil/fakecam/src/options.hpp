@@ -1,4 +1,4 @@
-// The command line of syncap-fakecam (docs/fakecam.md, "Options").
+// The command line of syncap-fakecam (docs/design/fakecam.md, "Options").
 #pragma once
 
 #include <cstdint>

@@ -203,7 +203,7 @@ std::optional<cv::Mat> Server::image_of(std::uint64_t frame) {
 }
 
 // The image of the trigger's frame, cropped to the client's region, stamped with the frame's
-// block id and the trigger's time (docs/fakecam.md, "Frame numbers").
+// block id and the trigger's time (docs/design/fakecam.md, "Frame numbers").
 void Server::send_frame(const Trigger& trigger) {
   if (options_.drop.drops(trigger.frame)) {
     ++stats_.dropped;

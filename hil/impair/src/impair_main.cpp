@@ -1,7 +1,7 @@
 // syncap-hil-impair: relays every LCM message from one URL to another, dropping, duplicating,
 // reordering and corrupting a chosen share of them (what `tc netem` does to datagrams, in user
-// space: docs/reliability.md, "Faults"). The replay bench points the trigger and the edges at the
-// input URL and the host and lcm-logger at the output URL.
+// space: docs/design/reliability.md, "Faults"). The replay bench points the trigger and the edges
+// at the input URL and the host and lcm-logger at the output URL.
 #include <lcm/lcm.h>
 
 #include <algorithm>

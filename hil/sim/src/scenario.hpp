@@ -1,5 +1,6 @@
 // A scenario: the cameras, the image formation and the content of a synthetic sequence, phase by
-// phase. Loaded from YAML (format in docs/scenario.md); every error names file, line and problem.
+// phase. Loaded from YAML (format in docs/design/scenario.md); every error names file, line and
+// problem.
 #pragma once
 
 #include <Eigen/Core>

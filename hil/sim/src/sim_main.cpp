@@ -32,11 +32,11 @@ struct Options {
 std::optional<int> parse(int argc, char** argv, Options& o) {
   cli::App app(
       "syncap-sim",
-      "Renders a scenario into per-camera images and ground truth (docs/scenario.md).",
+      "Renders a scenario into per-camera images and ground truth (docs/design/scenario.md).",
       "A relative motion (bvh) path is looked for beside the scenario, then under $SYNCAP_DATA\n"
       "(default ../shared/data). Exit status: 0 rendered, 1 writing failed, 2 usage error or a\n"
       "bad scenario or motion file.");
-  app.add_option("--scenario", o.scenario, "scenario (YAML, docs/scenario.md)")
+  app.add_option("--scenario", o.scenario, "scenario (YAML, docs/design/scenario.md)")
       ->option_text("FILE")
       ->required();
   app.add_option("--out", o.out, "output folder: cameraNN/frame_*.pgm, cameras.json, truth/")

@@ -1,5 +1,5 @@
 // Writes a rendered sequence to disk: per camera the 8-bit images named by frame number, and the
-// ground truth beside them (docs/scenario.md, "Output").
+// ground truth beside them (docs/design/scenario.md, "Output").
 #pragma once
 
 #include <filesystem>

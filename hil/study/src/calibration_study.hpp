@@ -1,6 +1,6 @@
-// The calibration accuracy study (docs/calibration-accuracy.md): Monte Carlo runs of the whole
-// calibration on simulated wand networks whose truth is known, and the figures that say whether
-// the self-calibrating bundle adjustment (host/src/estimators) estimates what it claims:
+// The calibration accuracy study (docs/design/calibration-accuracy.md): Monte Carlo runs of the
+// whole calibration on simulated wand networks whose truth is known, and the figures that say
+// whether the self-calibrating bundle adjustment (host/src/estimators) estimates what it claims:
 //
 //   - thesis Table 4.3 (section 4.3): three Basler cameras, 10 / 40 / 100 wand positions; the
 //     estimated standard deviations of c, xp, yp, sc, k1 and of the points, and how often the true

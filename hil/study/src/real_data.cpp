@@ -103,7 +103,8 @@ std::string format_real_data(const std::vector<RealDataRun>& runs,
                   r.max_camera_rms_px, r.seconds);
     out << line;
   }
-  out << "\nThe calibration's own checks (docs/calibration.md, \"Is it right?\"): its verdict, "
+  out << "\nThe calibration's own checks (docs/design/calibration.md, \"Is it right?\"): its "
+         "verdict, "
          "the focal lengths c / pixel size (nominal pixel 0.005 mm), the held-out frames' median "
          "image distance beside the fit's, and the two halves (the first and the second half of "
          "the frames) calibrated "

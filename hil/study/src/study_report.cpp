@@ -52,7 +52,8 @@ void write_header(std::ostringstream& out, const StudyReport& report) {
          "nominal lens (c off by up to 2 %, principal point by up to 0.05 mm, no distortion), "
          "then the self-calibrating bundle adjustment `estimators::adjust` with all ten "
          "interior and six exterior values of every camera free, the free-network datum and the "
-         "covariance S-transformed to inner constraints (docs/calibration.md). No blunders are "
+         "covariance S-transformed to inner constraints (docs/design/calibration.md). No blunders "
+         "are "
          "simulated and data snooping is off. Each run has its own seed; a 'within k sigma' "
          "claim is a rate over all runs, cameras and parameters, set beside the rate a Gaussian "
          "error gives.\n\n";

@@ -1,6 +1,6 @@
-// The calibration accuracy study as the Markdown page docs/calibration-accuracy.md: the setup,
-// the tables beside the thesis' values, each claim with its figure and PASS / FAIL, and the place
-// of the real-data section.
+// The calibration accuracy study as the Markdown page docs/design/calibration-accuracy.md: the
+// setup, the tables beside the thesis' values, each claim with its figure and PASS / FAIL, and the
+// place of the real-data section.
 #pragma once
 
 #include <string>

@@ -1,6 +1,7 @@
 // The body model of the thesis: the H-Anim joint hierarchy with the default positions of thesis
 // Tables 5.1-5.2 (thesis.txt lines 4650-4744), end sites for the head top, heels and toe tips, and
-// one ellipsoid per body segment (docs/body-model.md lists every number and where it comes from).
+// one ellipsoid per body segment (docs/design/body-model.md lists every number and where it comes
+// from).
 #pragma once
 
 #include <Eigen/Core>

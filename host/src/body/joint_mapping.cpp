@@ -198,7 +198,7 @@ void check(const Skeleton& skeleton, const Bvh& bvh, const std::vector<int>& dri
   }
   if (!missing.empty()) {
     throw std::runtime_error(bvh.source + ": no BVH joint found for " + missing +
-                             " (docs/body-model.md lists the names understood)");
+                             " (docs/design/body-model.md lists the names understood)");
   }
   for (std::size_t i = 0; i < skeleton.size(); ++i) {
     if (driver[i] < 0) continue;

@@ -1,7 +1,7 @@
 // Which BVH joint drives which joint of our skeleton. Limbs, head and fingers are matched by
 // name, across the common naming schemes (Mixamo "mixamorig:LeftUpLeg", CMU "LeftUpLeg",
 // 3ds Max "LeftHip", ASF-style "lfemur", suffixed "UpLeg_L"); the spine and neck by relative
-// height, because the schemes disagree on what "Spine1" or "Neck" is (docs/body-model.md).
+// height, because the schemes disagree on what "Spine1" or "Neck" is (docs/design/body-model.md).
 #pragma once
 
 #include <string>

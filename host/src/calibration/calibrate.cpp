@@ -225,7 +225,7 @@ void fill_report(CalibrationResult& out, const Observations& observations,
         (options.wand.led ? std::string("one LED a frame")
                           : std::to_string(frames.size()) + " wand positions") +
         "): its minima are several and its linearised sigmas can understate the errors several "
-        "times; --bootstrap 30 gives sigmas that cover them (docs/calibration.md)");
+        "times; --bootstrap 30 gives sigmas that cover them (docs/design/calibration.md)");
   }
 }
 

@@ -1,5 +1,5 @@
-// The calibration pipeline of `syncap calibrate` (docs/calibration.md, "syncap calibrate"), from
-// observations to calibrated cameras:
+// The calibration pipeline of `syncap calibrate` (docs/design/calibration.md, "syncap calibrate"),
+// from observations to calibrated cameras:
 //
 //   1. identify the wand's targets (or the LED) per camera and frame (wand_identification.hpp);
 //   2. build the network: a camera model and a station per camera, an object point per target and
@@ -141,7 +141,7 @@ class CalibrationError : public std::runtime_error {
 // the prior made the true targets reproject at 0.25 px RMS instead of 0.15 px, while its own
 // tests found p1, p2, k3 insignificant (the rendered discs' 0.13 px centroid bias is not noise).
 // One LED in a small volume does not determine them, and there they decide the geometry
-// (docs/calibration.md, "Is it right?").
+// (docs/design/calibration.md, "Is it right?").
 bool selects_model(const CalibrationOptions& options);
 double principal_point_sigma(const CalibrationOptions& options);
 

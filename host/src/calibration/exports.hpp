@@ -1,5 +1,5 @@
 // Calibrated cameras in the formats other tools read, converted with sensor::opencv_from_camera
-// (exact without lens distortion, fitted otherwise; docs/camera-model.md, "OpenCV"):
+// (exact without lens distortion, fitted otherwise; docs/reference/camera-model.md, "OpenCV"):
 //
 // - OpenCV YAML (cv::FileStorage): per camera `camera_NN` with `image_size`, `camera_matrix`,
 //   `distortion` (k1 k2 p1 p2 k3), `rvec` and `tvec` (object -> camera, tvec in mm), and the

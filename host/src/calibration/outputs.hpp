@@ -1,6 +1,7 @@
-// The files `syncap calibrate --out DIR` writes (docs/calibration.md, "syncap calibrate"):
+// The files `syncap calibrate --out DIR` writes (docs/design/calibration.md, "syncap calibrate"):
 //
-//   cameras.json         the cameras (docs/camera-model.md) with standard deviations and the
+//   cameras.json         the cameras (docs/reference/camera-model.md) with standard deviations and
+//   the
 //                        "quality" block
 //   report.txt           the report a person reads (report.hpp), as text
 //   report.html          the same with figures, self-contained

@@ -12,7 +12,7 @@
 //   - every accepted measurement's adjusted point in front of its camera.
 //
 // Each finding is `kWeak` (use with care, say why) or `kFailed` (the geometry is wrong); the
-// limits are documented in docs/calibration.md ("Is it right?").
+// limits are documented in docs/design/calibration.md ("Is it right?").
 #pragma once
 
 #include <string>

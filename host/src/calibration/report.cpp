@@ -271,7 +271,7 @@ std::string svg_network(const CalibrationReport& r, int vertical_axis, const cha
   }
   for (const ReportCamera& c : r.cameras) {
     const Eigen::Vector3d o = c.camera.projection_centre();
-    // the camera looks along -z' of its sensor axes (docs/camera-model.md)
+    // the camera looks along -z' of its sensor axes (docs/reference/camera-model.md)
     const Eigen::Vector3d view = -c.camera.rotation().col(2) * (0.08 * span);
     out += printf_string(
         "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#c33' "

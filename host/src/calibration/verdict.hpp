@@ -10,7 +10,7 @@
 //   - the held-out frames (check_points.hpp) are predicted about as well as the adjusted ones
 //     are fitted.
 //
-// docs/calibration.md ("Is it right?") gives the limits and what to do about each finding.
+// docs/design/calibration.md ("Is it right?") gives the limits and what to do about each finding.
 #pragma once
 
 #include <vector>

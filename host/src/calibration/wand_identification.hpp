@@ -14,7 +14,7 @@
 // - A wand of 2 targets (or a symmetric 3): the ends by size (end A is the larger spot, by more
 //   than `size_margin`) or by continuity (each end nearest to where it was in the camera's
 //   previous frame, within `continuity_gate` x the image length; a track's first frame takes the
-//   upper spot, smaller y, as A: hold end A up when starting, as docs/calibration.md says).
+//   upper spot, smaller y, as A: hold end A up when starting, as docs/design/calibration.md says).
 //   With more spots than targets, continuity picks the ones nearest the previous positions.
 //
 // A target whose spot touches the image border (blob_t::FLAG_AT_BORDER) is identified but not

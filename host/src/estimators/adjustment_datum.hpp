@@ -3,7 +3,7 @@
 // it is solved with minimal constraints (the station with the most measurements holds its
 // exterior orientation and, without distances, one coordinate of another station's centre the
 // scale), and its cofactors are S-transformed to the inner-constraint datum of the object points.
-// docs/calibration.md, "Bundle adjustment".
+// docs/design/calibration.md, "Bundle adjustment".
 #pragma once
 
 #include <array>

@@ -9,12 +9,12 @@
 // cost at the minimum it ended in. A weak network (a few wand positions, all ten interior values
 // free) has more than one minimum: the same measurements adjusted from the true values end in
 // another one, an interior value several linearised sigmas away, at a v^T P v a few units apart
-// at most (docs/calibration-accuracy.md: 15 of 50 networks of 10 wand positions at 1 px). Which
-// one the adjustment finds depends on the noise and the start, and the linearised sigmas cannot
-// see the others. Re-adjusting from the adjusted values stays in the first basin; re-adjusting
-// from approximate values got as the adjustment got its own samples the minima as the estimator
-// does (at 1 px with 10 wand positions, 99.5 % of the true interior errors within 3 of its
-// sigmas against 93.9 % of the linearised ones). Where the network is strong all agree.
+// at most (docs/design/calibration-accuracy.md: 15 of 50 networks of 10 wand positions at 1 px).
+// Which one the adjustment finds depends on the noise and the start, and the linearised sigmas
+// cannot see the others. Re-adjusting from the adjusted values stays in the first basin;
+// re-adjusting from approximate values got as the adjustment got its own samples the minima as the
+// estimator does (at 1 px with 10 wand positions, 99.5 % of the true interior errors within 3 of
+// its sigmas against 93.9 % of the linearised ones). Where the network is strong all agree.
 #pragma once
 
 #include <Eigen/Core>

@@ -9,7 +9,8 @@
 //     otherwise a free network: solved with a minimal-constraint datum (the first station's
 //     exterior orientation held, and, without distances, one coordinate of the second station's
 //     centre for the scale), its covariance S-transformed to the inner-constraint datum of the
-//     object points (minimum trace of their covariance). docs/calibration.md, "Bundle adjustment";
+//     object points (minimum trace of their covariance). docs/design/calibration.md, "Bundle
+//     adjustment";
 //   - statistics: sigma0, redundancy, the variance-factor test, the goodness of fit of the
 //     standardised residuals, data snooping with iterative rejection.
 //

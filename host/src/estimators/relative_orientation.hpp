@@ -5,10 +5,11 @@
 // front of both cameras; refined by least squares (Ceres) and cleared of blunders by data
 // snooping (eqs 4.29-4.31) after a RANSAC start on eight-point samples.
 //
-// Frames: each camera's sensor frame of docs/camera-model.md (x' right, y' up, looking along
-// -z'). The result gives camera 2 in camera 1's sensor frame: a point's direction p2 in camera 2
-// is rotation * p2 in camera 1, and camera 2's projection centre is at s * base (unit base, scale
-// s unknown). With camera 1's exterior (R1, X01): R2 = R1 * rotation, X02 = X01 + s * R1 * base.
+// Frames: each camera's sensor frame of docs/reference/camera-model.md (x' right, y' up, looking
+// along -z'). The result gives camera 2 in camera 1's sensor frame: a point's direction p2 in
+// camera 2 is rotation * p2 in camera 1, and camera 2's projection centre is at s * base (unit
+// base, scale s unknown). With camera 1's exterior (R1, X01): R2 = R1 * rotation, X02 = X01 + s *
+// R1 * base.
 #pragma once
 
 #include <Eigen/Core>

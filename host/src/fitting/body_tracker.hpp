@@ -1,4 +1,4 @@
-// The body tracked frame to frame (issue 18, "Tracking"; docs/body-fit.md): each frame's fit
+// The body tracked frame to frame (issue 18, "Tracking"; docs/design/body-fit.md): each frame's fit
 // starts from the pose predicted from the last two (constant velocity of every parameter), the
 // fit's share of points within its gate tells a held track from a lost one, and a lost track
 // waits for a new start instead of fitting from a wrong pose.

@@ -1,5 +1,5 @@
-// A fitted motion as the exports take it (docs/body-fit.md, "Exports"): the BVH skeleton of the
-// root and the fitted joints with the subject's offsets and, per frame, their rotations
+// A fitted motion as the exports take it (docs/design/body-fit.md, "Exports"): the BVH skeleton of
+// the root and the fitted joints with the subject's offsets and, per frame, their rotations
 // (io/bvh_writer.hpp); the joints' centres as trajectories for C3D and TRC
 // (io/marker_trajectories.hpp). Every joint between two fitted ones keeps its rest orientation
 // relative to its parent, so the BVH chain from one fitted joint to the next is one rigid

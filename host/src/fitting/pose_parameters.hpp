@@ -1,7 +1,7 @@
 // The motion part of the thesis' state vector (eq 5.21): the global position and orientation of
 // the body (s_g) and the rotations of its fitted joints (s_r), as one flat parameter vector that a
 // least-squares fit moves; and the body's ellipsoids as a function of it, templated so that Ceres
-// differentiates it automatically (docs/body-fit.md).
+// differentiates it automatically (docs/design/body-fit.md).
 //
 // Layout: x[0..2] the root's position [mm], x[3..5] its orientation (angle-axis, world), then
 // per fitted joint (kFittedJoints, in order) its rotation relative to its parent (angle-axis,

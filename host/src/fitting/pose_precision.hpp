@@ -1,7 +1,7 @@
 // The precision of a fitted pose (issue 18, "the parameters' sigmas from the covariance";
-// docs/body-fit.md, "Precision"): the covariance of the pose parameters at the solution, propagated
-// to the joint centres, so a user can tell a joint the data pin from one they leave loose (the
-// spine inside the torso's ellipsoids).
+// docs/design/body-fit.md, "Precision"): the covariance of the pose parameters at the solution,
+// propagated to the joint centres, so a user can tell a joint the data pin from one they leave
+// loose (the spine inside the torso's ellipsoids).
 //
 // The fit is an M-estimator (Cauchy's loss on each point's distance over its sigma), so its
 // covariance is Huber's sandwich C = n / (n - u) B^-1 M B^-1, with B = sum psi'(z) J^T J and
@@ -13,7 +13,8 @@
 // by point. M therefore sums psi(z) J over each patch before squaring (the cluster-robust
 // sandwich, G / (G - 1) for G patches); rows of independent errors (the prior's) stay single.
 // On the replay bench's hulls, independent rows predicted a joint's sigma 2.45 times too small,
-// the octants of each segment's ellipsoid as patches 1.04 times (docs/body-fit.md, "Precision").
+// the octants of each segment's ellipsoid as patches 1.04 times (docs/design/body-fit.md,
+// "Precision").
 #pragma once
 
 #include <Eigen/Core>

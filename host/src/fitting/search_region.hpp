@@ -1,7 +1,7 @@
 // Where the tracked body will be in a camera's image: the outline of its ellipsoids projected
 // with the full camera model and grown by a margin (thesis Fig 5.8: the quadrics attached to the
 // stick model, back-projected as the search region). Sent to the camera's edge as a
-// clip_polygon_t of kind REGION_SEARCH, it classifies only inside (docs/segmentation.md,
+// clip_polygon_t of kind REGION_SEARCH, it classifies only inside (docs/design/segmentation.md,
 // "Regions from the host").
 #pragma once
 

@@ -1,6 +1,6 @@
-// The surface fit's residuals (docs/body-fit.md): per observed surface point, its distance to its
-// assigned segment's ellipsoid along the ray from the ellipsoid's centre, scaled by the point's
-// robust weight over its sigma. SurfaceCost is the templated functor (values, and Jets for
+// The surface fit's residuals (docs/design/body-fit.md): per observed surface point, its distance
+// to its assigned segment's ellipsoid along the ray from the ellipsoid's centre, scaled by the
+// point's robust weight over its sigma. SurfaceCost is the templated functor (values, and Jets for
 // automatic differentiation); ChainedSurfaceCost gives the same values and derivatives, computed
 // faster (the fit uses it; tests compare the two).
 #pragma once

@@ -30,9 +30,9 @@ void check_points(std::span<const SurfacePoint> points) {
   }
 }
 
-// Joint limits (docs/body-fit.md, "Joint limits"): bounds on a fitted joint's rotation vector,
-// component by component, in its parent's frame (at rest the world's: x the figure's left, y its
-// back, z up; for a limb hanging down at rest, positive x bends it backwards). The knees bend
+// Joint limits (docs/design/body-fit.md, "Joint limits"): bounds on a fitted joint's rotation
+// vector, component by component, in its parent's frame (at rest the world's: x the figure's left,
+// y its back, z up; for a limb hanging down at rest, positive x bends it backwards). The knees bend
 // backwards only, with a little play about the other two axes. Bounds on the hips (little turn
 // about the thigh) and elbows (forwards only) as well were measured worse on the replay bench's
 // walk (joint RMS 12.2 mm against 10.8, twice the time): the bounded solver stalls where the

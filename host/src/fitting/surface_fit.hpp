@@ -1,6 +1,6 @@
 // The fit of the articulated body to 3D points on the person's surface, one frame (thesis section
-// 5.2.3.1, eqs 5.22-5.24; docs/body-fit.md): the pose parameters (pose_parameters.hpp) that bring
-// every point onto the surface of the ellipsoid it belongs to, by least squares on Ceres.
+// 5.2.3.1, eqs 5.22-5.24; docs/design/body-fit.md): the pose parameters (pose_parameters.hpp) that
+// bring every point onto the surface of the ellipsoid it belongs to, by least squares on Ceres.
 //
 // Each point is assigned to the segment whose surface is nearest (along the ray from the
 // segment's centre: the distance |d| - |d| / rho, with rho the point's ellipsoidal radius, eq
@@ -40,7 +40,7 @@ struct SurfaceFitOptions {
   double gate_floor_mm = 60.0;
   // Each joint parameter's standard deviation around the start [rad]; 0: no prior.
   double prior_rad = 0.5;
-  bool joint_limits = true;  // the joints' ranges (docs/body-fit.md, "Joint limits")
+  bool joint_limits = true;  // the joints' ranges (docs/design/body-fit.md, "Joint limits")
   // The parameters' and joints' sigmas at the solution (pose_precision.hpp): one more evaluation
   // of the Jacobian, about one Levenberg-Marquardt iteration's time.
   bool precision = true;

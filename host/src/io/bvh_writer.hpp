@@ -1,7 +1,7 @@
 // BVH export (Biovision hierarchy: Blender, MotionBuilder, Maya read it): a skeleton of joints
 // with their offsets and a motion of root positions and joint rotations, one row per frame
-// (docs/body-fit.md, "Exports"). The writer knows the format only; what the joints are and how a
-// fitted pose becomes their rotations is the caller's (fitting/motion_export.hpp).
+// (docs/design/body-fit.md, "Exports"). The writer knows the format only; what the joints are and
+// how a fitted pose becomes their rotations is the caller's (fitting/motion_export.hpp).
 //
 // Written as the usual convention wants it: Y up (our world's Z up is turned onto Y, our "back"
 // +Y onto -Z, so that the figure that faces -Y here faces +Z there), lengths in metres by

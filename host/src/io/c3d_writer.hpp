@@ -1,5 +1,5 @@
 // C3D export (the motion-capture exchange format of Vicon, Qualisys, Mokka, ezc3d): Intel floats,
-// 3D points only (docs/reconstruction.md says what each field holds).
+// 3D points only (docs/design/reconstruction.md says what each field holds).
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
 // The host's JSON lines (syncap-host --out, syncap markers): one object per frame group with what
-// arrived from each camera and the frame's 3D markers (docs/reconstruction.md shows the markers'
-// part). Written and read here only: hil/compare reads the lines through read_frame_lines.
+// arrived from each camera and the frame's 3D markers (docs/design/reconstruction.md shows the
+// markers' part). Written and read here only: hil/compare reads the lines through read_frame_lines.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
-// Tracked 3D marker trajectories, the input of the exports (docs/reconstruction.md). The tracking
-// stage fills them; write_c3d and write_trc turn them into files for Vicon/Qualisys tools and
-// OpenSim.
+// Tracked 3D marker trajectories, the input of the exports (docs/design/reconstruction.md). The
+// tracking stage fills them; write_c3d and write_trc turn them into files for Vicon/Qualisys tools
+// and OpenSim.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 // Cross-view matching of markers: given calibrated cameras and the blobs each saw in one frame,
-// which blobs are the same 3D point (docs/reconstruction.md, "Matching").
+// which blobs are the same 3D point (docs/design/reconstruction.md, "Matching").
 //
 // 1. Every pair of blobs of two cameras whose rays meet (epipolar angle within tolerance, in
 //    front of both cameras) is an edge of a graph over all blobs (BlobGraph).

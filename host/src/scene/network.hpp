@@ -5,7 +5,7 @@
 // estimators' result types, not here.
 //
 // Units: lengths in mm, angles in rad, image measurements in pixels (u right, v down, pixel
-// (0, 0) = centre of the top-left pixel), as in docs/camera-model.md.
+// (0, 0) = centre of the top-left pixel), as in docs/reference/camera-model.md.
 #pragma once
 
 #include <array>

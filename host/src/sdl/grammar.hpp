@@ -1,5 +1,5 @@
 // What the parser and the writer share: the parameter names and the design-block tags
-// (docs/sdl.md). Internal to host/src/sdl.
+// (docs/reference/sdl.md). Internal to host/src/sdl.
 #pragma once
 
 #include <array>

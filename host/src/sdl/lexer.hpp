@@ -1,5 +1,5 @@
-// The SDL's tokens (docs/sdl.md, "Lexical structure"): identifiers, numbers, strings, symbols;
-// comments and white space are skipped. Internal to host/src/sdl.
+// The SDL's tokens (docs/reference/sdl.md, "Lexical structure"): identifiers, numbers, strings,
+// symbols; comments and white space are skipped. Internal to host/src/sdl.
 #pragma once
 
 #include <memory>

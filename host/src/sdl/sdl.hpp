@@ -1,6 +1,6 @@
 // The scene description language (SDL) of thesis section 4.2.1 (thesis.txt lines 3058-3139,
 // Fig 4.9): a readable text form of scene::Network, the input of the bundle adjustment. The
-// grammar, with examples, is in docs/sdl.md.
+// grammar, with examples, is in docs/reference/sdl.md.
 //
 // Usage:
 //   scene::Network network = sdl::parse_file("scene.sdl");   // throws sdl::ParseError

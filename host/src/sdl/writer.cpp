@@ -227,7 +227,7 @@ void write_residual_test(const scene::ResidualTest& t, std::string& out) {
 
 std::string write(const scene::Network& network) {
   std::string out =
-      "// A syncap scene (docs/sdl.md). Units: mm, rad, pixels (u right, v down).\n\n";
+      "// A syncap scene (docs/reference/sdl.md). Units: mm, rad, pixels (u right, v down).\n\n";
   write_design(network.design, out);
   for (const auto& model : network.models) write_model(model, out);
   for (const auto& station : network.stations) write_station(station, out);

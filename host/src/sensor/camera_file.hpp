@@ -1,4 +1,5 @@
-// cameras.json: the cameras of a set-up in the thesis' model. Format (docs/camera-model.md):
+// cameras.json: the cameras of a set-up in the thesis' model. Format
+// (docs/reference/camera-model.md):
 //
 //   {"cameras": [{"id": 0, "image_size": [1280, 1024], "pixel_size": [0.0067, 0.0067],
 //                 "c": 6.0, "xp": 0.02, "yp": -0.03, "k1": ..., "k2": ..., "k3": ...,

@@ -1,6 +1,6 @@
-// One calibrated camera in the thesis' model (eqs 4.1-4.13, docs/camera-model.md): projection of
-// object points to pixels, back-projection of pixels to rays, pixel <-> metric image coordinates,
-// and the analytic Jacobians of the projection.
+// One calibrated camera in the thesis' model (eqs 4.1-4.13, docs/reference/camera-model.md):
+// projection of object points to pixels, back-projection of pixels to rays, pixel <-> metric image
+// coordinates, and the analytic Jacobians of the projection.
 //
 // Units: object space and focal plane in mm, angles in rad, pixels with (0, 0) at the centre of
 // the top-left pixel, u right, v down.

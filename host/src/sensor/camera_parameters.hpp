@@ -1,7 +1,7 @@
-// The parameters of one camera in the thesis' model (thesis eqs 4.1-4.13, docs/camera-model.md):
-// the sensor (known in advance), the interior orientation with the additional parameters, the
-// exterior orientation, and the layout of the parameter blocks a least-squares solver (Ceres)
-// works on.
+// The parameters of one camera in the thesis' model (thesis eqs 4.1-4.13,
+// docs/reference/camera-model.md): the sensor (known in advance), the interior orientation with the
+// additional parameters, the exterior orientation, and the layout of the parameter blocks a
+// least-squares solver (Ceres) works on.
 #pragma once
 
 #include <array>

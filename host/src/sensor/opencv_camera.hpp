@@ -7,7 +7,7 @@
 // the remaining disagreement is reported in pixels: the thesis corrects the measured (distorted)
 // coordinates with a polynomial in mm, OpenCV distorts the ideal normalised coordinates, so one
 // polynomial is the other's inverse series, which no finite set of coefficients matches exactly.
-// docs/camera-model.md, "OpenCV", lists every difference.
+// docs/reference/camera-model.md, "OpenCV", lists every difference.
 #pragma once
 
 #include <opencv2/core.hpp>

@@ -1,6 +1,6 @@
 // The thesis' camera model as templates on the scalar type, so that the same code projects with
 // double and, in the bundle adjustment, with ceres::Jet (automatic derivatives). The equations,
-// their reading and the conventions are in docs/camera-model.md; in short:
+// their reading and the conventions are in docs/reference/camera-model.md; in short:
 //
 //   collinearity (eq 4.9):  x' - xp = -c qx/qz,  y' - yp = -c qy/qz,  q = R^T (X - X0)
 //   correction (eqs 4.10-4.11), a function of the measured (distorted) coordinates x̄', ȳ'

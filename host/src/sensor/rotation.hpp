@@ -2,9 +2,9 @@
 //
 // The extraction of the thesis lost the elementary matrices (eqs 4.3-4.8); they are read here as
 // the right-handed rotations about the x, y and z axes, counter-clockwise positive seen from the
-// positive axis (docs/camera-model.md, "Rotation"). R turns the object axes into the sensor axes:
-// its columns are the sensor axes x', y', z' in object coordinates, and a point's sensor
-// coordinates are R^T (X - X0) (eq 4.1).
+// positive axis (docs/reference/camera-model.md, "Rotation"). R turns the object axes into the
+// sensor axes: its columns are the sensor axes x', y', z' in object coordinates, and a point's
+// sensor coordinates are R^T (X - X0) (eq 4.1).
 //
 // The templates work on plain arrays (row-major, element (i, j) at 3 * i + j) so that the same
 // code runs on double and on ceres::Jet.

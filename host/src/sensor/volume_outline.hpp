@@ -1,7 +1,7 @@
 // Where a box of object space (the capture volume) appears in a camera's image: the outline the
-// edge's medi-picture masking clips its foreground to (proto clip_polygon_t, docs/segmentation.md).
-// A person inside the volume is inside this outline, so motion outside it (a door, a screen, a
-// neighbour's wand) never becomes silhouette.
+// edge's medi-picture masking clips its foreground to (proto clip_polygon_t,
+// docs/design/segmentation.md). A person inside the volume is inside this outline, so motion
+// outside it (a door, a screen, a neighbour's wand) never becomes silhouette.
 //
 // The box's faces are sampled on a grid and projected with the full camera model (lens
 // distortion bends its edges); the outline is the convex hull of the projections, grown by a

@@ -1,5 +1,5 @@
-// 3D marker tracking: a persistent id for every marker across frames (docs/reconstruction.md,
-// "Tracking").
+// 3D marker tracking: a persistent id for every marker across frames
+// (docs/design/reconstruction.md, "Tracking").
 //
 // Each track is a constant-velocity Kalman filter (state: position and velocity, mm and mm/s).
 // Why a filter rather than plain extrapolation: the points come with their covariance (a marker

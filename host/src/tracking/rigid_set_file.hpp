@@ -1,4 +1,4 @@
-// Rigid marker set files (docs/reconstruction.md, "Tracking"): YAML,
+// Rigid marker set files (docs/design/reconstruction.md, "Tracking"): YAML,
 //
 //   rigid_sets:
 //     - name: wand

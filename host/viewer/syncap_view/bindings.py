@@ -1,6 +1,6 @@
 """The LCM message types, generated from proto/msg/*.lcm at run time.
 
-Generated code is never committed (docs/ARCHITECTURE.md), and the .lcm files change (the body
+Generated code is never committed (docs/design/architecture.md), and the .lcm files change (the body
 message gains fields on main), so the Python bindings are made here with lcm-gen into a cache
 directory keyed by the hash of the .lcm files and of lcm-gen's path: a changed definition gets
 fresh bindings, an unchanged one reuses them.

@@ -1,4 +1,4 @@
-"""cameras.json (docs/camera-model.md) as Rerun transforms and pinholes.
+"""cameras.json (docs/reference/camera-model.md) as Rerun transforms and pinholes.
 
 The thesis' camera (host/src/sensor/camera_model.hpp, rotation.hpp, projection.hpp): a point's
 sensor coordinates are q = R^T (X - X0) with R = R_kappa R_phi R_omega, whose columns are the

@@ -1,4 +1,4 @@
-"""syncap view: options, the sinks, the loop (docs/viewer.md)."""
+"""syncap view: options, the sinks, the loop (docs/guide/view.md)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """From decoded messages to Rerun entities, one method per message type, on the timeline "frame".
 
-Entity paths (docs/viewer.md lists them):
+Entity paths (docs/guide/view.md lists them):
   world                                  the calibration's frame: Z up, mm
   world/cameras/NN                       a calibrated camera: Transform3D + Pinhole
   world/cameras/NN/{blobs,silhouette,clip,floor,search}   its 2D content, in its image

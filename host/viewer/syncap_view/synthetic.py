@@ -34,7 +34,7 @@ def look_at(centre, target) -> tuple[float, float, float]:
 
 
 def ring_cameras(n: int, radius_mm: float = 4000.0, height_mm: float = 2200.0) -> list[dict]:
-    """cameras.json entries (docs/camera-model.md) of n cameras in a ring around the origin."""
+    """cameras.json entries (docs/reference/camera-model.md) of n cameras in a ring around the origin."""
     out = []
     for i in range(n):
         a = 2 * math.pi * i / n

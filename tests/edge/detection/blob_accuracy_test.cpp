@@ -1,6 +1,6 @@
 // Centroid accuracy on discs rendered with the simulator's exact disc coverage (background
 // 20 DN, discs blending to 200 DN, radius 2-10 px, with and without motion blur and Gaussian
-// noise). Prints the table of docs/edge.md:
+// noise). Prints the table of docs/design/edge.md:
 //   build/bin/edge_detection_accuracy_test --gtest_also_run_disabled_tests --gtest_filter='*Table'
 #include <gtest/gtest.h>
 
@@ -83,7 +83,7 @@ TEST(BlobAccuracy, MeetsTheGoalsOnRenderedDiscs) {
   for (const Cell& c : measure_all(200)) expect_within_goals(c);
 }
 
-// The table of docs/edge.md (more trials per cell; disabled in ctest for its ~10 s).
+// The table of docs/design/edge.md (more trials per cell; disabled in ctest for its ~10 s).
 TEST(BlobAccuracy, DISABLED_PrintTable) {
   std::printf("| radius px | blur px | noise DN | n | bias x px | bias y px | RMS px | max px |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");

@@ -1,5 +1,5 @@
-// The frame-number scheme of syncap-fakecam (docs/fakecam.md): block id = f mod 65535 + 1, and the
-// receiver's recovery of f from a nearby frame number, across wraps and gaps.
+// The frame-number scheme of syncap-fakecam (docs/design/fakecam.md): block id = f mod 65535 + 1,
+// and the receiver's recovery of f from a nearby frame number, across wraps and gaps.
 #include "syncap/fakecam/frame_number.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The calibration accuracy study's short form (docs/calibration-accuracy.md): the claims the page
-// makes, on a few Monte Carlo runs with fixed seeds. The full study: syncap-calib-study.
+// The calibration accuracy study's short form (docs/design/calibration-accuracy.md): the claims the
+// page makes, on a few Monte Carlo runs with fixed seeds. The full study: syncap-calib-study.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>

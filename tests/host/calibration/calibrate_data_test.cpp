@@ -91,8 +91,8 @@ TEST(CalibrateStrawlab, SceneFileReadjustsAsCalibrated) {
 // three cameras (with two rays a blunder cannot tell which ray is wrong); data snooping must
 // flag every one (a blunder that moved its spot out of the image is dropped before, by the
 // identification). The seeds of the blunders: 1, 2, 3, 4 and 20100906, or those listed in
-// SYNCAP_BLUNDER_SEEDS (e.g. "5,6,7"). Measured 2026-11-25 (docs/calibration.md): all 75 with
-// the default seeds, all 150 with seeds 5-14 (one of them out of the image).
+// SYNCAP_BLUNDER_SEEDS (e.g. "5,6,7"). Measured 2026-11-25 (docs/design/calibration.md): all 75
+// with the default seeds, all 150 with seeds 5-14 (one of them out of the image).
 std::vector<unsigned> blunder_seeds() {
   std::vector<unsigned> seeds;
   const char* listed = std::getenv("SYNCAP_BLUNDER_SEEDS");

@@ -49,7 +49,7 @@ TEST_F(BodyStartTest, FindsAWalkingPersonFacingAnyWay) {
   // may be the points' principal axis instead of the shoulders'). Every start finds the person
   // (place, facing); the pose is right to a few millimetres but for one known failure: a leg
   // fitted from the straight rest leg may end turned half round about its axis, the foot
-  // pointing back (case 0: 80 mm, the forefoot 380 mm off; docs/body-fit.md). The tracker's
+  // pointing back (case 0: 80 mm, the forefoot 380 mm off; docs/design/body-fit.md). The tracker's
   // share of points kept catches that on the next frames, and the stage starts again.
   const double headings[] = {0.3, 2.0, -1.2, 3.0};
   const double swings[] = {0.15, 0.3, 0.45, 0.3};

@@ -82,7 +82,7 @@ std::ostream& operator<<(std::ostream& out, const WalkFits& w) {
 }
 
 // Each frame on its own from a start near it: the fit lands on the real pose within what the 18
-// joints can say of it. Measured 2026-11-27 (every 6th frame): see docs/body-fit.md.
+// joints can say of it. Measured 2026-11-27 (every 6th frame): see docs/design/body-fit.md.
 TEST(MixamoFit, FitsEveryFrameOfTheRealWalkFromANearbyStart) {
   SYNCAP_REQUIRE_DATA(path, "motion/mixamo-free.bvh");
   const WalkFits w = fit_walk(path, 69, 6, false);

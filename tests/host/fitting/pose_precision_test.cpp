@@ -78,7 +78,7 @@ TEST_F(PosePrecisionTest, PredictedJointSigmasAreTheScatterOfRepeatedFits) {
   }
   const double ratio = std::sqrt(scatter_sum / predicted_sum);
   const double sigma0 = sigma0_sum / trials;
-  // The figure docs/body-fit.md quotes ("Precision"), printed so that it can be rerun.
+  // The figure docs/design/body-fit.md quotes ("Precision"), printed so that it can be rerun.
   std::cout << "precision: scatter / predicted " << ratio << ", sigma0 " << sigma0 << "\n";
   EXPECT_GT(sigma0, 0.8);
   EXPECT_LT(sigma0, 1.2);

@@ -108,7 +108,8 @@ scene::Network example_network() {
 //   --gtest_also_run_disabled_tests --gtest_filter='BundleCommand.DISABLED_WriteTheExample'
 TEST(BundleCommand, DISABLED_WriteTheExample) {
   const std::string header =
-      "// docs/examples/wand-3cam-simulate.sdl: a simulated 3-camera wand network (docs/sdl.md).\n"
+      "// docs/examples/wand-3cam-simulate.sdl: a simulated 3-camera wand network "
+      "(docs/reference/sdl.md).\n"
       "// Its values are the truth; SIMULATE draws the measurements and the wand's distances\n"
       "// around it, IGNORE APPROXIMATES triangulates the points anew. Run it with\n"
       "//   build/bin/syncap bundle docs/examples/wand-3cam-simulate.sdl --out /tmp/wand\n"

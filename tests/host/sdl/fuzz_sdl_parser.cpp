@@ -1,5 +1,5 @@
-// libFuzzer target of the SDL parser (scripts/fuzz-sdl.sh, docs/sdl.md "Fuzzing"). Every input
-// is a scene file; `include "self.sdl"` serves the input itself (so cycles are reachable),
+// libFuzzer target of the SDL parser (scripts/fuzz-sdl.sh, docs/reference/sdl.md "Fuzzing"). Every
+// input is a scene file; `include "self.sdl"` serves the input itself (so cycles are reachable),
 // `include "other.sdl"` a small valid scene, anything else is a missing file. The oracle beyond
 // the sanitizers: a scene that parses must survive write -> parse -> write unchanged.
 #include <cstddef>

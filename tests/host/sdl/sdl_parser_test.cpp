@@ -1,5 +1,5 @@
-// The SDL grammar (docs/sdl.md): what each statement sets, expressions, comments, design tags,
-// and the errors with file, line and column.
+// The SDL grammar (docs/reference/sdl.md): what each statement sets, expressions, comments, design
+// tags, and the errors with file, line and column.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -301,9 +301,10 @@ TEST(SdlParser, AnUnreadableFileIsAParseErrorNamingIt) {
 namespace syncap::sdl {
 namespace {
 
-// docs/sdl.md's first example (its first fenced block without a language) is a valid scene.
+// docs/reference/sdl.md's first example (its first fenced block without a language) is a valid
+// scene.
 TEST(SdlParser, TheDocumentationsFirstSceneParses) {
-  std::ifstream doc(std::filesystem::path(SYNCAP_SOURCE_DIR) / "docs/sdl.md");
+  std::ifstream doc(std::filesystem::path(SYNCAP_SOURCE_DIR) / "docs/reference/sdl.md");
   std::stringstream text;
   text << doc.rdbuf();
   const std::string markdown = text.str();

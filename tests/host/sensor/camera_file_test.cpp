@@ -59,7 +59,7 @@ TEST(CameraFile, WriteThenReadGivesTheSameCamerasBitForBit) {
 }
 
 TEST(CameraFile, DocumentedExampleReads) {
-  // The example of docs/camera-model.md.
+  // The example of docs/reference/camera-model.md.
   const char* text = R"({
   "cameras": [
     {

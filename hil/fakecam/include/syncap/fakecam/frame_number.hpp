@@ -1,5 +1,6 @@
-// How a syncap-fakecam frame carries its 64-bit frame number through GigE Vision (docs/fakecam.md,
-// "Frame numbers"). GVSP block ids are 16-bit and never 0, so frame number f travels as
+// How a syncap-fakecam frame carries its 64-bit frame number through GigE Vision
+// (docs/design/fakecam.md, "Frame numbers"). GVSP block ids are 16-bit and never 0, so frame number
+// f travels as
 //
 //   block id (arv_buffer_get_frame_id) = f mod 65535 + 1          in 1..65535
 //   timestamp (arv_buffer_get_timestamp) = the trigger's rising edge, CLOCK_MONOTONIC ns
