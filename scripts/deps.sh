@@ -12,7 +12,7 @@ set -euo pipefail
 # One line per purpose, so a reader sees why each package is here.
 PACKAGES=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git clang-format
+  build-essential cmake ninja-build pkg-config git clang-format ccache
   # acquisition: Aravis 0.8 (its pkg-config file requires libusb-1.0), V4L2 headers
   libaravis-dev libusb-1.0-0-dev aravis-tools-cli libv4l-dev
   # messaging: LCM library, lcm-gen, lcm-logger, lcm-logplayer
