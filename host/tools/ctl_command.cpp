@@ -10,6 +10,7 @@
 
 #include "aggregator/arrival_tally.hpp"
 #include "subcommand.hpp"
+#include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/command_auth.hpp"
 #include "syncap/proto/subscriber.hpp"
@@ -86,29 +87,19 @@ void add_ctl_options(CLI::App& app, CtlArgs& a) {
   app.add_option("--wait-s", a.wait_s,
                  "how long to wait for the answers (default 2.5: the heartbeat comes every "
                  "second, a refusal with the next one)")
-      ->check(CLI::Range(0.1, 600.0));
+      ->check(cli::number_in(0.1, 600.0));
 }
 
 // Parses into `a`; an exit status when the run is over already (help, usage error).
 std::optional<int> parse_ctl_args(std::span<const std::string> args, CtlArgs& a, std::ostream& out,
                                   std::ostream& err) {
-  CLI::App app(
-      "Sends the edges a command signed with the installation's key and shows each camera's "
-      "answer from its heartbeats (docs/design/security.md).\n" +
-          std::string(kActions),
-      kCtlName);
+  cli::App app(kCtlName,
+               "Sends the edges a command signed with the installation's key and shows each "
+               "camera's answer from its heartbeats (docs/design/security.md).\n" +
+                   std::string(kActions),
+               "Exit status: 0 every camera that answered obeyed, 1 otherwise, 2 a usage error.");
   add_ctl_options(app, a);
-  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
-  try {
-    app.parse(reversed);
-  } catch (const CLI::CallForHelp&) {
-    out << app.help();
-    return kExitOk;
-  } catch (const CLI::ParseError& e) {
-    err << kCtlName << ": " << e.what() << '\n' << app.help();
-    return kExitUsage;
-  }
-  return std::nullopt;
+  return cli::parse(app, args, out, err);
 }
 
 int16_t camera_of(const std::string& text) {
@@ -265,23 +256,14 @@ int ctl_command(std::span<const std::string> args, std::ostream& out, std::ostre
 int keygen_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
   std::string path = "/etc/syncap/command.key";
   bool force = false;
-  CLI::App app(
-      "Creates the installation's command key: 32 random bytes as hexadecimal, in a "
-      "file only its owner may read (mode 0600). Copy it to every edge board and the "
-      "host over a trusted channel (docs/design/security.md).",
-      "syncap keygen");
+  cli::App app("syncap keygen",
+               "Creates the installation's command key: 32 random bytes as hexadecimal, in a "
+               "file only its owner may read (mode 0600). Copy it to every edge board and the "
+               "host over a trusted channel (docs/design/security.md).",
+               "Exit status: 0 written, 2 a usage error or a key that cannot be written.");
   app.add_option("--out", path, "the key file (default " + path + ")");
   app.add_flag("--force", force, "replace an existing key (every board then needs the new one)");
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
-  try {
-    app.parse(reversed);
-  } catch (const CLI::CallForHelp&) {
-    out << app.help();
-    return kExitOk;
-  } catch (const CLI::ParseError& e) {
-    err << "syncap keygen: " << e.what() << '\n' << app.help();
-    return kExitUsage;
-  }
+  if (const std::optional<int> status = cli::parse(app, args, out, err)) return *status;
   try {
     proto::CommandKey::generate().save(path, force);
   } catch (const proto::CommandKeyError& e) {

@@ -39,12 +39,13 @@ struct FitArgs {
 
 std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std::ostream& out,
                               std::ostream& err) {
-  CLI::App app(
+  cli::App app(
+      kName,
       "Fits the articulated body to the visual hull of every frame of a recorded LCM log and "
       "tracks it, as syncap-host --body does live, into DIR/body.jsonl (each frame's hull and "
       "pose), and exports the motion to DIR/body.bvh and the joints' centres to DIR/joints.c3d "
       "and DIR/joints.trc (docs/design/body-fit.md).",
-      kName);
+      "Exit status: 0 done, 1 messages rejected or damage reported, 2 a usage error.");
   app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
   app.add_option("--calibration", a.calibration, "cameras.json")
       ->required()
@@ -60,14 +61,12 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
   app.add_option("--restart-every", p.body.stage.restart_every,
                  "start the body automatically on every frame whose number is a multiple of N "
                  "(measures the automatic start through the recording; default 0: only when lost)")
-      ->check(CLI::Range(0, 1000000));
+      ->transform(cli::whole_in<int>(0, 1000000));
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   app.add_option("--leave-out-silhouettes", a.silhouette_gap,
                  "CAMERA:FIRST:LAST: replay without that camera's silhouettes for those frames "
                  "(the robustness check of a camera's masks missing for a while)");
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
-  try {
-    app.parse(reversed);
+  return cli::parse(app, args, out, err, [&] {
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
@@ -78,14 +77,7 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
         throw CLI::ValidationError("--leave-out-silhouettes", e.what());
       }
     }
-  } catch (const CLI::CallForHelp&) {
-    out << app.help();
-    return kExitOk;
-  } catch (const CLI::Error& e) {
-    err << kName << ": " << e.what() << '\n' << app.help();
-    return kExitUsage;
-  }
-  return std::nullopt;
+  });
 }
 
 // DIR/body.bvh, DIR/joints.c3d and DIR/joints.trc from the first to the last frame with a

@@ -36,13 +36,14 @@ struct MarkersArgs {
 
 std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a, std::ostream& out,
                               std::ostream& err) {
-  CLI::App app(
+  cli::App app(
+      kName,
       "Reconstructs and tracks the 3D markers of every frame of a recorded LCM log, as "
       "syncap-host --calibration does live, into DIR/markers.jsonl, and exports the "
       "trajectories to DIR/markers.c3d and DIR/markers.trc (docs/design/reconstruction.md); with "
       "--hull, the person's visual hull of every frame from the recorded silhouettes too "
       "(docs/design/visual-hull.md).",
-      kName);
+      "Exit status: 0 done, 1 messages rejected or damage reported, 2 a usage error.");
   app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
   app.add_option("--calibration", a.calibration, "cameras.json")
       ->required()
@@ -58,22 +59,13 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   p.hull.stage.max_wait_ms = 0;  // offline: every frame gets its hull, however long it took
   host_app::add_hull_options(app, p.hull);
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
-  try {
-    app.parse(reversed);
+  return cli::parse(app, args, out, err, [&] {
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");
     if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
     if (!a.volume.empty()) p.markers.matching.volume = host_app::parse_volume(a.volume);
     host_app::load_rigid_sets(a.rigid_sets_path, p.markers);
-  } catch (const CLI::CallForHelp&) {
-    out << app.help();
-    return kExitOk;
-  } catch (const CLI::Error& e) {
-    err << kName << ": " << e.what() << '\n' << app.help();
-    return kExitUsage;
-  }
-  return std::nullopt;
+  });
 }
 
 // DIR/markers.c3d and DIR/markers.trc of the tracked trajectories; false (named on err) when

@@ -1,11 +1,12 @@
 #include "app/edge_options.hpp"
 
-#include <yaml-cpp/yaml.h>
+#include <memory>
 
 #include <charconv>
 #include <optional>
 
 #include "segmentation/masking_options.hpp"
+#include "syncap/cli/config_file.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 
@@ -57,7 +58,7 @@ CLI::Validator roi_form() {
 // lets the command line override the file.
 class Parser {
  public:
-  Parser() : app_("syncap-edge", kAbout, kFooter) {
+  Parser() : app_(std::make_unique<cli::App>("syncap-edge", kAbout, kFooter)) {
     o.lcm_url = proto::kDefaultLcmUrl;
     add_camera_options();
     add_detection_options();
@@ -72,14 +73,16 @@ class Parser {
 
   // Throws UsageError: "help", or the problem naming the option and the value.
   void parse_command_line(const std::vector<std::string>& args) {
-    if (const auto stop = cli::try_parse(app_, args)) {
+    if (const auto stop = cli::try_parse(*app_, args)) {
       throw UsageError(stop->help ? std::string("help") : "syncap-edge: " + stop->error);
     }
-    have_camera = have_camera || app_.count("--camera-id") > 0;
+    have_camera = have_camera || app_->count("--camera-id") > 0;
   }
 
-  void apply_config_file(const std::string& file);
-  std::string help() const { return app_.help(); }
+  std::string help() const { return app_->help(); }
+  // The parser itself, for a caller that only needs the options bound (the config file's
+  // checks); this Parser must outlive it.
+  std::unique_ptr<CLI::App> release_app() { return std::move(app_); }
 
  private:
   void add_camera_options();
@@ -87,52 +90,51 @@ class Parser {
   void add_mask_options();
   void add_network_options();
   void add_run_options();
-  void apply_config_entry(const std::string& file, const YAML::Node& key, const YAML::Node& value);
 
-  cli::App app_;
+  std::unique_ptr<cli::App> app_;
 };
 
 void Parser::add_camera_options() {
-  app_.add_option("--config", config,
-                  "YAML file of `option: value` lines (below); the command line overrides it")
+  app_->add_option("--config", config,
+                   "YAML file of `option: value` lines (below); the command line overrides it")
       ->option_text("FILE");
-  cli::add_checked(app_, "--camera-id", o.camera_id, "N",
+  cli::add_checked(*app_, "--camera-id", o.camera_id, "N",
                    cli::whole_in<int>(0, proto::kMaxCameraId),
                    "camera id 0..99 (channels SYNCAP_BLOBS_NN ...); required");
-  app_.add_option(
+  app_->add_option(
           "--source", o.source,
           "replay:FOLDER  numbered 8-bit images, frame k = file number k\n"
           "replay:VIDEO   a video file, frame k = its k-th frame (from 0)\n"
           "aravis:ADDRESS GigE Vision camera at this IPv4 address\n"
           "v4l2:DEVICE    UVC camera, e.g. v4l2:/dev/video0 (docs/design/v4l2.md); required")
       ->option_text("SPEC");
-  app_.add_option("--trigger-source", o.trigger_source,
-                  "aravis: the camera's TriggerSource (Line1, Software, ...);\n"
-                  "default: as the camera is configured")
+  app_->add_option("--trigger-source", o.trigger_source,
+                   "aravis: the camera's TriggerSource (Line1, Software, ...);\n"
+                   "default: as the camera is configured")
       ->option_text("S");
-  cli::add_checked(app_, "--exposure-us", o.exposure_us, "US", cli::whole_in<int>(1, 10'000'000),
+  cli::add_checked(*app_, "--exposure-us", o.exposure_us, "US", cli::whole_in<int>(1, 10'000'000),
                    "aravis: exposure time, us 1..10000000; default: as configured");
-  cli::add_checked(app_, "--gain-db", o.gain_db, "DB", cli::number_in(0, 100),
+  cli::add_checked(*app_, "--gain-db", o.gain_db, "DB", cli::number_in(0, 100),
                    "aravis: analog gain (Gain), dB 0..100; default: as configured");
-  app_.add_flag("--udp-socket", o.udp_socket,
-                "aravis: receive with a UDP socket, not a packet socket (no\n"
-                "CAP_NET_RAW needed; its buffer grows only after the first frame)");
-  app_.add_option_function<std::string>(
+  app_->add_flag("--udp-socket", o.udp_socket,
+                 "aravis: receive with a UDP socket, not a packet socket (no\n"
+                 "CAP_NET_RAW needed; its buffer grows only after the first frame)");
+  app_->add_option_function<std::string>(
           "--roi", [this](const std::string& v) { o.roi = *parse_roi(v); },
           "sensor region of interest at start (blobs stay in sensor\n"
           "pixels); default: the whole sensor")
       ->option_text("X,Y,W,H")
       ->check(roi_form());
-  cli::add_checked(app_, "--camera-silent-s", o.camera_silent_s, "S", cli::number_in(0, 3600),
+  cli::add_checked(*app_, "--camera-silent-s", o.camera_silent_s, "S", cli::number_in(0, 3600),
                    "aravis, v4l2: no frame for S s while triggered = camera lost\n"
                    "(0: only errors count)" +
                        by_default(o.camera_silent_s));
-  cli::add_checked(app_, "--reopen-first-s", o.reopen_first_s, "S", cli::number_in(0.01, 3600),
+  cli::add_checked(*app_, "--reopen-first-s", o.reopen_first_s, "S", cli::number_in(0.01, 3600),
                    "a lost camera is reopened after S s, doubling up to --reopen-max-s" +
                        by_default(o.reopen_first_s));
-  cli::add_checked(app_, "--reopen-max-s", o.reopen_max_s, "S", cli::number_in(0.01, 3600),
+  cli::add_checked(*app_, "--reopen-max-s", o.reopen_max_s, "S", cli::number_in(0.01, 3600),
                    "the longest wait between reopening attempts, s" + by_default(o.reopen_max_s));
-  cli::add_checked(app_, "--match-tolerance-ms", o.match_tolerance_ms, "MS",
+  cli::add_checked(*app_, "--match-tolerance-ms", o.match_tolerance_ms, "MS",
                    cli::number_in(0.001, 10000),
                    "v4l2: a frame takes the number of the trigger closest in\n"
                    "time within MS ms" +
@@ -140,7 +142,7 @@ void Parser::add_camera_options() {
 }
 
 void Parser::add_detection_options() {
-  app_.add_option_function<std::string>(
+  app_->add_option_function<std::string>(
           "--detection",
           [this](const std::string& v) {
             o.detection = v == "full" ? DetectionMode::kFull : DetectionMode::kWindowed;
@@ -150,20 +152,20 @@ void Parser::add_detection_options() {
       ->option_text("D")
       ->check(cli::one_of({"full", "windowed"}));
   cli::add_checked(
-      app_, "--full-scan-every", o.full_scan_every, "N", cli::whole_in<int>(1, 100000),
+      *app_, "--full-scan-every", o.full_scan_every, "N", cli::whole_in<int>(1, 100000),
       "windowed: a full scan for new blobs every N frames" + by_default(o.full_scan_every));
-  app_.add_flag("--roi-follows-windows", o.roi_follows_windows,
-                "windowed: the sensor ROI follows the union of the windows");
-  cli::add_checked(app_, "--threshold", o.detector.threshold, "DN", cli::whole_in<int>(1, 255),
+  app_->add_flag("--roi-follows-windows", o.roi_follows_windows,
+                 "windowed: the sensor ROI follows the union of the windows");
+  cli::add_checked(*app_, "--threshold", o.detector.threshold, "DN", cli::whole_in<int>(1, 255),
                    "blob threshold, DN 1..255" + by_default(o.detector.threshold));
-  cli::add_checked(app_, "--min-area", o.detector.min_area, "PX", cli::whole_in<int>(1, 1 << 24),
+  cli::add_checked(*app_, "--min-area", o.detector.min_area, "PX", cli::whole_in<int>(1, 1 << 24),
                    "smallest blob area, pixels" + by_default(o.detector.min_area));
-  cli::add_checked(app_, "--max-area", o.detector.max_area, "PX", cli::whole_in<int>(1, 1 << 24),
+  cli::add_checked(*app_, "--max-area", o.detector.max_area, "PX", cli::whole_in<int>(1, 1 << 24),
                    "largest blob area, pixels" + by_default(o.detector.max_area));
 }
 
 void Parser::add_mask_options() {
-  app_.add_option_function<std::string>(
+  app_->add_option_function<std::string>(
           "--mode",
           [this](const std::string& v) {
             o.blobs = v != "mask";
@@ -172,13 +174,13 @@ void Parser::add_mask_options() {
           "blobs (default), mask (silhouettes) or both")
       ->option_text("M")
       ->check(cli::one_of({"blobs", "mask", "both"}));
-  cli::add_checked(app_, "--train-frames", o.train_frames, "N", cli::whole_in<int>(1, 10000),
+  cli::add_checked(*app_, "--train-frames", o.train_frames, "N", cli::whole_in<int>(1, 10000),
                    "mask: train the background on N frames (default: on the\n"
                    "host's TRAIN_BACKGROUND command) ...");
-  cli::add_checked(app_, "--train-from-frame", o.train_from_frame, "F",
+  cli::add_checked(*app_, "--train-from-frame", o.train_from_frame, "F",
                    cli::whole_in<int64_t>(0, int64_t{1} << 53),
                    "... numbered F..F+N-1 (default: the first N frames)");
-  cli::add_checked(app_, "--contour-tolerance", o.contour_tolerance_px, "PX",
+  cli::add_checked(*app_, "--contour-tolerance", o.contour_tolerance_px, "PX",
                    cli::number_in(0, 100),
                    "mask: polygon simplification, pixels" + by_default(o.contour_tolerance_px));
   // --mask-NAME: the medi-picture option NAME, from the defaults (docs/design/segmentation.md),
@@ -186,7 +188,7 @@ void Parser::add_mask_options() {
   for (const MaskingOptionHelp& m : kMaskingOptions) {
     const std::string option = std::string("--mask-") + m.name;
     const std::string name = m.name;
-    app_.add_option_function<std::string>(
+    app_->add_option_function<std::string>(
             option,
             [this, option, name](const std::string& v) {
               try {
@@ -199,103 +201,42 @@ void Parser::add_mask_options() {
                 masking_option_value(o.masking, name) + ")")
         ->option_text(m.metavar);
   }
-  cli::add_checked(app_, "--patch-every", o.patch_every, "N", cli::whole_in<int>(0, 100000),
+  cli::add_checked(*app_, "--patch-every", o.patch_every, "N", cli::whole_in<int>(0, 100000),
                    "mask: send the person's grey values (image_patch_t) every Nth frame\n"
                    "(frame_number % N == 0) for the host's surface matching; 0: never" +
                        by_default(o.patch_every));
   cli::add_checked(
-      app_, "--patch-margin", o.patch_margin_px, "PX", cli::whole_in<int>(0, 64),
+      *app_, "--patch-margin", o.patch_margin_px, "PX", cli::whole_in<int>(0, 64),
       "mask: pixels beyond the silhouette a patch holds" + by_default(o.patch_margin_px));
-  app_.add_flag_callback(
+  app_->add_flag_callback(
       "--mask-no-shadows", [this] { o.masking.remove_shadows = false; },
       "mask: skip the shadow test");
 }
 
 void Parser::add_network_options() {
-  app_.add_option("--lcm-url", o.lcm_url,
-                  std::string("LCM provider (default ") + proto::kDefaultLcmUrl + ")")
+  app_->add_option("--lcm-url", o.lcm_url,
+                   std::string("LCM provider (default ") + proto::kDefaultLcmUrl + ")")
       ->option_text("URL");
-  app_.add_option("--command-key", o.command_key_path,
-                  "the installation's key (syncap keygen): only commands and clip\n"
-                  "polygons signed with it are obeyed; without it none are\n"
-                  "(docs/design/security.md)")
+  app_->add_option("--command-key", o.command_key_path,
+                   "the installation's key (syncap keygen): only commands and clip\n"
+                   "polygons signed with it are obeyed; without it none are\n"
+                   "(docs/design/security.md)")
       ->option_text("FILE");
-  cli::add_checked(app_, "--command-window-s", o.command_window_s, "S", cli::number_in(0.1, 3600),
+  cli::add_checked(*app_, "--command-window-s", o.command_window_s, "S", cli::number_in(0.1, 3600),
                    "a command is obeyed only when sent within S s of this\n"
                    "board's clock (the clocks must agree that well)" +
                        by_default(o.command_window_s));
-  cli::add_checked(app_, "--heartbeat-s", o.heartbeat_s, "S", cli::whole_in<int>(1, 3600),
+  cli::add_checked(*app_, "--heartbeat-s", o.heartbeat_s, "S", cli::whole_in<int>(1, 3600),
                    "status period, whole seconds" + by_default(o.heartbeat_s));
   cli::add_checked(
-      app_, "--publish-queue", o.publish_queue, "N", cli::whole_in<int>(1, 100000),
+      *app_, "--publish-queue", o.publish_queue, "N", cli::whole_in<int>(1, 100000),
       "messages waiting to be sent before the oldest is dropped" + by_default(o.publish_queue));
 }
 
 void Parser::add_run_options() {
-  app_.add_flag("--exit-after-last", o.exit_after_last,
-                "exit after the frame of the trigger's last pulse");
-  app_.add_flag("--quiet", o.quiet, "no per-run log lines on stderr");
-}
-
-// "FILE:LINE:COLUMN" of a YAML node (yaml-cpp counts from 0).
-std::string place(const std::string& file, const YAML::Mark& mark) {
-  return file + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
-}
-
-bool parse_bool(const std::string& text) {
-  if (text == "true" || text == "yes" || text == "on") return true;
-  if (text == "false" || text == "no" || text == "off") return false;
-  throw UsageError("'" + text + "': expected true or false");
-}
-
-// One `key: value` line, parsed as the command line's --key=value (the '=' form takes a value
-// that starts with a dash too); a flag's value turns it on or leaves it off.
-void Parser::apply_config_entry(const std::string& file, const YAML::Node& key,
-                                const YAML::Node& value) {
-  if (!key.IsScalar()) {  // as<std::string>() would throw yaml-cpp's BadConversion
-    throw UsageError("syncap-edge: " + place(file, key.Mark()) + ": a key must be text");
-  }
-  const std::string name = key.Scalar();
-  const std::string where = "syncap-edge: " + place(file, key.Mark()) + ": key '" + name + "'";
-  if (!value.IsScalar()) throw UsageError(where + ": expected a single value");
-  if (name == "config") throw UsageError(where + ": a config file cannot include another");
-  const CLI::Option* option = app_.get_option_no_throw("--" + name);
-  if (option == nullptr || name == "help") {
-    throw UsageError(where + ": unknown key (keys are syncap-edge's long options)");
-  }
-  std::vector<std::string> args{"--" + name + "=" + value.Scalar()};
-  if (option->get_expected_max() == 0) {  // a flag
-    try {
-      if (!parse_bool(value.Scalar())) return;
-    } catch (const UsageError& e) {
-      throw UsageError(where + " " + e.what());
-    }
-    args = {"--" + name};
-  }
-  if (const auto stop = cli::try_parse(app_, args)) {
-    // CLI11 names the option ("--threshold: '300' is not ..."): the key says it here.
-    const std::string prefix = "--" + name + ": ";
-    const bool named = stop->error.starts_with(prefix);
-    throw UsageError(where + ": " + stop->error.substr(named ? prefix.size() : 0));
-  }
-  have_camera = have_camera || name == "camera-id";
-}
-
-void Parser::apply_config_file(const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw UsageError("syncap-edge: --config " + file + ": cannot be read");
-  } catch (const YAML::ParserException& e) {
-    throw UsageError("syncap-edge: " + place(file, e.mark) + ": " + e.msg);
-  }
-  if (root.IsNull()) return;  // an empty file
-  if (!root.IsMap()) {
-    throw UsageError("syncap-edge: " + place(file, root.Mark()) +
-                     ": expected `key: value` lines (the long option names)");
-  }
-  for (const auto& entry : root) apply_config_entry(file, entry.first, entry.second);
+  app_->add_flag("--exit-after-last", o.exit_after_last,
+                 "exit after the frame of the trigger's last pulse");
+  app_->add_flag("--quiet", o.quiet, "no per-run log lines on stderr");
 }
 
 // What no single option can check: the required ones and the combinations.
@@ -337,9 +278,24 @@ EdgeOptions parse_edge_options(const std::vector<std::string>& args) {
   // go first and the command line's over them, wherever --config stands.
   Parser scan;
   scan.parse_command_line(args);
+  std::vector<std::string> all;
+  if (!scan.config.empty()) {
+    // A rig file: its edges: section and the entry of this camera (the command line's id).
+    const cli::RigPart part{"edges",
+                            scan.have_camera ? std::optional(scan.o.camera_id) : std::nullopt, ""};
+    std::vector<std::unique_ptr<Parser>> scratch;  // the factory's parsers live until done
+    try {
+      all = cli::config_arguments("syncap-edge", scan.config, part, [&scratch] {
+        scratch.push_back(std::make_unique<Parser>());
+        return scratch.back()->release_app();
+      });
+    } catch (const cli::ConfigError& e) {
+      throw UsageError(e.what());
+    }
+  }
+  all.insert(all.end(), args.begin(), args.end());
   Parser parser;
-  if (!scan.config.empty()) parser.apply_config_file(scan.config);
-  parser.parse_command_line(args);
+  parser.parse_command_line(all);
   check_combination(parser.o, parser.have_camera);
   return parser.o;
 }

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "syncap/cli/config_file.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
 
@@ -136,9 +137,9 @@ namespace {
 void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vector<double>& volume) {
   app.add_option("--cameras", cameras, "expected camera ids, e.g. 0,1,2 (default 0)");
   app.add_option("--max-lag", o.max_lag, "frames to wait for missing messages (default 10)")
-      ->check(CLI::Range(0, 100000));
+      ->transform(cli::whole_in<int>(0, 100000));
   app.add_option("--frames", o.frames, "exit after N frame groups")
-      ->check(CLI::Range(1L, 1L << 40));
+      ->transform(cli::whole_in<long>(1L, 1L << 40));
   app.add_flag("--until-last", o.until_last,
                "exit after the frame of the trigger's last pulse, or once --max-lag frames at its "
                "rate have passed since it arrived");
@@ -184,8 +185,13 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   app.add_flag("--search-regions", p.search_regions.enabled,
                "send each camera's edge the tracked body's search region after every fit "
                "(needs --body and --key; docs/design/segmentation.md)");
-  app.add_option("--key", o.files.key_path,
+  app.add_option("--command-key", o.files.key_path,
                  "the installation's command key (syncap keygen), to sign --search-regions")
+      ->option_text("FILE");
+  cli::deprecated_alias(app, "--key", "--command-key", o.files.key_path);
+  app.add_option("--config", o.files.config_path,
+                 "read options from a YAML file first: syncap-host's own or the rig file "
+                 "(docs/guide/rig.md); the command line overrides it")
       ->option_text("FILE");
   app.add_option("--search-margin", p.search_regions.stage.region.margin_px,
                  "grow each search region by PX pixels (default " +
@@ -201,50 +207,76 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
 
 }  // namespace
 
-ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::ostream& out,
-                                     std::ostream& err) {
+namespace {
+
+// What no single option checks: the files named, and the options that need others.
+void finish_options(HostOptions& o, const std::string& cameras, const std::vector<double>& volume) {
+  o.cameras = parse_camera_list(cameras);
+  controllers::PipelineOptions& p = o.pipeline;
+  if (!volume.empty()) p.markers.matching.volume = parse_volume(volume);
+  load_rigid_sets(o.files.rigid_sets_path, p.markers);
+  if (p.body.enabled && o.calibration.empty())
+    throw CLI::ValidationError("--body", "needs --calibration (the cameras' models)");
+  if (p.search_regions.enabled && !p.body.enabled)
+    throw CLI::ValidationError("--search-regions", "needs --body (the tracked body)");
+  if (p.search_regions.enabled && o.files.key_path.empty())
+    throw CLI::ValidationError("--search-regions",
+                               "needs --command-key FILE: an edge applies only signed regions");
+  if (p.search_regions.enabled) {
+    try {
+      o.files.key = proto::CommandKey::load(o.files.key_path);  // named now, not at a fit
+    } catch (const proto::CommandKeyError& e) {
+      throw CLI::ValidationError("--command-key", e.what());
+    }
+  }
+  if (p.surface.enabled && o.calibration.empty())
+    throw CLI::ValidationError("--surface", "needs --calibration (the cameras' models)");
+  if (p.hull.enabled && o.calibration.empty())
+    throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");
+}
+
+// syncap-host's parser, bound to `o` and the texts finish_options reads.
+struct HostParser {
   HostOptions o;
-  o.lcm_url = proto::kDefaultLcmUrl;
   std::string cameras = "0";
   std::vector<double> volume;
-  CLI::App app(
-      "syncap-host: groups every camera's messages by frame number and runs the "
-      "host's stages on each group (docs/design/reconstruction.md).",
-      "syncap-host");
-  add_options(app, o, cameras, volume);
-  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
-  try {
-    app.parse(reversed);
-    o.cameras = parse_camera_list(cameras);
-    controllers::PipelineOptions& p = o.pipeline;
-    if (!volume.empty()) p.markers.matching.volume = parse_volume(volume);
-    load_rigid_sets(o.files.rigid_sets_path, p.markers);
-    if (p.body.enabled && o.calibration.empty())
-      throw CLI::ValidationError("--body", "needs --calibration (the cameras' models)");
-    if (p.search_regions.enabled && !p.body.enabled)
-      throw CLI::ValidationError("--search-regions", "needs --body (the tracked body)");
-    if (p.search_regions.enabled && o.files.key_path.empty())
-      throw CLI::ValidationError("--search-regions",
-                                 "needs --key FILE: an edge applies only signed regions");
-    if (p.search_regions.enabled) {
-      try {
-        o.files.key = proto::CommandKey::load(o.files.key_path);  // named now, not at a fit
-      } catch (const proto::CommandKeyError& e) {
-        throw CLI::ValidationError("--key", e.what());
-      }
-    }
-    if (p.surface.enabled && o.calibration.empty())
-      throw CLI::ValidationError("--surface", "needs --calibration (the cameras' models)");
-    if (p.hull.enabled && o.calibration.empty())
-      throw CLI::ValidationError("--hull", "needs --calibration (the cameras' models)");
-  } catch (const CLI::CallForHelp&) {
-    out << app.help();
-    return {std::nullopt, 0};
-  } catch (const CLI::Error& e) {
-    err << "syncap-host: " << e.what() << "\n" << app.help();
-    return {std::nullopt, 2};
+  std::unique_ptr<cli::App> app;
+
+  HostParser() {
+    o.lcm_url = proto::kDefaultLcmUrl;
+    app = std::make_unique<cli::App>(
+        "syncap-host",
+        "syncap-host: groups every camera's messages by frame number and runs the host's stages "
+        "on each group (docs/design/reconstruction.md).",
+        "Options may also come from --config FILE: syncap-host's own YAML file (keys are the "
+        "long options without the dashes) or the rig file's top-level keys, its cameras and its "
+        "host: section (docs/guide/rig.md); the command line overrides the file. Exit status: 0 "
+        "after a run, 1 a failure while running, 2 a usage error or a bad config file.");
+    add_options(*app, o, cameras, volume);
   }
-  return {o, 0};
+};
+
+}  // namespace
+
+ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::ostream& out,
+                                     std::ostream& err) {
+  HostParser parser;
+  std::vector<std::string> all;
+  try {
+    std::vector<std::unique_ptr<HostParser>> scratch;  // the factory's parsers live until done
+    all = cli::with_config("syncap-host", args, {"host", std::nullopt, "--cameras"}, [&scratch] {
+      scratch.push_back(std::make_unique<HostParser>());
+      return std::unique_ptr<CLI::App>(std::move(scratch.back()->app));
+    });
+  } catch (const cli::ConfigError& e) {
+    err << e.what() << '\n';
+    return {std::nullopt, cli::kExitUsage};
+  }
+  if (const std::optional<int> status = cli::parse(*parser.app, all, out, err, [&parser] {
+        finish_options(parser.o, parser.cameras, parser.volume);
+      }))
+    return {std::nullopt, *status};
+  return {parser.o, 0};
 }
 
 }  // namespace syncap::host_app

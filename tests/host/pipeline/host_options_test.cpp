@@ -75,8 +75,8 @@ TEST(HostOptions, SearchRegionsNeedTheBodyAndTheKey) {
   EXPECT_NE(err.find("--search-regions: needs --body"), std::string::npos) << err;
   EXPECT_EQ(parse({"--calibration", calibration, "--body", "--search-regions"}, &err).exit_status,
             2);
-  EXPECT_NE(err.find("--search-regions: needs --key FILE"), std::string::npos) << err;
-  EXPECT_EQ(parse({"--calibration", calibration, "--body", "--search-regions", "--key",
+  EXPECT_NE(err.find("--search-regions: needs --command-key FILE"), std::string::npos) << err;
+  EXPECT_EQ(parse({"--calibration", calibration, "--body", "--search-regions", "--command-key",
                    "/nonexistent.key"},
                   &err)
                 .exit_status,
@@ -86,13 +86,44 @@ TEST(HostOptions, SearchRegionsNeedTheBodyAndTheKey) {
   std::remove(key.c_str());
   proto::CommandKey::generate().save(key, /*replace=*/true);
   const ParsedHostOptions p =
-      parse({"--calibration", calibration, "--body", "--search-regions", "--key", key,
+      parse({"--calibration", calibration, "--body", "--search-regions", "--command-key", key,
              "--search-margin", "30", "--search-frames", "20"});
   ASSERT_TRUE(p.options.has_value()) << err;
   EXPECT_TRUE(p.options->pipeline.search_regions.enabled);
   EXPECT_DOUBLE_EQ(p.options->pipeline.search_regions.stage.region.margin_px, 30);
   EXPECT_EQ(p.options->pipeline.search_regions.stage.valid_frames, 20);
   EXPECT_EQ(parse({"--search-frames", "0"}).exit_status, 2);
+  std::remove(key.c_str());
+}
+
+// The rig file (docs/guide/rig.md): its shared keys, its cameras' ids and its host: section,
+// with the command line over them; the old --key still works, saying it is deprecated.
+TEST(HostOptions, TheRigFileGivesTheHostItsCamerasSharedKeysAndSection) {
+  const std::string dir = ::testing::TempDir();
+  const std::string calibration = dir + "/rig_cameras.json", key = dir + "/rig_command.key";
+  std::ofstream(calibration) << "{}";
+  std::remove(key.c_str());
+  proto::CommandKey::generate().save(key, /*replace=*/true);
+  const std::string rig = dir + "/rig.yaml";
+  std::ofstream(rig) << "calibration: " << calibration << "\ncommand-key: " << key
+                     << "\ntrigger:\n  rate: 30\nedges:\n  mode: both\n"
+                        "cameras:\n  - camera-id: 1\n    board: cam1\n  - camera-id: 4\n"
+                        "host:\n  body: true\n  search-regions: true\n  max-lag: 20\n";
+  std::string err;
+  ParsedHostOptions p = parse({"--config", rig, "--max-lag", "25"}, &err);
+  ASSERT_TRUE(p.options.has_value()) << err;
+  EXPECT_EQ(p.options->cameras, (std::set<int>{1, 4}));
+  EXPECT_EQ(p.options->calibration, calibration);
+  EXPECT_TRUE(p.options->pipeline.body.enabled);
+  EXPECT_TRUE(p.options->pipeline.search_regions.enabled);
+  EXPECT_TRUE(p.options->files.key.has_value());
+  EXPECT_EQ(p.options->max_lag, 25);
+  std::ofstream(rig) << "host:\n  max-lag: many\n";
+  EXPECT_EQ(parse({"--config", rig}, &err).exit_status, 2);
+  EXPECT_NE(err.find(rig + ":2:3: key 'max-lag': "), std::string::npos) << err;
+  p = parse({"--key", key}, &err);
+  ASSERT_TRUE(p.options.has_value()) << err;
+  EXPECT_EQ(p.options->files.key_path, key);
   std::remove(key.c_str());
 }
 
@@ -126,11 +157,26 @@ TEST(HostOptions, HelpNamesEveryOption) {
   const ParsedHostOptions p = parse({"--help"}, &text);
   EXPECT_FALSE(p.options.has_value());
   EXPECT_EQ(p.exit_status, 0);
-  for (const char* option :
-       {"--cameras", "--max-lag", "--frames", "--until-last", "--idle-timeout", "--out",
-        "--lcm-url", "--quiet", "--calibration", "--volume", "--tolerance-px", "--sigma-px",
-        "--no-marker-message", "--keep-not-round", "--acceleration", "--search-regions", "--key",
-        "--search-margin", "--search-frames"})
+  for (const char* option : {"--cameras",
+                             "--max-lag",
+                             "--frames",
+                             "--until-last",
+                             "--idle-timeout",
+                             "--out",
+                             "--lcm-url",
+                             "--quiet",
+                             "--calibration",
+                             "--volume",
+                             "--tolerance-px",
+                             "--sigma-px",
+                             "--no-marker-message",
+                             "--keep-not-round",
+                             "--acceleration",
+                             "--search-regions",
+                             "--command-key",
+                             "--config",
+                             "--search-margin",
+                             "--search-frames"})
     EXPECT_NE(text.find(option), std::string::npos) << option;
 }
 

@@ -82,6 +82,26 @@ inline std::optional<int> parse_main(CLI::App& app, int argc, char** argv,
   return parse(app, args, std::cout, std::cerr, checks);
 }
 
+// An old name of an option, kept hidden from --help so that old command lines and config files
+// still run: it sets `target` as `new_name` would and says once on `notice` (stderr) that the
+// name is deprecated (docs/reference/cli.md, "Old names").
+template <class T>
+CLI::Option* deprecated_alias(CLI::App& app, const std::string& old_name,
+                              const std::string& new_name, T& target,
+                              std::ostream& notice = std::cerr) {
+  CLI::App* owner = &app;
+  return app
+      .add_option_function<T>(
+          old_name,
+          [owner, old_name, new_name, &target, &notice](const T& value) {
+            notice << owner->get_name() << ": " << old_name << " is deprecated, use " << new_name
+                   << '\n';
+            target = value;
+          },
+          "deprecated: " + new_name)
+      ->group("");
+}
+
 // The whole text as a finite number (strtod's forms). CLI11's own conversion takes "nan" and
 // "inf", and its Range lets NaN through.
 inline std::optional<double> finite_number(const std::string& text) {
