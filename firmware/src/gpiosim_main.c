@@ -111,6 +111,14 @@ int main(int argc, char** argv) {
     usage(stdout);
     return STATUS_OK;
   }
+  // It takes no options: one given is named, as every program names an unknown option.
+  for (int i = 1; i < argc; ++i) {
+    if (argv[i][0] == '-' && argv[i][1] != '\0') {
+      fprintf(stderr, "syncap-gpiosim: unknown option '%s'\n", argv[i]);
+      usage(stderr);
+      return STATUS_USAGE;
+    }
+  }
   if (argc < 3) {
     usage(stderr);
     return STATUS_USAGE;

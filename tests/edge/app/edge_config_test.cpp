@@ -186,6 +186,26 @@ TEST(EdgeConfigExample, TheShippedExampleParses) {
   EXPECT_EQ(o.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
 }
 
+std::string command_line_error(const std::vector<std::string>& args);
+
+// The rig file's example (docs/guide/rig.md): an edge takes the shared keys it has, the edges:
+// section and its camera's entry over it, and passes over the host's and the trigger's parts.
+TEST(EdgeConfigExample, TheShippedRigExampleGivesEachEdgeItsPart) {
+  const std::string rig = SYNCAP_SOURCE_DIR "/docs/examples/rig-8cam.yaml";
+  EdgeOptions o = parse_edge_options({"--config", rig, "--camera-id", "3"});
+  EXPECT_EQ(o.camera_id, 3);
+  EXPECT_EQ(o.source, "aravis:192.168.1.13");
+  EXPECT_EQ(o.exposure_us, 3000);  // its own entry over the edges: section's 2000
+  EXPECT_EQ(o.trigger_source, "Line1");
+  EXPECT_TRUE(o.blobs && o.mask);
+  EXPECT_EQ(o.command_key_path, "/etc/syncap/command.key");
+  EXPECT_EQ(o.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
+  o = parse_edge_options({"--config", rig, "--camera-id", "6", "--exposure-us", "500"});
+  EXPECT_EQ(o.source, "aravis:192.168.1.16");
+  EXPECT_EQ(o.exposure_us, 500);
+  EXPECT_EQ(command_line_error({"--config", rig}), "syncap-edge: --camera-id is required");
+}
+
 std::string command_line_error(const std::vector<std::string>& args) {
   try {
     parse_edge_options(args);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -125,6 +126,33 @@ TEST(HostOptions, TheRigFileGivesTheHostItsCamerasSharedKeysAndSection) {
   ASSERT_TRUE(p.options.has_value()) << err;
   EXPECT_EQ(p.options->files.key_path, key);
   std::remove(key.c_str());
+}
+
+// The rig file's example (docs/guide/rig.md), its /etc/syncap files put where the test can make
+// them: the host takes the shared keys, the cameras' ids and its section.
+TEST(HostOptions, TheShippedRigExampleParses) {
+  std::ifstream example(SYNCAP_SOURCE_DIR "/docs/examples/rig-8cam.yaml");
+  std::string text((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(text.empty());
+  const std::string dir = ::testing::TempDir() + "/rig_example";
+  std::filesystem::create_directories(dir);
+  for (std::size_t at; (at = text.find("/etc/syncap")) != std::string::npos;)
+    text.replace(at, 11, dir);
+  std::ofstream(dir + "/rig.yaml") << text;
+  std::ofstream(dir + "/cameras.json") << "{}";
+  std::remove((dir + "/command.key").c_str());
+  proto::CommandKey::generate().save(dir + "/command.key", /*replace=*/true);
+  std::string err;
+  const ParsedHostOptions p = parse({"--config", dir + "/rig.yaml"}, &err);
+  ASSERT_TRUE(p.options.has_value()) << err;
+  EXPECT_EQ(p.options->cameras, (std::set<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(p.options->max_lag, 10);
+  EXPECT_TRUE(p.options->pipeline.hull.enabled);
+  EXPECT_TRUE(p.options->pipeline.body.enabled);
+  EXPECT_TRUE(p.options->pipeline.search_regions.enabled);
+  ASSERT_TRUE(p.options->pipeline.markers.matching.volume.has_value());
+  EXPECT_EQ(p.options->pipeline.markers.matching.volume->max().z(), 2500);
+  EXPECT_EQ(p.options->lcm_url, "udpm://239.255.76.67:7667?ttl=1");
 }
 
 TEST(HostOptions, BadValuesExitTwoNamingTheOption) {

@@ -50,6 +50,14 @@ inline std::optional<Stop> try_parse(CLI::App& app, std::span<const std::string>
     if (checks) checks();
   } catch (const CLI::CallForHelp&) {
     return Stop{true, {}};
+  } catch (const CLI::RequiredError& e) {
+    // CLI11 checks the required options before the extras: an unknown option is the first
+    // thing to name (it may be the required one misspelt).
+    const std::vector<std::string> rest = app.remaining();
+    const auto unknown = std::ranges::find_if(
+        rest, [](const std::string& arg) { return arg.starts_with("-") && arg.size() > 1; });
+    if (unknown != rest.end()) return Stop{false, "unknown option '" + *unknown + "'"};
+    return Stop{false, e.what()};
   } catch (const CLI::ExtrasError&) {
     // Named as the argv loops did (CLI11 2.1 lists all that is left, back to front).
     const std::string first = app.remaining().front();
