@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "surface_check.hpp"
+#include "surface_limits.hpp"
 #include "syncap/cli/options.hpp"
 #include "true_body.hpp"
 
@@ -14,7 +15,32 @@ struct Options {
   std::string points, truth, json, errors;
   long frame = -1;
   double blunder_mm = 5.0;
+  syncap::compare::SurfaceLimits limits;
 };
+
+void add_limit_options(CLI::App& app, syncap::compare::SurfaceLimits& l) {
+  using syncap::cli::number_in;
+  app.add_option("--max-rms-mm", l.max_rms_mm, "pass: RMS on the true normal at most MM")
+      ->check(number_in(0, 1e6))
+      ->option_text("MM");
+  app.add_option("--min-points", l.min_points, "pass: at least N points")->option_text("N");
+  app.add_option("--max-blunder-fraction", l.max_blunder_fraction,
+                 "pass: blunders at most this share of the points (0.01 = 1 %)")
+      ->check(number_in(0, 1))
+      ->option_text("F");
+  app.add_option("--max-rms-error-over-sigma", l.max_rms_error_over_sigma,
+                 "pass: RMS of error/sigma at most R (the sigmas near honest)")
+      ->check(number_in(0, 1e6))
+      ->option_text("R");
+  app.add_option("--min-within-3-sigma", l.min_within_3_sigma,
+                 "pass: at least this share of the points within 3 sigma (0.9 = 90 %)")
+      ->check(number_in(0, 1))
+      ->option_text("F");
+  app.add_option("--min-gain-over-gc3", l.min_gain_over_gc3,
+                 "pass: least squares at least X times more precise than the GC3 peaks")
+      ->check(number_in(0, 1e6))
+      ->option_text("X");
+}
 
 }  // namespace
 
@@ -26,7 +52,9 @@ int main(int argc, char** argv) {
                "The surface points of `syncap match` on one frame of a syncap-sim render against\n"
                "the true body (DIR/truth/body.jsonl): each point's error along its ray from the\n"
                "ray's first true hit, on the true normal, and over its sigma.\n",
-               "Exit status: 0 done, 2 usage error or unreadable input (named).");
+               "With a --max-*/--min-* limit it ends with PASS or FAIL: the limits missed. Exit "
+               "status: 0 done (and passed), 1 a limit missed, 2 usage error or unreadable "
+               "input (named).");
   app.add_option("--points", o.points, "syncap match's points.csv")->required();
   app.add_option("--truth", o.truth, "the render folder (DIR/truth/body.jsonl)")->required();
   app.add_option("--frame", o.frame, "the frame the points were matched on")->required();
@@ -37,6 +65,7 @@ int main(int argc, char** argv) {
                  "write each point's errors (CSV, in points.csv's order: along the ray, on the "
                  "normal, sigma on the normal, the GC3 peak's on the normal)")
       ->option_text("FILE");
+  add_limit_options(app, o.limits);
   if (const auto status = cli::parse_main(app, argc, argv)) return *status;
   try {
     const auto bodies =
@@ -83,7 +112,15 @@ int main(int argc, char** argv) {
                              {"rms_normalised_by_sigma", e.rms_normalised_by_sigma}};
       std::ofstream(o.json) << j.dump() << '\n';
     }
-    return 0;
+    if (!o.limits.any()) return 0;
+    std::printf("frame %ld: least squares %.3f mm, their GC3 peaks %.3f mm: %.1fx\n", o.frame,
+                e.rms_normal_mm, e.sweep_rms_normal_mm,
+                e.rms_normal_mm > 0 ? e.sweep_rms_normal_mm / e.rms_normal_mm : 0.0);
+    const std::vector<std::string> failed = compare::surface_failures(e, o.limits);
+    std::string verdict = failed.empty() ? "PASS" : "FAIL: ";
+    for (std::size_t i = 0; i < failed.size(); ++i) verdict += (i ? "; " : "") + failed[i];
+    std::printf("frame %ld: %s\n", o.frame, verdict.c_str());
+    return failed.empty() ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "syncap-hil-surface-check: %s\n", e.what());
     return 2;
