@@ -55,11 +55,14 @@ std::string toml_camera(const sensor::CameraModel& camera) {
 
 std::string format_opencv_yaml(const std::vector<sensor::CameraModel>& cameras) {
   cv::FileStorage fs("calibration.yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-  fs << "camera_count" << static_cast<int>(cameras.size());
+  // A sequence `cameras`, the layout every program that reads OpenCV-style cameras reads
+  // (hull/views_io.hpp: syncap hull, syncap match).
+  fs << "cameras"
+     << "[";
   for (const sensor::CameraModel& camera : cameras) {
     sensor::ConversionResidual residual;
     const sensor::OpenCvCamera c = sensor::opencv_from_camera(camera, &residual);
-    fs << "camera_" + std::to_string(camera.id) << "{";
+    fs << "{";
     fs << "id" << camera.id;
     fs << "image_size" << c.image_size;
     fs << "camera_matrix" << cv::Mat(c.camera_matrix);
@@ -69,6 +72,7 @@ std::string format_opencv_yaml(const std::vector<sensor::CameraModel>& cameras) 
     fs << "fit_rms_px" << residual.rms_px;
     fs << "}";
   }
+  fs << "]";
   return fs.releaseAndGetString();
 }
 

@@ -1,6 +1,10 @@
 #include "calibration/exports.hpp"
 
 #include <gtest/gtest.h>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include "hull/views_io.hpp"
 
 #include <regex>
 
@@ -27,9 +31,11 @@ TEST(OpenCvYaml, ReadsBackIntoCamerasThatProjectLikeOurs) {
   const std::vector<sensor::CameraModel> cameras{basler(0, 0.0), basler(3, 0.0)};
   cv::FileStorage fs(format_opencv_yaml(cameras), cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ASSERT_TRUE(fs.isOpened());
-  EXPECT_EQ(static_cast<int>(fs["camera_count"]), 2);
-  const cv::FileNode node = fs["camera_3"];
+  ASSERT_TRUE(fs["cameras"].isSeq());
+  ASSERT_EQ(fs["cameras"].size(), 2u);
+  const cv::FileNode node = fs["cameras"][1];
   ASSERT_FALSE(node.empty());
+  EXPECT_EQ(static_cast<int>(node["id"]), 3);
   cv::Mat k, dist, rvec, tvec;
   cv::Size size;
   node["camera_matrix"] >> k;
@@ -47,6 +53,28 @@ TEST(OpenCvYaml, ReadsBackIntoCamerasThatProjectLikeOurs) {
   EXPECT_NEAR(theirs[0].x, ours.pixel.x(), 1e-6);
   EXPECT_NEAR(theirs[0].y, ours.pixel.y(), 1e-6);
   EXPECT_NEAR(static_cast<double>(node["fit_rms_px"]), 0.0, 1e-9);
+}
+
+// What syncap calibrate writes is what syncap hull and syncap match read (hull/views_io.hpp):
+// the same cameras, projecting as ours, with their ids.
+TEST(OpenCvYaml, TheHullAndMatchingReadItBack) {
+  const std::vector<sensor::CameraModel> cameras{basler(0, 0.0), basler(3, 0.0)};
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "yaml_back";
+  std::filesystem::create_directories(dir / "images");
+  std::ofstream(dir / "cameras.opencv.yaml") << format_opencv_yaml(cameras);
+  for (const char* name : {"a.png", "b.png"})
+    cv::imwrite((dir / "images" / name).string(), cv::Mat(1024, 1280, CV_8UC1, cv::Scalar(0)));
+  const std::vector<hull::HullView> views =
+      hull::read_camera_views(dir / "cameras.opencv.yaml", dir / "images");
+  ASSERT_EQ(views.size(), 2u);
+  const Eigen::Vector3d point(3200.0, 400.0, 900.0);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(views[i].camera.id, cameras[i].id);
+    const auto ours = cameras[i].project(point);
+    const auto read = views[i].camera.project(point);
+    ASSERT_TRUE(ours.ok() && read.ok());
+    EXPECT_NEAR((ours.pixel - read.pixel).norm(), 0.0, 1e-6);
+  }
 }
 
 std::vector<double> toml_values(const std::string& toml, const std::string& table,
