@@ -1,6 +1,6 @@
 # The processes of hil/run and the faults it injects into them (sourced by hil/run, not run).
 # Uses hil/run's variables: bin, out, render, chip, ids, rate, frames, cameras, fault, fault_at,
-# host_url, detection, edge_mask_args, pids.
+# board_url, host_url, detection, edge_mask_args, host_hull_args, scenario, pids.
 
 edge_pids=() fakecam_pids=() host_pid="" host_log="" trigger_pid="" trigger_log=""
 fault_camera=1        # whose edge is killed, whose fake camera is unplugged
@@ -24,14 +24,46 @@ impairment_of() {
   esac
 }
 
+# yaml_lines ARGS...: command-line options (`--key value`, `--flag`) as a rig section's
+# `  key: value` lines (a flag: true).
+yaml_lines() {
+  while [ $# -gt 0 ]; do
+    if [ $# -gt 1 ] && [[ "$2" != --* ]]; then
+      printf '  %s: "%s"\n' "${1#--}" "$2"
+      shift 2
+    else
+      printf '  %s: true\n' "${1#--}"
+      shift
+    fi
+  done
+}
+
+# write_rig FILE: the run's installation as a rig file (docs/guide/rig.md), read by the host
+# and every edge as on a lab's machines: the scene's true cameras (render/cameras.json), each
+# camera's fake GigE address, the edges' and the host's options.
+write_rig() {
+  {
+    echo "# hil/run's rig: $(basename "$scenario" .yaml), $cameras cameras"
+    echo "calibration: \"$render/cameras.json\""
+    echo "edges:"
+    # Retro-reflective targets and the LED are far above the lit room (<= 190 DN): threshold 200.
+    yaml_lines --lcm-url "$board_url" --exit-after-last --threshold 200 --detection "$detection" \
+      "${edge_mask_args[@]}"
+    echo "cameras:"
+    for ((c = 0; c < cameras; c++)); do
+      echo "  - {camera-id: $c, board: board-$c, source: \"aravis:127.0.0.$((c + 2))\"}"
+    done
+    echo "host:"
+    yaml_lines --until-last --idle-timeout-s 15 --max-lag 30 --lcm-url "$host_url" \
+      "${host_hull_args[@]}"
+  } > "$1"
+}
+
 # start_host GROUPS LOG
 # The host reconstructs the markers (and, with a person, its hull) live with the scene's true
-# cameras (render/cameras.json);
-# syncap-hil-compare scores them against the true targets.
+# cameras, as the rig file says; syncap-hil-compare scores them against the true targets.
 start_host() {
-  "$bin/syncap-host" --cameras "$ids" --until-last --idle-timeout 15 --max-lag 30 \
-    --calibration "$render/cameras.json" --lcm-url "$host_url" --out "$1" "${host_hull_args[@]}" \
-    > "$2" 2>&1 &
+  "$bin/syncap-host" --config "$out/rig.yaml" --out "$1" > "$2" 2>&1 &
   host_pid=$!
   host_log=$2
   pids+=("$host_pid")
@@ -52,9 +84,7 @@ start_edge() {
   shift
   cam=$(printf %02d "$c")
   [ $# -eq 0 ] || echo "+0" > "$out/faketime"
-  # Retro-reflective targets and the LED are far above the lit room (<= 190 DN): threshold 200.
-  "$@" "$bin/syncap-edge" --camera-id "$c" --source "aravis:127.0.0.$((c + 2))" --exit-after-last \
-    --threshold 200 --detection "$detection" "${edge_mask_args[@]}" >> "$out/edge$cam.log" 2>&1 &
+  "$@" "$bin/syncap-edge" --config "$out/rig.yaml" --camera-id "$c" >> "$out/edge$cam.log" 2>&1 &
   edge_pids[c]=$!
   pids+=("$!")
 }

@@ -78,7 +78,7 @@ fi
 # ring's fitted body (syncap fit's frame lines) and its calibration go into one more.
 if [ -s "$ring_out/calibrated-body/body.jsonl" ] && [ -x "$build/py-venv/bin/python3" ]; then
   "$build/bin/syncap" view --groups "$ring_out/calibrated-body/body.jsonl" \
-    --calibration "$ring_out/calibration" --save "$ring_out/body.rrd" --quiet > "$ring_out/body-view.log" 2>&1 ||
+    --calibration-dir "$ring_out/calibration" --save "$ring_out/body.rrd" --quiet > "$ring_out/body-view.log" 2>&1 ||
     echo "demo: syncap view of the body failed, see $ring_out/body-view.log"
 fi
 recordings=()
@@ -90,7 +90,7 @@ if [ ${#recordings[@]} -gt 0 ]; then
   echo "      markers, the hulls' boxes, the fitted skeleton and the calibration's residuals:"
   echo "      $build/py-venv/bin/rerun ${recordings[*]}"
   echo "      in a browser, replayed: $build/bin/syncap view --input lcmlog:$ring_out/traffic.lcmlog \\"
-  echo "        --calibration $ring_out/calibration --web    (then open the address it prints)"
+  echo "        --calibration-dir $ring_out/calibration --web    (then open the address it prints)"
 else
   echo "demo: no Rerun recordings (the viewer's venv is missing: scripts/py-deps.sh)"
 fi

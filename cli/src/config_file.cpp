@@ -35,8 +35,11 @@ class Reader {
   // that option; otherwise the key must be one.
   void add(const YAML::Node& key, const YAML::Node& value, bool shared) {
     if (!key.IsScalar()) throw error(key, "a key must be text");
-    const std::string name = key.Scalar();
-    const std::string where = place(file_, key.Mark()) + ": key '" + name + "'";
+    const std::string given = key.Scalar();
+    const std::string where = place(file_, key.Mark()) + ": key '" + given + "'";
+    // An old name is taken as its new one (App::deprecated_name).
+    const auto* ours = dynamic_cast<const App*>(names_.get());
+    const std::string name = ours ? ours->current_name("--" + given).substr(2) : given;
     const CLI::Option* option = names_->get_option_no_throw("--" + name);
     if (option == nullptr || name == "help" || name == "config") {
       if (shared) return;

@@ -143,10 +143,11 @@ void parse_frame_range(const std::string& text, CalibrateArgs& a) {
 constexpr const char* kDescription =
     "Calibrates the cameras from wand (or LED) observations and writes the calibration folder "
     "(docs/design/calibration.md).\n"
-    "usage: syncap calibrate --input SOURCE (--wand-length MM | --led) --out DIR [options]\n"
+    "usage: syncap calibrate --input SOURCE (--wand-length MM | --led) --out-dir DIR [options]\n"
     "SOURCE:\n"
-    "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --cameras; stops\n"
-    "                 at Ctrl-C, after --frames groups, or --idle-timeout s without blob frames\n"
+    "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --camera-ids; "
+    "stops\n"
+    "                 at Ctrl-C, after --frames groups, or --idle-timeout-s without blob frames\n"
     "  lcmlog:FILE    blob frames recorded by lcm-logger (hil/run: OUT/traffic.lcmlog)\n"
     "  csv:FILE       frame,camera,x,y[,point] in pixels (point: target index from end A)\n"
     "  mcsc:DIR       a MultiCamSelfCal folder (points.dat, Res.dat, camera_order.txt)\n"
@@ -167,9 +168,9 @@ void add_source_options(CLI::App& app, CalibrateArgs& a) {
   app.add_option("--input", a.input, "lcm:URL, lcmlog:FILE, csv:FILE or mcsc:DIR (above)")
       ->option_text("SOURCE")
       ->required();
-  app.add_option("--out", a.out, "the calibration folder")->option_text("DIR")->required();
+  app.add_option("--out-dir", a.out, "the calibration folder")->option_text("DIR")->required();
   app.add_option_function<std::string>(
-         "--cameras", [&a](const std::string& t) { a.cameras = host_app::parse_camera_list(t); },
+         "--camera-ids", [&a](const std::string& t) { a.cameras = host_app::parse_camera_list(t); },
          "camera ids to wait for in each frame group (lcm:, lcmlog:; for a\n"
          "log default: every camera in it)")
       ->option_text("LIST");
@@ -180,7 +181,7 @@ void add_source_options(CLI::App& app, CalibrateArgs& a) {
       ->option_text("A-B");
   cli::add_checked(app, "--frames", a.frames, "N", cli::whole_in(0, 1'000'000'000'000),
                    "lcm: stop after N frame groups (default 0: no limit)");
-  cli::add_checked(app, "--idle-timeout", a.idle_timeout_s, "S", cli::finite(),
+  cli::add_checked(app, "--idle-timeout-s", a.idle_timeout_s, "S", cli::finite(),
                    "lcm: stop S seconds after the last blob frame (default 5)");
   app.add_flag("--progress", a.progress,
                "print progress on stderr (default: only when stderr is a terminal)");
@@ -287,6 +288,9 @@ void check_args(CalibrateArgs& a) {
 std::optional<int> parse_args(std::span<const std::string> args, CalibrateArgs& a,
                               std::ostream& out, std::ostream& err) {
   cli::App app("syncap calibrate", kDescription, kFooter);
+  app.deprecated_name("--cameras", "--camera-ids");
+  app.deprecated_name("--out", "--out-dir");
+  app.deprecated_name("--idle-timeout", "--idle-timeout-s");
   app.get_formatter()->column_width(34);
   add_source_options(app, a);
   add_wand_options(app, a);
@@ -354,7 +358,7 @@ calibration::Observations read_lcm_log(const std::string& file, const CalibrateA
 
 calibration::Observations read_live(const std::string& url, const CalibrateArgs& a,
                                     std::ostream& err, bool progress) {
-  if (a.cameras.empty()) throw UsageError{"lcm: needs --cameras (the ids to wait for)"};
+  if (a.cameras.empty()) throw UsageError{"lcm: needs --camera-ids (the ids to wait for)"};
   lcm::LCM lcm(proto::receiving_lcm_url(url));
   if (!lcm.good()) throw calibration::ObservationError("lcm:" + url + ": cannot open LCM");
   calibration::BlobFrameCollector collector("lcm:" + url, a.cameras);
@@ -448,7 +452,7 @@ int calibrate_command(std::span<const std::string> args, std::ostream& out, std:
   if (const auto status = parse_args(args, a, out, err)) return *status;
   // Checked before the input is read: a calibration can take minutes.
   if (const std::string problem = unwritable_folder(a.out); !problem.empty()) {
-    err << kPrefix << "--out " << a.out << ": " << problem << '\n';
+    err << kPrefix << "--out-dir " << a.out << ": " << problem << '\n';
     return kExitUsage;
   }
   const bool progress = a.progress || (&err == &std::cerr && ::isatty(STDERR_FILENO));

@@ -52,8 +52,9 @@ std::array<double, 6> parse_volume(const std::string& text) {
 }
 
 constexpr const char* kDescription =
-    "usage: syncap clip --cameras FILE --volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [--floor] [options]\n"
-    "       syncap clip --cameras FILE --remove [--floor] [options]\n"
+    "usage: syncap clip --calibration FILE --volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [--floor] "
+    "[options]\n"
+    "       syncap clip --calibration FILE --remove [--floor] [options]\n"
     "Projects the capture volume (mm, the cameras' object frame) into every camera of FILE\n"
     "(cameras.json) and prints each camera's clip polygon as a JSON line; with --publish sends\n"
     "it to the camera's edge process, whose masking then treats pixels outside it as background.\n"
@@ -61,14 +62,14 @@ constexpr const char* kDescription =
     "--floor-extent): the edge then calls only pixels on the floor shadow.\n";
 
 void add_clip_options(CLI::App& app, ClipArgs& a) {
-  app.add_option("--cameras", a.cameras, "the calibration, cameras.json")
+  app.add_option("--calibration", a.cameras, "the calibration, cameras.json")
       ->option_text("FILE")
       ->required();
   app.add_option_function<std::string>(
          "--volume", [&a](const std::string& t) { a.volume = parse_volume(t); },
          "the capture volume in mm, the cameras' object frame")
       ->option_text("XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX");
-  cli::add_checked(app, "--margin", a.margin_px, "PX", cli::number_in(0, 1000),
+  cli::add_checked(app, "--margin-px", a.margin_px, "PX", cli::number_in(0, 1000),
                    "grow each outline by PX pixels (default 8)");
   app.add_option("--camera", a.only, "only this camera (repeatable)")
       ->option_text("ID")
@@ -82,8 +83,8 @@ void add_clip_options(CLI::App& app, ClipArgs& a) {
                    "--floor: grow the volume's floor by MM on every side, as\n"
                    "shadows fall beyond the volume (default 1000)");
   app.add_flag("--publish", a.publish,
-               "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key");
-  app.add_option("--key", a.key_path,
+               "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --command-key");
+  app.add_option("--command-key", a.key_path,
                  "the installation's command key (syncap keygen; needed by --publish:\n"
                  "an edge applies only signed polygons, docs/design/security.md)")
       ->option_text("FILE");
@@ -96,7 +97,8 @@ void check_clip_args(const ClipArgs& a) {
   if (a.volume.has_value() == a.remove)
     throw CLI::ValidationError("give either --volume or --remove");
   if (a.publish && a.key_path.empty())
-    throw CLI::ValidationError("--publish needs --key FILE: an edge applies only signed polygons");
+    throw CLI::ValidationError(
+        "--publish needs --command-key FILE: an edge applies only signed polygons");
 }
 
 // The exit statuses, below the options in --help.
@@ -108,6 +110,9 @@ constexpr const char* kFooter =
 std::optional<int> parse_clip_args(std::span<const std::string> args, ClipArgs& a,
                                    std::ostream& out, std::ostream& err) {
   cli::App app("syncap clip", kDescription, kFooter);
+  app.deprecated_name("--cameras", "--calibration");
+  app.deprecated_name("--margin", "--margin-px");
+  app.deprecated_name("--key", "--command-key");
   add_clip_options(app, a);
   return cli::parse(app, args, out, err, [&a] { check_clip_args(a); });
 }

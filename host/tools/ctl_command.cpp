@@ -81,7 +81,7 @@ struct CtlArgs {
 
 void add_ctl_options(CLI::App& app, CtlArgs& a) {
   app.add_option("action", a.action, "the action and its value")->required();
-  app.add_option("--key", a.key_path, "the installation's command key (syncap keygen)");
+  app.add_option("--command-key", a.key_path, "the installation's command key (syncap keygen)");
   app.add_option("--camera", a.camera, "a camera id 0..99, or all (default)");
   app.add_option("--lcm-url", a.lcm_url, "LCM provider (default " + a.lcm_url + ")");
   app.add_option("--wait-s", a.wait_s,
@@ -99,6 +99,7 @@ std::optional<int> parse_ctl_args(std::span<const std::string> args, CtlArgs& a,
                    std::string(kActions),
                "Exit status: 0 every camera that answered obeyed, 1 otherwise, 2 a usage error.");
   add_ctl_options(app, a);
+  app.deprecated_name("--key", "--command-key");
   return cli::parse(app, args, out, err);
 }
 
@@ -219,7 +220,8 @@ int ctl_command(std::span<const std::string> args, std::ostream& out, std::ostre
     if (a.action[0] != "status")
       command = command_of_action(a.action[0], std::span(a.action).subspan(1));
     if (a.action[0] != "status" && a.key_path.empty())
-      throw std::invalid_argument("--key FILE is required to command the edges (syncap keygen)");
+      throw std::invalid_argument(
+          "--command-key FILE is required to command the edges (syncap keygen)");
   } catch (const std::invalid_argument& e) {
     err << kCtlName << ": " << e.what() << '\n' << kActions << '\n';
     return kExitUsage;
@@ -228,7 +230,7 @@ int ctl_command(std::span<const std::string> args, std::ostream& out, std::ostre
   try {
     if (!a.key_path.empty()) signer.emplace(proto::CommandKey::load(a.key_path));
   } catch (const proto::CommandKeyError& e) {
-    err << kCtlName << ": --key " << e.what() << '\n';
+    err << kCtlName << ": --command-key " << e.what() << '\n';
     return kExitUsage;
   }
   lcm::LCM lcm(proto::receiving_lcm_url(a.lcm_url));

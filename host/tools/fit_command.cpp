@@ -50,8 +50,8 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
   app.add_option("--calibration", a.calibration, "cameras.json")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("--out", a.out, "the output folder")->required();
-  app.add_option("--cameras", a.cameras, "expected camera ids (default: the calibration's)");
+  app.add_option("--out-dir", a.out, "the output folder")->required();
+  app.add_option("--camera-ids", a.cameras, "expected camera ids (default: the calibration's)");
   controllers::PipelineOptions& p = a.pipeline;
   p.markers.enabled = false;  // the body only
   p.body.enabled = true;
@@ -66,6 +66,9 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
   app.add_option("--leave-out-silhouettes", a.silhouette_gap,
                  "CAMERA:FIRST:LAST: replay without that camera's silhouettes for those frames "
                  "(the robustness check of a camera's masks missing for a while)");
+  app.deprecated_name("--cameras", "--camera-ids");
+  app.deprecated_name("--out", "--out-dir");
+  app.deprecated_name("--body-point-sigma", "--body-point-sigma-mm");
   return cli::parse(app, args, out, err, [&] {
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");

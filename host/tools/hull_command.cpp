@@ -23,7 +23,7 @@ struct HullArgs {
   std::string cameras;
   std::string masks;
   std::string out;
-  std::string method = "exact";
+  std::string method = "polyhedral";
   double simplify_px = hull::kDefaultSimplifyPx;
   int threshold = -1;  // none: any non-zero pixel
   int resolution = hull::VoxelOptions{}.resolution;
@@ -31,7 +31,7 @@ struct HullArgs {
 };
 
 constexpr const char* kDescription =
-    "usage: syncap hull --cameras FILE|DIR --masks DIR --out DIR [options]\n"
+    "usage: syncap hull --calibration FILE|DIR --masks DIR --out-dir DIR [options]\n"
     "The visual hull of one mask per camera: the exact intersection of the silhouettes' viewing\n"
     "cones (CGAL corefinement, or the polyhedral method: the same solid face by face, fast) or\n"
     "the voxel baseline. Cameras: cameras.json (its cameras in file order), an OpenCV-style\n"
@@ -48,7 +48,7 @@ constexpr const char* kFooter =
     "(named: file, camera).";
 
 void add_hull_options(CLI::App& app, HullArgs& a) {
-  app.add_option("--cameras", a.cameras,
+  app.add_option("--calibration", a.cameras,
                  "cameras.json, an OpenCV-style .yaml/.yml/.json, or a folder of *.pa projection "
                  "matrices")
       ->option_text("FILE|DIR")
@@ -56,7 +56,7 @@ void add_hull_options(CLI::App& app, HullArgs& a) {
   app.add_option("--masks", a.masks, "the folder of mask images, one per camera in name order")
       ->option_text("DIR")
       ->required();
-  app.add_option("--out", a.out, "the folder for hull.ply and hull.obj (created)")
+  app.add_option("--out-dir", a.out, "the folder for hull.ply and hull.obj (created)")
       ->option_text("DIR")
       ->required();
   cli::add_checked(app, "--method", a.method, "exact|polyhedral|voxel",
@@ -64,7 +64,7 @@ void add_hull_options(CLI::App& app, HullArgs& a) {
                    "exact (default): intersect the viewing cones by corefinement; polyhedral:\n"
                    "the same intersection cone face by cone face; voxel: octree carving and\n"
                    "marching tetrahedra");
-  cli::add_checked(app, "--simplify", a.simplify_px, "PX", cli::number_in(0, 100),
+  cli::add_checked(app, "--simplify-px", a.simplify_px, "PX", cli::number_in(0, 100),
                    "contour simplification, cv::approxPolyDP's epsilon in pixels (default " +
                        cli::number_text(a.simplify_px) + ")");
   cli::add_checked(app, "--threshold", a.threshold, "N", cli::whole_in<int>(0, 254),
@@ -80,6 +80,9 @@ void add_hull_options(CLI::App& app, HullArgs& a) {
 std::optional<int> parse_hull_args(std::span<const std::string> args, HullArgs& a,
                                    std::ostream& out, std::ostream& err) {
   cli::App app("syncap hull", kDescription, kFooter);
+  app.deprecated_name("--cameras", "--calibration");
+  app.deprecated_name("--out", "--out-dir");
+  app.deprecated_name("--simplify", "--simplify-px");
   add_hull_options(app, a);
   return cli::parse(app, args, out, err);
 }

@@ -48,8 +48,8 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   app.add_option("--calibration", a.calibration, "cameras.json")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("--out", a.out, "the output folder")->required();
-  app.add_option("--cameras", a.cameras, "expected camera ids (default: the calibration's)");
+  app.add_option("--out-dir", a.out, "the output folder")->required();
+  app.add_option("--camera-ids", a.cameras, "expected camera ids (default: the calibration's)");
   app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
       ->delimiter(',')
       ->expected(6);
@@ -59,6 +59,9 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   p.hull.stage.max_wait_ms = 0;  // offline: every frame gets its hull, however long it took
   host_app::add_hull_options(app, p.hull);
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
+  app.deprecated_name("--cameras", "--camera-ids");
+  app.deprecated_name("--out", "--out-dir");
+  app.deprecated_name("--acceleration", "--acceleration-m-s2");
   return cli::parse(app, args, out, err, [&] {
     if (!a.input.starts_with("lcmlog:"))
       throw CLI::ValidationError("--input", "expected lcmlog:FILE");

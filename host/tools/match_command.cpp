@@ -39,7 +39,8 @@ struct MatchArgs {
 };
 
 constexpr const char* kDescription =
-    "usage: syncap match --cameras FILE|DIR --images DIR --masks DIR|--hull FILE --out DIR\n"
+    "usage: syncap match --calibration FILE|DIR --images DIR --masks DIR|--hull FILE --out-dir "
+    "DIR\n"
     "The surface of the object the cameras see, by geometrically constrained cross-correlation\n"
     "(GC3) along each seed's 3D scan line and multi-image least-squares matching constrained\n"
     "to one 3D point (docs/design/matching.md). Seeds: a grid in each image on the visual hull "
@@ -59,7 +60,7 @@ constexpr const char* kFooter =
 
 void add_match_options(CLI::App& app, MatchArgs& a) {
   ms::SurfaceMatchingOptions& o = a.options;
-  app.add_option("--cameras", a.cameras,
+  app.add_option("--calibration", a.cameras,
                  "cameras.json, an OpenCV-style .yaml/.yml/.json, or a folder of *.pa projection "
                  "matrices")
       ->option_text("FILE|DIR")
@@ -73,7 +74,7 @@ void add_match_options(CLI::App& app, MatchArgs& a) {
   auto* hull = app.add_option("--hull", a.hull, "the object's hull mesh (PLY or OBJ) instead")
                    ->option_text("FILE");
   masks->excludes(hull);
-  app.add_option("--out", a.out, "the folder for points.ply and points.csv (created)")
+  app.add_option("--out-dir", a.out, "the folder for points.ply and points.csv (created)")
       ->option_text("DIR")
       ->required();
   cli::add_checked(app, "--threshold", a.threshold, "N", cli::whole_in<int>(0, 254),
@@ -107,6 +108,8 @@ void add_match_options(CLI::App& app, MatchArgs& a) {
 std::optional<int> parse_match_args(std::span<const std::string> args, MatchArgs& a,
                                     std::ostream& out, std::ostream& err) {
   cli::App app("syncap match", kDescription, kFooter);
+  app.deprecated_name("--cameras", "--calibration");
+  app.deprecated_name("--out", "--out-dir");
   add_match_options(app, a);
   if (const auto status = cli::parse(app, args, out, err)) return status;
   if (a.masks.empty() && a.hull.empty()) {

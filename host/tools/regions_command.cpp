@@ -33,10 +33,11 @@ struct RegionsArgs {
 };
 
 constexpr const char* kDescription =
-    "usage: syncap regions --cameras FILE --bodies FRAMES.jsonl [options]\n"
+    "usage: syncap regions --calibration FILE --bodies FRAMES.jsonl [options]\n"
     "For every frame of FRAMES.jsonl (syncap-host --out, or syncap fit's body.jsonl) with a\n"
     "fitted body: each camera of FILE (cameras.json) gets the body's ellipsoids projected and\n"
-    "grown by --margin as its search region, for the frames F+LEAD .. F+LEAD+N-1. Prints each as\n"
+    "grown by --margin-px as its search region, for the frames F+LEAD .. F+LEAD+N-1. Prints each "
+    "as\n"
     "a JSON line (clip_polygon_t, region \"search\"; syncap segment-eval --regions reads them);\n"
     "with --publish sends them to the edges, which then classify only inside.\n";
 
@@ -45,13 +46,13 @@ constexpr const char* kFooter =
     "2 usage error or unreadable FILE.";
 
 void add_regions_options(CLI::App& app, RegionsArgs& a) {
-  app.add_option("--cameras", a.cameras, "the calibration, cameras.json")
+  app.add_option("--calibration", a.cameras, "the calibration, cameras.json")
       ->option_text("FILE")
       ->required();
   app.add_option("--bodies", a.bodies, "the frame lines with the fitted bodies")
       ->option_text("FRAMES.jsonl")
       ->required();
-  cli::add_checked(app, "--margin", a.region.margin_px, "PX", cli::number_in(0, 1000),
+  cli::add_checked(app, "--margin-px", a.region.margin_px, "PX", cli::number_in(0, 1000),
                    "grow each region by PX pixels (default 25)");
   cli::add_checked(app, "--lead", a.lead, "N", cli::whole_in(0, 1000),
                    "a fit of frame F serves from frame F+N on (default 1)");
@@ -62,8 +63,8 @@ void add_regions_options(CLI::App& app, RegionsArgs& a) {
       ->allow_extra_args(false)
       ->transform(cli::whole_in(0, proto::kMaxCameraId));
   app.add_flag("--publish", a.publish,
-               "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --key");
-  app.add_option("--key", a.key_path,
+               "send clip_polygon_t on SYNCAP_EDGE_CLIP, signed with --command-key");
+  app.add_option("--command-key", a.key_path,
                  "the installation's command key (syncap keygen; needed by --publish)")
       ->option_text("FILE");
   app.add_option("--lcm-url", a.lcm_url, "LCM provider for --publish (default " + a.lcm_url + ")")
@@ -107,11 +108,14 @@ SearchRegionMessages search_region_messages(const std::vector<io::FrameRecord>& 
 int regions_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
   RegionsArgs a;
   cli::App app("syncap regions", kDescription, kFooter);
+  app.deprecated_name("--cameras", "--calibration");
+  app.deprecated_name("--margin", "--margin-px");
+  app.deprecated_name("--key", "--command-key");
   add_regions_options(app, a);
   if (const auto status = cli::parse(app, args, out, err, [&a] {
         if (a.publish && a.key_path.empty())
           throw CLI::ValidationError(
-              "--publish needs --key FILE: an edge applies only signed "
+              "--publish needs --command-key FILE: an edge applies only signed "
               "regions");
       })) {
     return *status;

@@ -135,17 +135,27 @@ TEST(ConfigPath, TheLastConfigOptionInEitherForm) {
   EXPECT_EQ(config_path(Args{"--config=b.yaml", "--config", "a.yaml"}), "a.yaml");
 }
 
-TEST(DeprecatedAlias, SetsTheTargetAndSaysSoOnce) {
-  App app("prog", "", "");
-  std::string key;
-  app.add_option("--command-key", key);
-  std::ostringstream notice;
-  deprecated_alias(app, "--key", "--command-key", key, notice);
+TEST(DeprecatedName, IsTakenAsTheNewNameOnTheCommandLineAndInAFile) {
+  Program p;
+  p.app->deprecated_name("--limit", "--threshold");
   std::ostringstream out, err;
-  EXPECT_EQ(parse(app, Args{"--key", "k.key"}, out, err), std::nullopt);
-  EXPECT_EQ(key, "k.key");
-  EXPECT_EQ(notice.str(), "prog: --key is deprecated, use --command-key\n");
-  EXPECT_EQ(app.help().find("--key "), std::string::npos) << app.help();
+  EXPECT_EQ(parse(*p.app, Args{"--limit", "40"}, out, err), std::nullopt) << err.str();
+  EXPECT_EQ(p.threshold, 40);
+  EXPECT_EQ(parse(*p.app, Args{"--limit=300"}, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--threshold: '300'"), std::string::npos) << err.str();
+  EXPECT_EQ(p.app->help().find("--limit"), std::string::npos);
+  EXPECT_EQ(p.app->current_name("--limit"), "--threshold");
+  EXPECT_EQ(p.app->current_name("--quiet"), "--quiet");
+}
+
+TEST_F(ConfigFileTest, AnOldNameIsTakenAsItsNewOneInAFile) {
+  write("limit: 20\n");
+  const std::vector<std::string> args = config_arguments("prog", file_.string(), {"host"}, [this] {
+    programs_.push_back(std::make_unique<Program>());
+    programs_.back()->app->deprecated_name("--limit", "--threshold");
+    return std::unique_ptr<CLI::App>(std::move(programs_.back()->app));
+  });
+  EXPECT_EQ(args, Args{"--threshold=20"});
 }
 
 }  // namespace

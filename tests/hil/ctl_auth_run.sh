@@ -29,7 +29,7 @@ sleep 1.2  # the edge is up and subscribed
 
 # A stranger's key: refused (with the next heartbeat), exit 1, the edge still acquiring.
 status=0
-"$syncap" ctl stop --camera 5 --key "$out/stranger.key" > "$out/stranger.out" 2>&1 || status=$?
+"$syncap" ctl stop --camera 5 --command-key "$out/stranger.key" > "$out/stranger.out" 2>&1 || status=$?
 cat "$out/stranger.out"
 [ "$status" -eq 1 ] || fail "a command signed with another key: exit $status, expected 1"
 grep -q "camera 5: refused: not signed with this installation's key" "$out/stranger.out" ||
@@ -37,7 +37,7 @@ grep -q "camera 5: refused: not signed with this installation's key" "$out/stran
 grep -q "acquiring" "$out/stranger.out" || fail "the forged STOP stopped the camera"
 
 # The installation's key: obeyed and acknowledged at once.
-"$syncap" ctl stop --camera 5 --key "$out/command.key" > "$out/genuine.out" 2>&1 ||
+"$syncap" ctl stop --camera 5 --command-key "$out/command.key" > "$out/genuine.out" 2>&1 ||
   fail "the signed STOP was not acknowledged: $(cat "$out/genuine.out")"
 cat "$out/genuine.out"
 grep -q "camera 5: accepted (idle" "$out/genuine.out" || fail "no acknowledgement of the STOP"
@@ -54,7 +54,7 @@ grep -q "1 commands obeyed, 3 refused" "$out/after.out" ||
   fail "the replayed STOPs were not refused and counted (expected 1 obeyed, 3 refused)"
 grep -q "refused: replayed" "$out/edge.log" || fail "the edge did not log the replay as one"
 
-"$syncap" ctl shutdown --camera 5 --key "$out/command.key" > "$out/shutdown.out" 2>&1 ||
+"$syncap" ctl shutdown --camera 5 --command-key "$out/command.key" > "$out/shutdown.out" 2>&1 ||
   fail "shutdown not acknowledged: $(cat "$out/shutdown.out")"
 wait "$edge" || fail "syncap-edge exited $? after SHUTDOWN"
 trap - EXIT

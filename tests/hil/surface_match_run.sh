@@ -33,8 +33,8 @@ for f in "${frames[@]}"; do
     ln -s "$cam/$name.pgm" "$dir/images/$c.pgm"
     ln -s "$render/truth/masks/$c/$(printf 'mask_%06d' "$f").png" "$dir/masks/$c.png"
   done
-  "$build/bin/syncap" match --cameras "$render/cameras.json" --images "$dir/images" \
-    --masks "$dir/masks" --out "$dir/match" > "$dir/match.log"
+  "$build/bin/syncap" match --calibration "$render/cameras.json" --images "$dir/images" \
+    --masks "$dir/masks" --out-dir "$dir/match" > "$dir/match.log"
   # The limits live in the checker.
   "$build/bin/syncap-hil-surface-check" --points "$dir/match/points.csv" --truth "$render" \
     --frame "$f" --json "$dir/check.json" --max-rms-mm 1.5 --min-points 100 \

@@ -179,7 +179,7 @@ TEST_F(ClipCommandTest, BadArgumentsAndFilesAreNamed) {
 TEST_F(ClipCommandTest, PublishedPolygonsAreSignedWithTheKey) {
   ClipRun r = run({"--cameras", file_.string(), "--remove", "--publish", "--lcm-url", "memq://"});
   EXPECT_EQ(r.status, kExitUsage);
-  EXPECT_NE(r.err.find("--publish needs --key FILE"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--publish needs --command-key FILE"), std::string::npos) << r.err;
   const std::string key_file = file_.string() + ".key";
   const proto::CommandKey key = proto::CommandKey::generate();
   key.save(key_file, /*replace=*/true);
@@ -209,11 +209,12 @@ TEST_F(ClipCommandTest, HelpIsComplete) {
   const ClipRun r = run({"--help"});
   EXPECT_EQ(r.status, kExitOk);
   syncap::test::expect_help_mentions(
-      r.out, {"usage: syncap clip --cameras FILE --volume", "syncap clip --cameras FILE --remove",
-              "--cameras FILE", "--volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", "--margin PX",
-              "(default 8)", "--camera ID", "(repeatable)", "--remove", "--publish", "--key FILE",
-              "--lcm-url URL", "(default udpm://", "--floor", "--floor-extent MM", "(default 1000)",
-              "Exit status: 0 done"});
+      r.out,
+      {"usage: syncap clip --calibration FILE --volume", "syncap clip --calibration FILE --remove",
+       "--calibration FILE", "--volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", "--margin-px PX",
+       "(default 8)", "--camera ID", "(repeatable)", "--remove", "--publish", "--command-key FILE",
+       "--lcm-url URL", "(default udpm://", "--floor", "--floor-extent MM", "(default 1000)",
+       "Exit status: 0 done"});
 }
 
 }  // namespace

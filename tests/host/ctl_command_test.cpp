@@ -106,7 +106,7 @@ TEST(CtlCommand, UsageErrorsExitTwoAndHelpIsComplete) {
   EXPECT_EQ(run(ctl_command, {}).status, kExitUsage);
   const CommandRun no_key = run(ctl_command, {"stop"});
   EXPECT_EQ(no_key.status, kExitUsage);
-  EXPECT_NE(no_key.err.find("--key FILE is required"), std::string::npos) << no_key.err;
+  EXPECT_NE(no_key.err.find("--command-key FILE is required"), std::string::npos) << no_key.err;
   const CommandRun bad_camera = run(ctl_command, {"stop", "--camera", "100", "--key", "k"});
   EXPECT_EQ(bad_camera.status, kExitUsage);
   EXPECT_NE(bad_camera.err.find("--camera '100'"), std::string::npos) << bad_camera.err;

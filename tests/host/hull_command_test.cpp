@@ -224,7 +224,7 @@ TEST(HullCommandUsage, HelpListsEveryOptionAndBadValuesAreNamed) {
   const HullRun help = run({"--help"});
   EXPECT_EQ(help.status, kExitOk);
   test::expect_help_mentions(
-      help.out, {"--cameras", "--masks", "--out", "--method", "--simplify", "--threshold",
+      help.out, {"--calibration", "--masks", "--out", "--method", "--simplify", "--threshold",
                  "--largest", "--resolution", "default 1", "Exit status"});
   const HullRun bad = run({"--cameras", "c", "--masks", "m", "--out", "o", "--method", "mesh"});
   EXPECT_EQ(bad.status, kExitUsage);

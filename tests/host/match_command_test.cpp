@@ -165,9 +165,9 @@ TEST(MatchCommandUsage, HelpListsEveryOption) {
   const MatchRun help = run({"--help"});
   EXPECT_EQ(help.status, kExitOk);
   test::expect_help_mentions(
-      help.out, {"--cameras", "--images", "--masks", "--hull", "--out", "--threshold", "--largest",
-                 "--spacing", "--half-window", "--search-depth", "--search-front", "--min-sncc",
-                 "--min-views", "--max-angle", "--sweep-only", "Exit status"});
+      help.out, {"--calibration", "--images", "--masks", "--hull", "--out", "--threshold",
+                 "--largest", "--spacing", "--half-window", "--search-depth", "--search-front",
+                 "--min-sncc", "--min-views", "--max-angle", "--sweep-only", "Exit status"});
 }
 
 }  // namespace

@@ -111,9 +111,9 @@ TEST_F(RegionsCommandTest, HelpIsComplete) {
   const RegionsRun r = run({"--help"});
   EXPECT_EQ(r.status, kExitOk);
   syncap::test::expect_help_mentions(
-      r.out, {"usage: syncap regions --cameras FILE --bodies FRAMES.jsonl", "--margin PX",
+      r.out, {"usage: syncap regions --calibration FILE --bodies FRAMES.jsonl", "--margin-px PX",
               "(default 25)", "--lead N", "(default 1)", "--frames N", "--camera ID", "--publish",
-              "--key FILE", "--lcm-url URL", "Exit status: 0 done"});
+              "--command-key FILE", "--lcm-url URL", "Exit status: 0 done"});
 }
 
 }  // namespace

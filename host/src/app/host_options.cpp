@@ -22,10 +22,10 @@ std::set<int> parse_camera_list(const std::string& text) {
     int v = -1;
     const auto [end, ec] = std::from_chars(id.data(), id.data() + id.size(), v);
     if (ec != std::errc() || end != id.data() + id.size() || v < 0 || v > proto::kMaxCameraId)
-      throw CLI::ValidationError("--cameras", "'" + id + "' is not a camera id 0..99");
+      throw CLI::ValidationError("--camera-ids", "'" + id + "' is not a camera id 0..99");
     ids.insert(v);
   }
-  if (ids.empty()) throw CLI::ValidationError("--cameras", "no camera ids");
+  if (ids.empty()) throw CLI::ValidationError("--camera-ids", "no camera ids");
   return ids;
 }
 
@@ -56,7 +56,7 @@ void add_marker_options(CLI::App& app, controllers::MarkerOptions& args) {
 void add_tracking_options(CLI::App& app, controllers::MarkerOptions& args,
                           std::string& rigid_sets_path) {
   app.add_option_function<double>(
-         "--acceleration",
+         "--acceleration-m-s2",
          [&args](double m_s2) { args.tracker.acceleration_mm_s2 = m_s2 * 1000.0; },
          "the markers' accelerations the tracker allows for, m/s^2 (default 10): larger "
          "widens every track's gate")
@@ -110,7 +110,7 @@ void add_body_options(CLI::App& app, controllers::BodyOptions& args) {
                  "points spread over each hull's surface for the fit (default " +
                      std::to_string(args.stage.hull_points) + ")")
       ->check(cli::whole_in<std::size_t>(100, 100000));
-  app.add_option("--body-point-sigma", args.stage.point_sigma_mm,
+  app.add_option("--body-point-sigma-mm", args.stage.point_sigma_mm,
                  "the hull points' standard deviation [mm] (default " +
                      cli::number_text(args.stage.point_sigma_mm) + ")")
       ->check(cli::number_in(0.1, 1000));
@@ -135,7 +135,7 @@ Eigen::AlignedBox3d parse_volume(const std::vector<double>& v) {
 namespace {
 
 void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vector<double>& volume) {
-  app.add_option("--cameras", cameras, "expected camera ids, e.g. 0,1,2 (default 0)");
+  app.add_option("--camera-ids", cameras, "expected camera ids, e.g. 0,1,2 (default 0)");
   app.add_option("--max-lag", o.max_lag, "frames to wait for missing messages (default 10)")
       ->transform(cli::whole_in<int>(0, 100000));
   app.add_option("--frames", o.frames, "exit after N frame groups")
@@ -144,7 +144,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                "exit after the frame of the trigger's last pulse, or once --max-lag frames at its "
                "rate have passed since it arrived");
   // cli::number_in, not CLI::Range: that lets NaN through.
-  app.add_option("--idle-timeout", o.idle_timeout_s, "exit when nothing arrived for S seconds")
+  app.add_option("--idle-timeout-s", o.idle_timeout_s, "exit when nothing arrived for S seconds")
       ->check(cli::number_in(1, 86400));
   app.add_option("--out", o.out, "write every frame group (and its markers) as a JSON line");
   app.add_option("--lcm-url", o.lcm_url, "LCM provider (default " + o.lcm_url + ")");
@@ -188,12 +188,11 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   app.add_option("--command-key", o.files.key_path,
                  "the installation's command key (syncap keygen), to sign --search-regions")
       ->option_text("FILE");
-  cli::deprecated_alias(app, "--key", "--command-key", o.files.key_path);
   app.add_option("--config", o.files.config_path,
                  "read options from a YAML file first: syncap-host's own or the rig file "
                  "(docs/guide/rig.md); the command line overrides it")
       ->option_text("FILE");
-  app.add_option("--search-margin", p.search_regions.stage.region.margin_px,
+  app.add_option("--search-margin-px", p.search_regions.stage.region.margin_px,
                  "grow each search region by PX pixels (default " +
                      cli::number_text(p.search_regions.stage.region.margin_px) + ")")
       ->option_text("PX")
@@ -253,6 +252,12 @@ struct HostParser {
         "host: section (docs/guide/rig.md); the command line overrides the file. Exit status: 0 "
         "after a run, 1 a failure while running, 2 a usage error or a bad config file.");
     add_options(*app, o, cameras, volume);
+    app->deprecated_name("--key", "--command-key");
+    app->deprecated_name("--cameras", "--camera-ids");
+    app->deprecated_name("--idle-timeout", "--idle-timeout-s");
+    app->deprecated_name("--search-margin", "--search-margin-px");
+    app->deprecated_name("--acceleration", "--acceleration-m-s2");
+    app->deprecated_name("--body-point-sigma", "--body-point-sigma-mm");
   }
 };
 
@@ -264,7 +269,7 @@ ParsedHostOptions parse_host_options(const std::vector<std::string>& args, std::
   std::vector<std::string> all;
   try {
     std::vector<std::unique_ptr<HostParser>> scratch;  // the factory's parsers live until done
-    all = cli::with_config("syncap-host", args, {"host", std::nullopt, "--cameras"}, [&scratch] {
+    all = cli::with_config("syncap-host", args, {"host", std::nullopt, "--camera-ids"}, [&scratch] {
       scratch.push_back(std::make_unique<HostParser>());
       return std::unique_ptr<CLI::App>(std::move(scratch.back()->app));
     });

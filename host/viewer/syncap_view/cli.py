@@ -15,6 +15,26 @@ from pathlib import Path
 EXIT_USAGE = 2  # as every syncap program: a usage error or bad input, named
 
 
+def renamed(argv):
+    """argv with the old option names as the new ones (docs/reference/cli.md, "Old names"),
+    each said on stderr: --cameras FILE is --calibration FILE, and --calibration DIR (a folder)
+    is --calibration-dir DIR."""
+    out = list(argv)
+    for i, arg in enumerate(out):
+        name, eq, value = arg.partition("=")
+        if name == "--cameras":
+            new = "--calibration"
+        elif name == "--calibration":
+            given = value if eq else (out[i + 1] if i + 1 < len(out) else "")
+            new = "--calibration-dir" if given and Path(given).is_dir() else None
+        else:
+            new = None
+        if new:
+            print(f"syncap view: {name} is deprecated, use {new}", file=sys.stderr)
+            out[i] = new + eq + value
+    return out
+
+
 def parse_args(argv):
     p = argparse.ArgumentParser(
         prog="syncap view",
@@ -31,12 +51,13 @@ def parse_args(argv):
     src.add_argument("--lcm-url", metavar="URL",
                      help="live: subscribe on this LCM URL (default: $LCM_DEFAULT_URL or LCM's "
                           "default, udpm://239.255.76.67:7667?ttl=0)")
-    p.add_argument("--cameras", metavar="cameras.json",
+    p.add_argument("--calibration", metavar="cameras.json", dest="cameras",
                    help="the calibration's cameras: frusta in 3D, 2D content in their images")
-    p.add_argument("--calibration", metavar="DIR",
-                   help="a `syncap calibrate --out` folder: its cameras (unless --cameras), the "
-                        "adjusted wand points, each image's residual vectors and coverage; alone "
-                        "(no --input, --groups, --lcm-url) it shows just the calibration")
+    p.add_argument("--calibration-dir", metavar="DIR", dest="calibration",
+                   help="a `syncap calibrate --out-dir` folder: its cameras (unless "
+                        "--calibration), the adjusted wand points, each image's residual vectors "
+                        "and coverage; alone (no --input, --groups, --lcm-url) it shows just the "
+                        "calibration")
     p.add_argument("--hull-meshes", metavar="DIR",
                    help="the hull's meshes, hull_<frame>.ply (syncap-host --hull-meshes, the "
                         "replay bench's RUN/hull): each at its frame")
@@ -63,7 +84,7 @@ def parse_args(argv):
                    help="the .lcm definitions (default: $SYNCAP_PROTO_MSG, else the source "
                         "tree's proto/msg)")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
-    args = p.parse_args(argv)
+    args = p.parse_args(renamed(argv))
     if args.input is not None and not args.input.startswith("lcmlog:"):
         p.error(f"--input {args.input}: expected lcmlog:FILE")
     if not (args.save or args.web or args.spawn):

@@ -185,7 +185,7 @@ TEST(HostOptions, HelpNamesEveryOption) {
   const ParsedHostOptions p = parse({"--help"}, &text);
   EXPECT_FALSE(p.options.has_value());
   EXPECT_EQ(p.exit_status, 0);
-  for (const char* option : {"--cameras",
+  for (const char* option : {"--camera-ids",
                              "--max-lag",
                              "--frames",
                              "--until-last",

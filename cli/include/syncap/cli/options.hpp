@@ -31,6 +31,36 @@ class App : public CLI::App {
     this->footer(footer);
     option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   }
+
+  // An old name of an option (docs/reference/cli.md, "Old names"): still taken, on the command
+  // line and as a config file's key, as `new_name` with its checks, and said to be deprecated
+  // on stderr; not in --help.
+  void deprecated_name(const std::string& old_name, const std::string& new_name) {
+    renames_.emplace_back(old_name, new_name);
+  }
+  // The option's current name for `name` (an old one's new name), or `name`.
+  std::string current_name(const std::string& name) const {
+    for (const auto& [old_name, new_name] : renames_)
+      if (name == old_name) return new_name;
+    return name;
+  }
+  // `args` with every old name (`--old` or `--old=value`) replaced by its new one, each said on
+  // `notice`.
+  std::vector<std::string> renamed(std::span<const std::string> args, std::ostream& notice) const {
+    std::vector<std::string> out(args.begin(), args.end());
+    for (std::string& arg : out) {
+      const std::size_t eq = arg.find('=');
+      const std::string name = arg.substr(0, eq);
+      const std::string current = current_name(name);
+      if (current == name) continue;
+      notice << get_name() << ": " << name << " is deprecated, use " << current << '\n';
+      arg = current + (eq == std::string::npos ? "" : arg.substr(eq));
+    }
+    return out;
+  }
+
+ private:
+  std::vector<std::pair<std::string, std::string>> renames_;
 };
 
 // Why a parse ends the run: --help, or a usage error and its message (naming the option and
@@ -44,7 +74,9 @@ struct Stop {
 // CLI::ValidationError naming the option and the value); nullopt to go on.
 inline std::optional<Stop> try_parse(CLI::App& app, std::span<const std::string> args,
                                      const std::function<void()>& checks = {}) {
-  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them reversed
+  std::vector<std::string> given(args.begin(), args.end());
+  if (const auto* ours = dynamic_cast<const App*>(&app)) given = ours->renamed(args, std::cerr);
+  std::vector<std::string> reversed(given.rbegin(), given.rend());  // CLI11 takes them reversed
   try {
     app.parse(reversed);
     if (checks) checks();
@@ -88,26 +120,6 @@ inline std::optional<int> parse_main(CLI::App& app, int argc, char** argv,
                                      const std::function<void()>& checks = {}) {
   const std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
   return parse(app, args, std::cout, std::cerr, checks);
-}
-
-// An old name of an option, kept hidden from --help so that old command lines and config files
-// still run: it sets `target` as `new_name` would and says once on `notice` (stderr) that the
-// name is deprecated (docs/reference/cli.md, "Old names").
-template <class T>
-CLI::Option* deprecated_alias(CLI::App& app, const std::string& old_name,
-                              const std::string& new_name, T& target,
-                              std::ostream& notice = std::cerr) {
-  CLI::App* owner = &app;
-  return app
-      .add_option_function<T>(
-          old_name,
-          [owner, old_name, new_name, &target, &notice](const T& value) {
-            notice << owner->get_name() << ": " << old_name << " is deprecated, use " << new_name
-                   << '\n';
-            target = value;
-          },
-          "deprecated: " + new_name)
-      ->group("");
 }
 
 // The whole text as a finite number (strtod's forms). CLI11's own conversion takes "nan" and
