@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "aggregator/arrival_tally.hpp"
+#include "grouping/arrival_tally.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
@@ -63,7 +63,7 @@ const char* result_text(int8_t result) {
 }
 
 std::string status_line(const camera_status_t& s) {
-  std::string line = std::string(host::state_name(s.state)) + ", last frame " +
+  std::string line = std::string(grouping::state_name(s.state)) + ", last frame " +
                      std::to_string(s.last_frame_number) + ", " +
                      std::to_string(s.commands_accepted) + " commands obeyed, " +
                      std::to_string(s.commands_rejected) + " refused";

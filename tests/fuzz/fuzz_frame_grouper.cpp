@@ -1,4 +1,4 @@
-// libFuzzer target: the host's first step for every frame, host::FrameGrouper, with the part
+// libFuzzer target: the host's first step for every frame, grouping::FrameGrouper, with the part
 // collector (proto::PartCollector) and the joining of blob parts and decoding of silhouette parts
 // it drives, fed a stream of triggers, blob frame parts and silhouette parts as one or more bad
 // senders could send them. Each record is read from the input: kind, camera (int8), frame
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "aggregator/frame_grouper.hpp"
 #include "fuzz_check.hpp"
+#include "grouping/frame_grouper.hpp"
 #include "syncap/proto/channels.hpp"
 #include "syncap/proto/part_collector.hpp"
 
@@ -95,7 +95,7 @@ class Stream {
 
 class GroupChecks {
  public:
-  void take(const std::vector<syncap::host::FrameGroup>& groups) {
+  void take(const std::vector<syncap::grouping::FrameGroup>& groups) {
     for (const auto& group : groups) {
       check(!last_ || group.frame_number > *last_, "groups out of order or handed out twice");
       last_ = group.frame_number;
@@ -133,7 +133,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Stream stream(data, size);
   const uint8_t setup = stream.kind();
   const std::set<int> expected = (setup & 1) ? std::set<int>{0, 1} : std::set<int>{};
-  syncap::host::FrameGrouper grouper(expected, 1 + setup % 8);
+  syncap::grouping::FrameGrouper grouper(expected, 1 + setup % 8);
   syncap::proto::PartCollector<syncap::blob_frame_t> collector;
   GroupChecks checks;
   while (stream.more()) {

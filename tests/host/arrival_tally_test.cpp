@@ -1,8 +1,8 @@
-#include "aggregator/arrival_tally.hpp"
+#include "grouping/arrival_tally.hpp"
 
 #include <gtest/gtest.h>
 
-namespace syncap::host {
+namespace syncap::grouping {
 namespace {
 
 blob_frame_t record(int camera, int64_t frame, int16_t part_index = 0) {
@@ -91,4 +91,4 @@ TEST(ArrivalTally, NothingLostIsNotSaid) {
 }
 
 }  // namespace
-}  // namespace syncap::host
+}  // namespace syncap::grouping

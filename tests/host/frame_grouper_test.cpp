@@ -1,11 +1,11 @@
-#include "aggregator/frame_grouper.hpp"
+#include "grouping/frame_grouper.hpp"
 
 #include <gtest/gtest.h>
 
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/contour_codec.hpp"
 
-namespace syncap::host {
+namespace syncap::grouping {
 namespace {
 
 trigger_t trigger(int64_t k) {
@@ -381,4 +381,4 @@ TEST(FrameGrouper, ImagePatchPartsGoOutWithTheirGroup) {
 }
 
 }  // namespace
-}  // namespace syncap::host
+}  // namespace syncap::grouping

@@ -1,4 +1,4 @@
-// syncap-host: the aggregator. Receives the trigger and every camera's messages, groups them by
+// syncap-host: the host process. Receives the trigger and every camera's messages, groups them by
 // frame number (pipeline::HostNode) and runs the stage chain (controllers/stage_chain.hpp) on
 // each group on a worker thread: with --calibration the markers are matched, triangulated,
 // tracked and published live (docs/design/reconstruction.md), with --hull the person's visual hull

@@ -8,7 +8,7 @@ namespace {
 
 void print_grouping(const SummaryInputs& in, std::ostream& out) {
   const pipeline::HostNodeStats s = in.node.stats();
-  const host::FrameGrouper& g = in.node.grouper();
+  const grouping::FrameGrouper& g = in.node.grouper();
   const Arrivals& a = in.arrivals;
   out << "host summary: " << s.groups << " frame groups (" << s.complete << " complete, "
       << s.groups - s.complete << " incomplete), " << a.triggers << " triggers, " << a.blob_parts

@@ -4,7 +4,7 @@
 #include <ostream>
 #include <string>
 
-#include "aggregator/arrival_tally.hpp"
+#include "grouping/arrival_tally.hpp"
 #include "outputs/marker_message_stage.hpp"
 #include "pipeline/host_node.hpp"
 #include "reconstruction/body_fit_stage.hpp"
@@ -23,7 +23,7 @@ std::string host_time_line(const pipeline::HostNodeStats& stats);
 // Counts of the receiving side, kept by host_main.
 struct Arrivals {
   long triggers = 0, blob_parts = 0, silhouette_parts = 0, patch_parts = 0, rejected = 0;
-  host::ArrivalTally tally;
+  grouping::ArrivalTally tally;
 };
 
 struct SummaryInputs {

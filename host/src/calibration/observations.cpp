@@ -271,8 +271,8 @@ Observations BlobFrameCollector::finish() {
   return std::move(observations_);
 }
 
-void BlobFrameCollector::take(std::vector<host::FrameGroup> groups) {
-  for (host::FrameGroup& group : groups) {
+void BlobFrameCollector::take(std::vector<grouping::FrameGroup> groups) {
+  for (grouping::FrameGroup& group : groups) {
     ++groups_;
     if (!group.missing_cameras.empty()) ++observations_.incomplete_groups;
     auto& frame = observations_.frames[group.frame_number];

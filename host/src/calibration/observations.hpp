@@ -2,7 +2,7 @@
 // (blobs) the camera saw, in pixels, and each camera's image size. Four sources fill them:
 //
 // - blob frames (blob_frame_t) of the edges, live or from an LCM log: grouped by frame number
-//   through host::FrameGrouper (parts joined), every blob kept with its area and flags so that
+//   through grouping::FrameGrouper (parts joined), every blob kept with its area and flags so that
 //   the wand identification can tell targets from reflections;
 // - CSV, `frame,camera,x,y[,point]` (pixels, one line a spot, a header line optional): without
 //   `point` the spots are blobs to identify; with it they are already identified (the target's
@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "aggregator/frame_grouper.hpp"
+#include "grouping/frame_grouper.hpp"
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/trigger_t.hpp"
 
@@ -94,9 +94,9 @@ class BlobFrameCollector {
   const std::vector<std::string>& problems() const { return problems_; }
 
  private:
-  void take(std::vector<host::FrameGroup> groups);
+  void take(std::vector<grouping::FrameGroup> groups);
 
-  host::FrameGrouper grouper_;
+  grouping::FrameGrouper grouper_;
   Observations observations_;
   long groups_ = 0;
   std::vector<std::string> problems_;

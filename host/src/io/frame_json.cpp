@@ -42,7 +42,7 @@ void write_blobs(JsonText& j, const blob_frame_t& f) {
 }
 
 // The cameras' ids in the order of their keys as text ("10" before "2"): nlohmann::json's order.
-std::vector<int> camera_ids(const host::FrameGroup& g) {
+std::vector<int> camera_ids(const grouping::FrameGroup& g) {
   std::vector<int> ids;
   for (const auto& entry : g.blobs) ids.push_back(entry.first);
   for (const auto& entry : g.silhouettes) {
@@ -53,7 +53,7 @@ std::vector<int> camera_ids(const host::FrameGroup& g) {
   return ids;
 }
 
-void write_cameras(JsonText& j, const host::FrameGroup& g) {
+void write_cameras(JsonText& j, const grouping::FrameGroup& g) {
   j.key("cameras").begin_object();
   for (const int id : camera_ids(g)) {
     j.key(std::to_string(id)).begin_object();
@@ -158,7 +158,7 @@ void write_body(JsonText& j, const pipeline::BodyFitSummary& b) {
 }  // namespace
 
 void append_frame_line(std::string& out, const pipeline::FrameWork& work, bool with_markers) {
-  const host::FrameGroup& g = work.group;
+  const grouping::FrameGroup& g = work.group;
   JsonText j(out);
   j.begin_object();
   if (work.body) write_body(j.key("body"), *work.body);

@@ -6,7 +6,7 @@
 namespace syncap::outputs {
 
 void FrameLineStage::process(pipeline::FrameWork& work) {
-  const host::FrameGroup& g = work.group;
+  const grouping::FrameGroup& g = work.group;
   std::ostringstream line;
   line << "frame " << g.frame_number << ": trigger " << (g.trigger ? "ok" : "MISSING")
        << ", cameras " << g.blobs.size() << "/" << expected_;

@@ -28,7 +28,7 @@ marker_t marker_of(const pipeline::Marker3d& m) {
 }  // namespace
 
 marker_frame_t marker_message(const pipeline::FrameWork& work, int32_t host_us) {
-  const host::FrameGroup& g = work.group;
+  const grouping::FrameGroup& g = work.group;
   marker_frame_t f{};
   f.frame_number = g.frame_number;
   if (g.trigger) {

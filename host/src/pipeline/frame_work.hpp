@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "aggregator/frame_grouper.hpp"
+#include "grouping/frame_grouper.hpp"
 #include "syncap/proto/clock.hpp"
 
 namespace syncap::pipeline {
@@ -83,7 +83,7 @@ struct BodyFitSummary {
 };
 
 struct FrameWork {
-  host::FrameGroup group;
+  grouping::FrameGroup group;
   // When the grouper handed the group out: the host's time for it starts here.
   std::chrono::steady_clock::time_point ready;
   // The worker thread's CPU time when the first stage started on the group [us, thread_cpu_us].

@@ -28,18 +28,18 @@ bool HostNode::on_silhouette_part(const silhouette_part_t& part, std::string_vie
 }
 
 std::size_t HostNode::poll() {
-  std::vector<host::FrameGroup> ready = grouper_.pop_ready();
+  std::vector<grouping::FrameGroup> ready = grouper_.pop_ready();
   const std::size_t count = ready.size();
   hand_out(std::move(ready));
   return count;
 }
 
-void HostNode::hand_out(std::vector<host::FrameGroup> groups) {
+void HostNode::hand_out(std::vector<grouping::FrameGroup> groups) {
   if (groups.empty()) return;
   const auto now = std::chrono::steady_clock::now();
   {
     const std::lock_guard lock(mutex_);
-    for (host::FrameGroup& g : groups) {
+    for (grouping::FrameGroup& g : groups) {
       ++stats_.groups;
       if (g.complete()) ++stats_.complete;
       if (queue_.size() >= options_.queue_capacity) {

@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "aggregator/frame_grouper.hpp"
+#include "grouping/frame_grouper.hpp"
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
 
@@ -57,17 +57,17 @@ class HostNode {
   // stages, then calls each stage's finish(). Idempotent.
   void finish();
 
-  const host::FrameGrouper& grouper() const { return grouper_; }
+  const grouping::FrameGrouper& grouper() const { return grouper_; }
   // A copy, taken under the lock (the worker updates it).
   HostNodeStats stats() const;
 
  private:
-  void hand_out(std::vector<host::FrameGroup> groups);
+  void hand_out(std::vector<grouping::FrameGroup> groups);
   void work();
 
   HostNodeOptions options_;
   std::vector<std::unique_ptr<Stage>> stages_;
-  host::FrameGrouper grouper_;
+  grouping::FrameGrouper grouper_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<FrameWork> queue_;

@@ -67,7 +67,7 @@ HullStage::HullStage(std::vector<sensor::CameraModel> cameras, HullStageOptions 
 }
 
 void HullStage::process(pipeline::FrameWork& work) {
-  const host::FrameGroup& group = work.group;
+  const grouping::FrameGroup& group = work.group;
   if (group.silhouettes.empty() || group.frame_number % options_.every != 0) return;
   ++stats_.frames;
   const double waited_ms =
@@ -89,7 +89,7 @@ void HullStage::process(pipeline::FrameWork& work) {
   work.hull = std::move(summary);
 }
 
-std::vector<hull::HullView> HullStage::views_of(const host::FrameGroup& group,
+std::vector<hull::HullView> HullStage::views_of(const grouping::FrameGroup& group,
                                                 pipeline::HullSummary& summary) {
   std::vector<hull::HullView> views;
   for (const sensor::CameraModel& camera : cameras_) {

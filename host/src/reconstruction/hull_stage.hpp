@@ -97,7 +97,7 @@ class HullStage : public pipeline::Stage {
   std::string summary() const;
 
  private:
-  std::vector<hull::HullView> views_of(const host::FrameGroup& group,
+  std::vector<hull::HullView> views_of(const grouping::FrameGroup& group,
                                        pipeline::HullSummary& summary);
   void build(int64_t frame_number, const std::vector<hull::HullView>& views,
              pipeline::HullSummary& summary);

@@ -34,7 +34,7 @@ bool SurfaceStage::busy() const {
 }
 
 void SurfaceStage::process(pipeline::FrameWork& work) {
-  const host::FrameGroup& group = work.group;
+  const grouping::FrameGroup& group = work.group;
   if (group.patches.empty()) return;
   std::lock_guard lock(mutex_);
   ++stats_.frames_with_patches;
@@ -54,7 +54,7 @@ void SurfaceStage::process(pipeline::FrameWork& work) {
   matching_ = std::async(std::launch::async, [this, job = std::move(job)] { run(job); });
 }
 
-std::vector<SurfaceStage::View> SurfaceStage::views_of(const host::FrameGroup& group) const {
+std::vector<SurfaceStage::View> SurfaceStage::views_of(const grouping::FrameGroup& group) const {
   std::vector<View> views;
   for (const sensor::CameraModel& camera : cameras_) {
     const auto parts = group.patches.find(camera.id);

@@ -106,7 +106,7 @@ class SurfaceStage : public pipeline::Stage {
     std::vector<View> views;
   };
   bool busy() const;
-  std::vector<View> views_of(const host::FrameGroup& group) const;
+  std::vector<View> views_of(const grouping::FrameGroup& group) const;
   void run(const Job& job);
   void record(const SurfaceFrame& frame, long partial);
   void record_failure(int64_t frame_number, const std::string& what);

@@ -13,7 +13,7 @@ uint64_t camera_mask(const std::vector<int>& camera_ids) {
 }  // namespace
 
 double TrackingStage::time_of(const pipeline::FrameWork& work) {
-  const host::FrameGroup& g = work.group;
+  const grouping::FrameGroup& g = work.group;
   if (g.trigger) {
     if (g.trigger->rate_hz > 0) rate_hz_ = g.trigger->rate_hz;
     return static_cast<double>(g.trigger->monotonic_ns) * 1e-9;

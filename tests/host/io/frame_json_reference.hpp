@@ -60,7 +60,7 @@ inline nlohmann::json reference_rigid_body_json(const pipeline::RigidBody& b) {
 }
 
 inline nlohmann::json reference_frame_json(const pipeline::FrameWork& work, bool with_markers) {
-  const host::FrameGroup& g = work.group;
+  const grouping::FrameGroup& g = work.group;
   nlohmann::json j{{"frame", g.frame_number},
                    {"complete", g.complete()},
                    {"missing_cameras", g.missing_cameras}};

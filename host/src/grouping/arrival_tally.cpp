@@ -1,9 +1,9 @@
-#include "aggregator/arrival_tally.hpp"
+#include "grouping/arrival_tally.hpp"
 
 #include <algorithm>
 #include <sstream>
 
-namespace syncap::host {
+namespace syncap::grouping {
 
 const char* state_name(int8_t state) {
   switch (state) {
@@ -65,4 +65,4 @@ std::string ArrivalTally::summary() const {
   return out.str();
 }
 
-}  // namespace syncap::host
+}  // namespace syncap::grouping

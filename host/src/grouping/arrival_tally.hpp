@@ -17,7 +17,7 @@
 #include "syncap/blob_frame_t.hpp"
 #include "syncap/camera_status_t.hpp"
 
-namespace syncap::host {
+namespace syncap::grouping {
 
 // camera_status_t's state as a word: "idle", "acquiring", "error", "stopped" ("unknown").
 const char* state_name(int8_t state);
@@ -45,4 +45,4 @@ class ArrivalTally {
   std::map<int, Camera> cameras_;
 };
 
-}  // namespace syncap::host
+}  // namespace syncap::grouping

@@ -36,7 +36,7 @@
 #include "syncap/silhouette_part_t.hpp"
 #include "syncap/trigger_t.hpp"
 
-namespace syncap::host {
+namespace syncap::grouping {
 
 struct FrameGroup {
   int64_t frame_number = 0;
@@ -141,4 +141,4 @@ class FrameGrouper {
   std::string error_;
 };
 
-}  // namespace syncap::host
+}  // namespace syncap::grouping

@@ -1,4 +1,4 @@
-#include "aggregator/frame_grouper.hpp"
+#include "grouping/frame_grouper.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -6,7 +6,7 @@
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/channels.hpp"
 
-namespace syncap::host {
+namespace syncap::grouping {
 namespace {
 
 // Far-ahead records remembered for confirming a jump; a flood of forgeries pushes out the oldest
@@ -287,4 +287,4 @@ std::vector<FrameGroup> FrameGrouper::flush() {
   return all;
 }
 
-}  // namespace syncap::host
+}  // namespace syncap::grouping
