@@ -6,7 +6,7 @@
 #include <map>
 #include <optional>
 
-#include "fitting/pose_parameters.hpp"
+#include "fitting/surface_fit.hpp"
 #include "pipeline/frame_work.hpp"
 
 namespace syncap::outputs {

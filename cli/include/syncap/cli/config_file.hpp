@@ -16,6 +16,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace syncap::cli {
@@ -28,9 +29,14 @@ class ConfigError : public std::runtime_error {
 
 // What a program takes from a rig file: its section, and for an edge its camera's entry.
 struct RigPart {
+  RigPart(std::string section_name, std::optional<int> camera = std::nullopt,
+          std::string camera_ids = {})
+      : section(std::move(section_name)),
+        camera_id(camera),
+        camera_ids_option(std::move(camera_ids)) {}
   std::string section;           // "host", "edges", "trigger"
   std::optional<int> camera_id;  // the `cameras` entry with this camera-id (an edge's)
-  // The option that takes the list of camera ids ("--cameras" for the host): given the ids of
+  // The option that takes the list of camera ids ("--camera-ids" for the host): given the ids of
   // the rig's cameras before the section's keys (which may override it). Empty: none.
   std::string camera_ids_option;
 };
