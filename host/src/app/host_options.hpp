@@ -19,8 +19,9 @@ namespace syncap::host_app {
 // The command line's names for what controllers::PipelineOptions holds read from files, and the
 // messages syncap-host publishes.
 struct HostFiles {
-  std::string rigid_sets_path;           // --rigid-sets FILE, read into the pipeline's rigid sets
-  std::string key_path;                  // --key FILE: the installation's command key
+  std::string rigid_sets_path;  // --rigid-sets FILE, read into the pipeline's rigid sets
+  std::string config_path;      // --config FILE: syncap-host's own YAML file or the rig file
+  std::string key_path;         // --command-key FILE: the installation's command key
   std::optional<proto::CommandKey> key;  // loaded from key_path when the options are parsed
 };
 
