@@ -20,7 +20,7 @@ int send_regions(std::vector<clip_polygon_t> messages, const std::vector<std::st
     try {
       signer.emplace(proto::CommandKey::load(sending.key_path));
     } catch (const proto::CommandKeyError& e) {
-      err << prefix << "--key " << e.what() << '\n';
+      err << prefix << "--command-key " << e.what() << '\n';
       return kExitUsage;
     }
     lcm.emplace(sending.lcm_url);

@@ -138,7 +138,7 @@ TEST(CalibrateCommand, UsageErrorsNameTheOption) {
   EXPECT_EQ(
       run({"--input", "lcm:udpm://239.255.76.67:7667?ttl=0", "--led", "--out", "d"}, out, err),
       kExitUsage);
-  EXPECT_NE(err.find("lcm: needs --cameras"), std::string::npos) << err;
+  EXPECT_NE(err.find("lcm: needs --camera-ids"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--bogus"}, out, err), kExitUsage);
   EXPECT_NE(err.find("unknown option '--bogus'"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--k", "nan"}, out, err), kExitUsage);
@@ -150,13 +150,13 @@ TEST(CalibrateCommand, UsageErrorsNameTheOption) {
 // Not finite, not whole, not in range, trailing junk: each named with its option and value.
 TEST(CalibrateCommand, BadNumbersAreUsageErrorsNamingOptionAndValue) {
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {"--wand-ratio", "nan"},   {"--sigma-px", "inf"},
-      {"--pixel-size", "0"},     {"--fov", "60deg"},
-      {"--wand-targets", "4"},   {"--wand-targets", "2.5"},
-      {"--frames", "-1"},        {"--bootstrap", "1.5"},
-      {"--idle-timeout", "nan"}, {"--cameras", "100"},
-      {"--image-size", "640x"},  {"--scale-from", "0,0,100"},
-      {"--wand-ends", "color"},  {"--principal-point-sigma", "-1"}};
+      {"--wand-ratio", "nan"},     {"--sigma-px", "inf"},
+      {"--pixel-size", "0"},       {"--fov", "60deg"},
+      {"--wand-targets", "4"},     {"--wand-targets", "2.5"},
+      {"--frames", "-1"},          {"--bootstrap", "1.5"},
+      {"--idle-timeout-s", "nan"}, {"--camera-ids", "100"},
+      {"--image-size", "640x"},    {"--scale-from", "0,0,100"},
+      {"--wand-ends", "color"},    {"--principal-point-sigma", "-1"}};
   for (const auto& [option, value] : bad) {
     std::string out, err;
     EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", option, value}, out, err), kExitUsage)
@@ -360,7 +360,7 @@ TEST(CalibrateCommand, BadMaxFramesAndUnwritableOutAreUsageErrorsBeforeReading) 
   EXPECT_EQ(
       run({"--input", "csv:/nonexistent.csv", "--led", "--out", "/proc/syncap-out"}, out, err),
       kExitUsage);
-  EXPECT_NE(err.find("--out /proc/syncap-out: cannot"), std::string::npos) << err;
+  EXPECT_NE(err.find("--out-dir /proc/syncap-out: cannot"), std::string::npos) << err;
   EXPECT_EQ(err.find("nonexistent.csv"), std::string::npos) << "the input was read first: " << err;
 }
 

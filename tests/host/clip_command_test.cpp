@@ -157,9 +157,9 @@ TEST_F(ClipCommandTest, BadArgumentsAndFilesAreNamed) {
   EXPECT_EQ(r.status, kExitUsage);
   EXPECT_NE(r.err.find("--volume: 'nan,0,0,1,1,1'"), std::string::npos) << r.err;
   for (const std::string margin : {"nan", "-1", "1001", "8px"}) {
-    r = run({"--cameras", file_.string(), "--remove", "--margin", margin});
+    r = run({"--cameras", file_.string(), "--remove", "--margin-px", margin});
     EXPECT_EQ(r.status, kExitUsage) << margin;
-    EXPECT_NE(r.err.find("--margin: '" + margin + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--margin-px: '" + margin + "'"), std::string::npos) << r.err;
   }
   r = run({"--cameras", file_.string(), "--remove", "--camera", "1.5"});
   EXPECT_EQ(r.status, kExitUsage);

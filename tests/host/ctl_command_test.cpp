@@ -100,7 +100,7 @@ TEST(CtlAcknowledgements, OnlyTheHeartbeatsNamingTheCommandAnswer) {
 TEST(CtlCommand, UsageErrorsExitTwoAndHelpIsComplete) {
   const CommandRun help = run(ctl_command, {"--help"});
   EXPECT_EQ(help.status, kExitOk);
-  for (const char* word : {"--key", "--camera", "--lcm-url", "--wait-s", "train-background",
+  for (const char* word : {"--command-key", "--camera", "--lcm-url", "--wait-s", "train-background",
                            "threshold", "roi X,Y,W,H", "exposure", "gain", "status"})
     EXPECT_NE(help.out.find(word), std::string::npos) << word << " missing from:\n" << help.out;
   EXPECT_EQ(run(ctl_command, {}).status, kExitUsage);

@@ -166,7 +166,7 @@ TEST_F(MarkersCommandTest, HelpIsComplete) {
   const MarkersRun r = run({"--help"});
   EXPECT_EQ(r.status, kExitOk);
   test::expect_help_mentions(
-      r.out, {"--input", "--calibration", "--out", "--cameras", "--volume", "--sigma-px",
+      r.out, {"--input", "--calibration", "--out-dir", "--camera-ids", "--volume", "--sigma-px",
               "--tolerance-px", "--keep-not-round", "--acceleration", "--rigid-sets", "--max-lag",
               "--hull", "--hull-method", "--hull-iou", "--hull-meshes"});
 }

@@ -99,7 +99,7 @@ TEST_F(RegionsCommandTest, BadInputIsNamed) {
   EXPECT_NE(r.err.find("/nonexistent.jsonl"), std::string::npos) << r.err;
   r = run({"--cameras", cameras_, "--bodies", bodies_, "--publish"});
   EXPECT_EQ(r.status, kExitUsage);
-  EXPECT_NE(r.err.find("--publish needs --key"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--publish needs --command-key"), std::string::npos) << r.err;
   std::ofstream(bodies_) << R"({"frame":11,"complete":true,"cameras":{},"body":{"flags":2}})"
                          << "\n";
   r = run({"--cameras", cameras_, "--bodies", bodies_});

@@ -184,7 +184,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
       ->check(cli::whole_in(3, 99));
   app.add_flag("--search-regions", p.search_regions.enabled,
                "send each camera's edge the tracked body's search region after every fit "
-               "(needs --body and --key; docs/design/segmentation.md)");
+               "(needs --body and --command-key; docs/design/segmentation.md)");
   app.add_option("--command-key", o.files.key_path,
                  "the installation's command key (syncap keygen), to sign --search-regions")
       ->option_text("FILE");

@@ -172,7 +172,7 @@ TEST(HostOptions, BadValuesExitTwoNamingTheOption) {
 
 // CLI::Range let NaN through: --idle-timeout nan never timed out.
 TEST(HostOptions, NotANumberIsRefusedNamingOptionAndValue) {
-  for (const char* option : {"--idle-timeout", "--tolerance-px", "--sigma-px"}) {
+  for (const char* option : {"--idle-timeout-s", "--tolerance-px", "--sigma-px"}) {
     std::string err;
     EXPECT_EQ(parse({option, "nan"}, &err).exit_status, 2) << option;
     EXPECT_NE(err.find(std::string(option) + ": 'nan' is not a number in ["), std::string::npos)

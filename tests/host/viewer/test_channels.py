@@ -3,6 +3,7 @@ C++ side publishes on (checked here against the names the host and edges use).""
 
 import unittest
 
+import support  # noqa: F401  (sys.path)
 from syncap_view import channels
 
 
