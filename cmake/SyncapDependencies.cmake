@@ -21,6 +21,7 @@ if(SYNCAP_BUILD_HOST)
 endif()
 if(SYNCAP_BUILD_TESTS)
   find_package(GTest REQUIRED)
+  find_package(Python3 COMPONENTS Interpreter QUIET)  # the docs' link check
 endif()
 if(SYNCAP_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)
