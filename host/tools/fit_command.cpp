@@ -15,6 +15,7 @@
 #include "io/lcm_log_reader.hpp"
 #include "io/trc_writer.hpp"
 #include "log_feed.hpp"
+#include "offline_options.hpp"
 #include "pipeline/host_node.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -26,12 +27,7 @@ namespace {
 constexpr const char* kName = "syncap fit";
 
 struct FitArgs {
-  std::string input;        // lcmlog:FILE
-  std::string calibration;  // cameras.json
-  std::string out;          // folder
-  std::string cameras;      // expected ids; default: the calibration's
-  std::set<int> camera_ids;
-  int max_lag = 30;
+  OfflineArgs offline;
   std::string silhouette_gap;  // CAMERA:FIRST:LAST
   std::optional<SilhouetteGap> gap;
   controllers::PipelineOptions pipeline;
@@ -46,12 +42,7 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
       "pose), and exports the motion to DIR/body.bvh and the joints' centres to DIR/joints.c3d "
       "and DIR/joints.trc (docs/design/body-fit.md).",
       "Exit status: 0 done, 1 messages rejected or damage reported, 2 a usage error.");
-  app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
-  app.add_option("--calibration", a.calibration, "cameras.json")
-      ->required()
-      ->check(CLI::ExistingFile);
-  app.add_option("--out-dir", a.out, "the output folder")->required();
-  app.add_option("--camera-ids", a.cameras, "expected camera ids (default: the calibration's)");
+  add_offline_options(app, a.offline);
   controllers::PipelineOptions& p = a.pipeline;
   p.markers.enabled = false;  // the body only
   p.body.enabled = true;
@@ -62,17 +53,12 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
                  "start the body automatically on every frame whose number is a multiple of N "
                  "(measures the automatic start through the recording; default 0: only when lost)")
       ->transform(cli::whole_in<int>(0, 1000000));
-  app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
   app.add_option("--leave-out-silhouettes", a.silhouette_gap,
                  "CAMERA:FIRST:LAST: replay without that camera's silhouettes for those frames "
                  "(the robustness check of a camera's masks missing for a while)");
-  app.deprecated_name("--cameras", "--camera-ids");
-  app.deprecated_name("--out", "--out-dir");
   app.deprecated_name("--body-point-sigma", "--body-point-sigma-mm");
   return cli::parse(app, args, out, err, [&] {
-    if (!a.input.starts_with("lcmlog:"))
-      throw CLI::ValidationError("--input", "expected lcmlog:FILE");
-    if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
+    check_offline_options(a.offline);
     if (!a.silhouette_gap.empty()) {
       try {
         a.gap = SilhouetteGap::parse(a.silhouette_gap);
@@ -117,18 +103,19 @@ int fit_command(std::span<const std::string> args, std::ostream& out, std::ostre
   FitArgs a;
   if (const auto status = parse_args(args, a, out, err)) return *status;
   OfflineInputs in;
-  if (const auto status =
-          open_offline_inputs(kName, a.calibration, a.input, a.out, "body.jsonl", in, err))
+  if (const auto status = open_offline_inputs(kName, a.offline.calibration, a.offline.input,
+                                              a.offline.out, "body.jsonl", in, err))
     return *status;
-  const std::filesystem::path dir(a.out);
+  const std::filesystem::path dir(a.offline.out);
   outputs::PoseRecord record;
   controllers::Sinks sinks;
   sinks.json_lines = &in.jsonl;
   sinks.poses = &record;
   controllers::StageChain chain = controllers::make_stages(in.cameras, a.pipeline, sinks);
   const reconstruction::BodyFitStage& body = *chain.body;
-  pipeline::HostNode node({expected_cameras(a.camera_ids, in.cameras), a.max_lag, 1'000'000},
-                          std::move(chain.stages));
+  pipeline::HostNode node(
+      {expected_cameras(a.offline.camera_ids, in.cameras), a.offline.max_lag, 1'000'000},
+      std::move(chain.stages));
   auto [rejected, damaged] = replay_log(in.log, node, true, kName, err, a.gap);
   if (!export_motion(body.parameters(), record, dir, err)) damaged = true;
   const auto s = node.stats();

@@ -12,6 +12,7 @@
 #include "io/lcm_log_reader.hpp"
 #include "io/trc_writer.hpp"
 #include "log_feed.hpp"
+#include "offline_options.hpp"
 #include "pipeline/host_node.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
@@ -23,13 +24,8 @@ namespace {
 constexpr const char* kName = "syncap markers";
 
 struct MarkersArgs {
-  std::string input;        // lcmlog:FILE
-  std::string calibration;  // cameras.json
-  std::string out;          // folder
-  std::string cameras;      // expected ids; default: the calibration's
-  std::set<int> camera_ids;
+  OfflineArgs offline;
   std::vector<double> volume;
-  int max_lag = 30;
   std::string rigid_sets_path;
   controllers::PipelineOptions pipeline;
 };
@@ -44,12 +40,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
       "--hull, the person's visual hull of every frame from the recorded silhouettes too "
       "(docs/design/visual-hull.md).",
       "Exit status: 0 done, 1 messages rejected or damage reported, 2 a usage error.");
-  app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
-  app.add_option("--calibration", a.calibration, "cameras.json")
-      ->required()
-      ->check(CLI::ExistingFile);
-  app.add_option("--out-dir", a.out, "the output folder")->required();
-  app.add_option("--camera-ids", a.cameras, "expected camera ids (default: the calibration's)");
+  add_offline_options(app, a.offline);
   app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
       ->delimiter(',')
       ->expected(6);
@@ -58,14 +49,9 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   host_app::add_tracking_options(app, p.markers, a.rigid_sets_path);
   p.hull.stage.max_wait_ms = 0;  // offline: every frame gets its hull, however long it took
   host_app::add_hull_options(app, p.hull);
-  app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)");
-  app.deprecated_name("--cameras", "--camera-ids");
-  app.deprecated_name("--out", "--out-dir");
   app.deprecated_name("--acceleration", "--acceleration-m-s2");
   return cli::parse(app, args, out, err, [&] {
-    if (!a.input.starts_with("lcmlog:"))
-      throw CLI::ValidationError("--input", "expected lcmlog:FILE");
-    if (!a.cameras.empty()) a.camera_ids = host_app::parse_camera_list(a.cameras);
+    check_offline_options(a.offline);
     if (!a.volume.empty()) p.markers.matching.volume = host_app::parse_volume(a.volume);
     host_app::load_rigid_sets(a.rigid_sets_path, p.markers);
   });
@@ -98,8 +84,8 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   MarkersArgs a;
   if (const auto status = parse_args(args, a, out, err)) return *status;
   OfflineInputs in;
-  if (const auto status =
-          open_offline_inputs(kName, a.calibration, a.input, a.out, "markers.jsonl", in, err))
+  if (const auto status = open_offline_inputs(kName, a.offline.calibration, a.offline.input,
+                                              a.offline.out, "markers.jsonl", in, err))
     return *status;
   tracking::TrackHistory history;
   controllers::Sinks sinks;
@@ -108,17 +94,18 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   controllers::StageChain chain = controllers::make_stages(in.cameras, a.pipeline, sinks);
   const reconstruction::MarkerStage& markers = *chain.markers;
   const reconstruction::TrackingStage& tracker = *chain.tracking;
-  pipeline::HostNode node({expected_cameras(a.camera_ids, in.cameras), a.max_lag, 1'000'000},
-                          std::move(chain.stages));
+  pipeline::HostNode node(
+      {expected_cameras(a.offline.camera_ids, in.cameras), a.offline.max_lag, 1'000'000},
+      std::move(chain.stages));
   auto [rejected, damaged] = replay_log(in.log, node, a.pipeline.hull.enabled, kName, err);
-  if (!export_trajectories(history, tracker.rate_hz(), a.out, err)) damaged = true;
+  if (!export_trajectories(history, tracker.rate_hz(), a.offline.out, err)) damaged = true;
   const auto s = node.stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "
       << markers.stats().markers << " markers (" << markers.stats().two_camera_markers
       << " seen by two cameras only, " << markers.stats().partial_spots_left_out
       << " partly hidden spots left out of their position), " << rejected << " messages rejected; "
       << tracker.tracker().counters().tracks_started << " tracks; "
-      << (std::filesystem::path(a.out) / "markers.jsonl").string() << " (and markers.c3d, "
+      << (std::filesystem::path(a.offline.out) / "markers.jsonl").string() << " (and markers.c3d, "
       << "markers.trc)\n";
   out << kName << ": " << host_app::host_time_line(s);
   if (chain.rigid_sets != nullptr) out << chain.rigid_sets->summary();

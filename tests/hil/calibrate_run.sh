@@ -2,7 +2,7 @@
 # tests/hil/calibrate_run.sh BUILD OUT SCENARIO WAND_LENGTH_MM PIXEL_SIZE_MM MAX_REPROJECTION_PX
 # The calibration end to end from the edges' blob messages: hil/run records the traffic of a
 # short replay run (OUT/run/traffic.lcmlog), `syncap calibrate` calibrates from that log, and
-# `syncap-hil-compare --cameras` checks the cameras against the truth after a similarity (the
+# `syncap-hil-compare --calibration` checks the cameras against the truth after a similarity (the
 # true targets reprojected through both camera sets). Then the live source: lcm-logplayer replays
 # the log in a private namespace while `syncap calibrate --input lcm:URL` listens; its cameras
 # pass the same check (they equal the log's to the last digits). Exit 77 when hil/run skips.
@@ -19,7 +19,7 @@ tail -n 3 "$out/run.log"
 [ -s "$out/run/traffic.lcmlog" ] || { echo "no traffic.lcmlog (hil/run exit $status)" >&2; cat "$out/run.log" >&2; exit 1; }
 "$build/bin/syncap" calibrate --input "lcmlog:$out/run/traffic.lcmlog" --wand-length "$wand" \
   --pixel-size "$pixel" --out-dir "$out/calibration" --progress
-"$build/bin/syncap-hil-compare" --truth "$out/run/render" --cameras "$out/calibration/cameras.json" \
+"$build/bin/syncap-hil-compare" --truth "$out/run/render" --calibration "$out/calibration/cameras.json" \
   --max-reprojection-px "$max_px"
 
 # The live source on the same traffic.
@@ -32,5 +32,5 @@ tail -n 3 "$out/run.log"
   wait $!' _ "$build" "$(seq -s, 0 $(($(ls -d "$out"/run/render/camera?? | wc -l) - 1)))" \
   "$wand" "$pixel" "$out" || { cat "$out/live.log" >&2; exit 1; }
 head -n 1 "$out/live.log"
-"$build/bin/syncap-hil-compare" --truth "$out/run/render" --cameras "$out/live/cameras.json" \
+"$build/bin/syncap-hil-compare" --truth "$out/run/render" --calibration "$out/live/cameras.json" \
   --max-reprojection-px "$max_px" | tail -n 2

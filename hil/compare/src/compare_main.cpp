@@ -62,10 +62,10 @@ constexpr const char* kDescription =
     "Compares the host's frame groups, or a calibration, with the simulator's ground truth;\n"
     "prints a summary and PASS or FAIL: reasons (hil/compare/README.md).\n"
     "usage: syncap-hil-compare --truth DIR --groups FILE [--json FILE] [thresholds]\n"
-    "       syncap-hil-compare --truth DIR --cameras FILE [--max-reprojection-px 0.5]\n";
+    "       syncap-hil-compare --truth DIR --calibration FILE [--max-reprojection-px 0.5]\n";
 
 constexpr const char* kFooter =
-    "Both --groups and --cameras: the groups' markers were measured through that calibration\n"
+    "Both --groups and --calibration: the groups' markers were measured through that calibration\n"
     "(syncap markers --calibration FILE); they are moved into the truth's frame by the rigid\n"
     "motion that best maps its projection centres onto the true ones (the scale is the\n"
     "calibration's own) before they are checked; both checks must pass.\n"
@@ -151,7 +151,7 @@ void add_body_options(CLI::App& app, BodyLimits& b) {
 
 void add_calibration_options(CLI::App& app, Options& o) {
   const std::string group = "A calibration against the truth";
-  app.add_option("--cameras", o.cameras,
+  app.add_option("--calibration", o.cameras,
                  "a calibration (cameras.json) against DIR/cameras.json, aligned by\n"
                  "a similarity; the true targets reprojected through both")
       ->option_text("FILE")
@@ -164,6 +164,7 @@ void add_calibration_options(CLI::App& app, Options& o) {
 // Parses into `o`; the exit status when the run is over already (help, usage error).
 std::optional<int> parse(int argc, char** argv, Options& o) {
   cli::App app("syncap-hil-compare", kDescription, kFooter);
+  app.deprecated_name("--cameras", "--calibration");
   add_group_options(app, o);
   add_marker_options(app, o.markers);
   add_calibration_options(app, o);
@@ -171,7 +172,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
   add_body_options(app, o.body);
   return cli::parse_main(app, argc, argv, [&o] {
     if (o.groups.empty() && o.cameras.empty())
-      throw CLI::ValidationError("--groups FILE (or --cameras FILE) is required");
+      throw CLI::ValidationError("--groups FILE (or --calibration FILE) is required");
   });
 }
 
@@ -183,7 +184,7 @@ void write_json(const std::string& file, const syncap::compare::Report& report) 
 
 }  // namespace
 
-// The rigid motion of --cameras' frame onto the truth's (its projection centres onto the true
+// The rigid motion of --calibration's frame onto the truth's (its projection centres onto the true
 // ones: a wand calibration's scale is metric), said for `what` is moved by it.
 syncap::compare::Similarity motion_to_truth(const Options& o, const char* what) {
   const auto motion = syncap::compare::fit_to_truth(
@@ -310,7 +311,7 @@ int main(int argc, char** argv) {
   } catch (const syncap::compare::InputError& e) {
     std::cerr << "syncap-hil-compare: " << e.what() << "\n";
     return 2;
-  } catch (const std::exception& e) {  // reading or aligning --cameras
+  } catch (const std::exception& e) {  // reading or aligning --calibration
     std::cerr << "syncap-hil-compare: " << e.what() << "\n";
     return 2;
   }

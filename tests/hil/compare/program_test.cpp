@@ -133,7 +133,7 @@ TEST(Program, HelpIsComplete) {
   const ProgramRun run = run_compare("--help");
   EXPECT_EQ(run.exit_code, 0);
   syncap::test::expect_help_mentions(run.output, {"syncap-hil-compare --truth DIR --groups FILE",
-                                                  "syncap-hil-compare --truth DIR --cameras",
+                                                  "syncap-hil-compare --truth DIR --calibration",
                                                   "--truth DIR",
                                                   "--groups FILE",
                                                   "--json FILE",
@@ -156,9 +156,9 @@ TEST(Program, HelpIsComplete) {
                                                   "(0.005)",
                                                   "--max-marker-rms-mm MM",
                                                   "(0.5)",
-                                                  "--cameras FILE",
+                                                  "--calibration FILE",
                                                   "--max-reprojection-px PX",
-                                                  "Both --groups and --cameras",
+                                                  "Both --groups and --calibration",
                                                   "exit 0 PASS, 1 FAIL, 2 unusable inputs"});
 }
 
