@@ -6,7 +6,7 @@ namespace syncap::tools {
 
 void add_offline_options(cli::App& app, OfflineArgs& a) {
   app.add_option("--input", a.input, "lcmlog:FILE, a log of lcm-logger")->required();
-  app.add_option("--calibration", a.calibration, "cameras.json")
+  app.add_option("--calibration", a.calibration, "the cameras: cameras.json or cameras.opencv.yaml")
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("--out-dir", a.out, "the output folder")->required();

@@ -150,7 +150,8 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
   app.add_option("--lcm-url", o.lcm_url, "LCM provider (default " + o.lcm_url + ")");
   app.add_flag("--quiet", o.quiet, "no line per frame, summary only");
   app.add_option("--calibration", o.calibration,
-                 "cameras.json (syncap calibrate): reconstruct the markers of every frame live, "
+                 "the cameras, cameras.json or cameras.opencv.yaml (syncap calibrate): reconstruct "
+                 "the markers of every frame live, "
                  "publish them on SYNCAP_MARKERS and add them to --out")
       ->check(CLI::ExistingFile);
   app.add_option("--volume", volume,

@@ -1,5 +1,7 @@
 #include "sensor/camera_file.hpp"
 
+#include <cstdio>
+
 #include <cmath>
 
 #include <fstream>
@@ -7,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+
+#include "sensor/opencv_camera_file.hpp"
 
 namespace syncap::sensor {
 namespace {
@@ -313,7 +317,36 @@ CameraSet read_camera_set(const std::filesystem::path& file) {
   return parse_camera_set(text.str(), file.string());
 }
 
+namespace {
+
+// The nominal pixel size of cameras read from OpenCV files, which carry none: any reproduces the
+// same pixels (camera_from_opencv).
+constexpr double kOpenCvPixelMm = 0.01;
+// A lens our model cannot follow this closely is refused, not silently approximated.
+constexpr double kMaxOpenCvConversionPx = 0.5;
+
+std::vector<CameraModel> read_opencv_cameras(const std::filesystem::path& file) {
+  std::vector<CameraModel> cameras;
+  for (const OpenCvCameraEntry& entry : read_opencv_camera_file(file)) {
+    ConversionResidual residual;
+    cameras.push_back(
+        camera_from_opencv(entry.camera, kOpenCvPixelMm, kOpenCvPixelMm, entry.id, &residual));
+    if (residual.max_px > kMaxOpenCvConversionPx) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.2f", residual.max_px);
+      throw CameraFileError(file.string() + ": camera " + std::to_string(entry.id) +
+                            ": its OpenCV lens does not convert into the thesis model within " +
+                            "0.5 px (up to " + text + " px in the image): use a cameras.json " +
+                            "calibrated by syncap, or syncap hull / match, which keep the lens");
+    }
+  }
+  return cameras;
+}
+
+}  // namespace
+
 std::vector<CameraModel> read_cameras(const std::filesystem::path& file) {
+  if (is_opencv_camera_file(file)) return read_opencv_cameras(file);
   return read_camera_set(file).cameras;
 }
 

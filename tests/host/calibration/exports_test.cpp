@@ -10,6 +10,7 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "sensor/camera_file.hpp"
 #include "sensor/opencv_camera.hpp"
 
 namespace syncap::calibration {
@@ -74,6 +75,44 @@ TEST(OpenCvYaml, TheHullAndMatchingReadItBack) {
     const auto read = views[i].camera.project(point);
     ASSERT_TRUE(ours.ok() && read.ok());
     EXPECT_NEAR((ours.pixel - read.pixel).norm(), 0.0, 1e-6);
+  }
+}
+
+// The same file read as the host, syncap markers, syncap fit and syncap clip read cameras
+// (sensor::read_cameras): the cameras project as ours.
+TEST(OpenCvYaml, EveryProgramThatReadsCamerasReadsItBack) {
+  const std::vector<sensor::CameraModel> cameras{basler(0, 0.0), basler(3, 0.0)};
+  const std::filesystem::path file =
+      std::filesystem::path(::testing::TempDir()) / "cameras_back.opencv.yaml";
+  std::ofstream(file) << format_opencv_yaml(cameras);
+  const std::vector<sensor::CameraModel> read = sensor::read_cameras(file);
+  ASSERT_EQ(read.size(), 2u);
+  const Eigen::Vector3d point(3200.0, 400.0, 900.0);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(read[i].id, cameras[i].id);
+    const auto ours = cameras[i].project(point);
+    const auto back = read[i].project(point);
+    ASSERT_TRUE(ours.ok() && back.ok());
+    EXPECT_NEAR((ours.pixel - back.pixel).norm(), 0.0, 1e-6);
+  }
+}
+
+// A lens the thesis model cannot follow within 0.5 px is refused, naming the file and camera,
+// rather than approximated in silence.
+TEST(OpenCvYaml, ALensTheModelCannotFollowIsRefusedByName) {
+  const std::filesystem::path file =
+      std::filesystem::path(::testing::TempDir()) / "fisheye_like.opencv.yaml";
+  std::ofstream(file) << "%YAML:1.0\ncameras:\n  - id: 4\n    image_size: [1280, 1024]\n"
+                         "    camera_matrix: [600, 0, 640, 0, 600, 512, 0, 0, 1]\n"
+                         "    distortion: [-0.6, 0.4, 0.01, -0.01, -0.2]\n"
+                         "    rvec: [0, 0, 0]\n    tvec: [0, 0, 3000]\n";
+  try {
+    sensor::read_cameras(file);
+    ADD_FAILURE() << "the lens was accepted";
+  } catch (const sensor::CameraFileError& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() + ": camera 4: its OpenCV lens"),
+              std::string::npos)
+        << e.what();
   }
 }
 
