@@ -1,5 +1,5 @@
 // Surface matching (docs/design/matching.md) on a textured sphere rendered exactly, seen by five
-// 640x480 cameras 30 degrees apart (tests/host/matching/surface/textured_scene.hpp), its hull an
+// 640x480 cameras 30 degrees apart (tests/host/surface/textured_scene.hpp), its hull an
 // icosphere 20 mm larger; one thread:
 // - lsm-vs-ncc-sweep/ours: GC3 along every seed's scan line, the candidate rules, then
 //   multi-image least squares (the method);
@@ -12,12 +12,12 @@
 
 #include <cmath>
 
-#include "matching/surface/surface_matcher.hpp"
-#include "matching/surface/textured_scene.hpp"
+#include "surface/surface_matcher.hpp"
+#include "surface/textured_scene.hpp"
 
 namespace {
 
-using namespace syncap::matching::surface;
+using namespace syncap::surface;
 
 const std::vector<MatchingView>& views() {
   static const std::vector<MatchingView> v =

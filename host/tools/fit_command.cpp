@@ -86,7 +86,7 @@ bool export_motion(const fitting::PoseParameters& parameters, const outputs::Pos
   const double rate = record.rate_hz > 0 ? record.rate_hz : 30.0;
   try {
     io::write_bvh((dir / "body.bvh").string(), fitting::bvh_motion(parameters, frames, rate));
-    const io::MarkerTrajectories joints =
+    const tracking::MarkerTrajectories joints =
         fitting::joint_trajectories(parameters, frames, rate, first);
     io::write_c3d((dir / "joints.c3d").string(), joints);
     io::write_trc((dir / "joints.trc").string(), joints);

@@ -62,7 +62,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
 bool export_trajectories(const tracking::TrackHistory& history, double rate_hz,
                          const std::string& dir, std::ostream& err) {
   if (history.frames().empty()) return true;
-  const io::MarkerTrajectories trajectories =
+  const tracking::MarkerTrajectories trajectories =
       tracking::to_trajectories(history, {}, {rate_hz > 0 ? rate_hz : 100.0, 10});
   if (trajectories.labels.empty()) {
     err << kName << ": no trajectory of 10 frames or more: no C3D/TRC written\n";

@@ -9,10 +9,10 @@
 
 #include "hull/polyhedral_hull.hpp"
 #include "hull/views_io.hpp"
-#include "matching/surface/hull_consistency.hpp"
-#include "matching/surface/point_files.hpp"
-#include "matching/surface/surface_matcher.hpp"
-#include "matching/surface/surface_mesh.hpp"
+#include "surface/hull_consistency.hpp"
+#include "surface/point_files.hpp"
+#include "surface/surface_matcher.hpp"
+#include "surface/surface_mesh.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "util/printf_string.hpp"
@@ -21,7 +21,7 @@ namespace syncap::tools {
 namespace {
 
 namespace fs = std::filesystem;
-namespace ms = matching::surface;
+namespace ms = surface;
 
 constexpr const char* kErrorPrefix = "syncap match: ";
 

@@ -14,7 +14,7 @@
 #include "hull/mesh.hpp"
 #include "hull/polyhedral_hull.hpp"
 #include "hull/views_io.hpp"
-#include "matching/surface/textured_scene.hpp"
+#include "surface/textured_scene.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
 
@@ -22,7 +22,7 @@ namespace syncap::tools {
 namespace {
 
 namespace fs = std::filesystem;
-namespace ms = matching::surface;
+namespace ms = surface;
 
 struct MatchRun {
   int status = -1;

@@ -67,10 +67,10 @@ io::BvhMotion bvh_motion(const PoseParameters& parameters,
   return motion;
 }
 
-io::MarkerTrajectories joint_trajectories(const PoseParameters& parameters,
+tracking::MarkerTrajectories joint_trajectories(const PoseParameters& parameters,
                                           std::span<const std::optional<PoseVector>> frames,
                                           double rate_hz, int64_t first_frame) {
-  io::MarkerTrajectories out;
+  tracking::MarkerTrajectories out;
   const std::vector<int>& nodes = parameters.reported_nodes();
   for (const int node : nodes) out.labels.push_back(parameters.skeleton().node(node).name);
   out.rate_hz = rate_hz;
@@ -78,11 +78,11 @@ io::MarkerTrajectories joint_trajectories(const PoseParameters& parameters,
   std::vector<Eigen::Matrix3d> rotations;
   std::vector<Eigen::Vector3d> positions;
   for (const auto& frame : frames) {
-    std::vector<std::optional<io::MarkerSample>> row(nodes.size());
+    std::vector<std::optional<tracking::MarkerSample>> row(nodes.size());
     if (frame) {
       parameters.nodes(frame->data(), rotations, positions);
       for (std::size_t j = 0; j < nodes.size(); ++j)
-        row[j] = io::MarkerSample{positions[static_cast<std::size_t>(nodes[j])], 0, 0};
+        row[j] = tracking::MarkerSample{positions[static_cast<std::size_t>(nodes[j])], 0, 0};
     }
     out.samples.push_back(std::move(row));
   }

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "io/atomic_file.hpp"
+#include "io/export_checks.hpp"
 #include "io/export_error.hpp"
 
 namespace syncap::io {
@@ -167,7 +168,7 @@ struct C3dLayout {
 
 // The guide's scale, largest coordinate / 32000, so that the file could be converted to integers;
 // 1 mm when every coordinate is 0.
-float point_scale(const MarkerTrajectories& trajectories) {
+float point_scale(const tracking::MarkerTrajectories& trajectories) {
   double largest = 1.0;
   for (const auto& row : trajectories.samples) {
     for (const auto& sample : row) {
@@ -249,13 +250,13 @@ Bytes header_block(const C3dLayout& layout, uint16_t data_start) {
 // The 4th word of a seen point: the integer (camera mask << 8 | residual / |scale|) as a float.
 // A residual of 0 stays 0, the guide's mark of a point that was not measured (interpolated);
 // a measured one is at least 1 unit and saturates at 255.
-float residual_word(const MarkerSample& sample, float scale) {
+float residual_word(const tracking::MarkerSample& sample, float scale) {
   const double units = sample.residual_mm / std::fabs(static_cast<double>(scale));
   const long residual = sample.residual_mm == 0 ? 0 : std::clamp(std::lround(units), 1L, 255L);
   return static_cast<float>(static_cast<long>(sample.cameras & 0x7f) << 8 | residual);
 }
 
-void write_frame(std::ostream& out, const std::vector<std::optional<MarkerSample>>& row,
+void write_frame(std::ostream& out, const std::vector<std::optional<tracking::MarkerSample>>& row,
                  float scale) {
   Bytes frame;
   for (const auto& sample : row) {
@@ -270,7 +271,7 @@ void write_frame(std::ostream& out, const std::vector<std::optional<MarkerSample
   frame.write_to(out);
 }
 
-void check_c3d_limits(const MarkerTrajectories& trajectories, const std::string& path) {
+void check_c3d_limits(const tracking::MarkerTrajectories& trajectories, const std::string& path) {
   check_exportable(trajectories, path);
   if (trajectories.labels.size() > kMaxMarkers) {
     throw ExportError(path, std::to_string(trajectories.labels.size()) +
@@ -285,7 +286,7 @@ void check_c3d_limits(const MarkerTrajectories& trajectories, const std::string&
 
 }  // namespace
 
-void write_c3d(const std::string& path, const MarkerTrajectories& trajectories) {
+void write_c3d(const std::string& path, const tracking::MarkerTrajectories& trajectories) {
   check_c3d_limits(trajectories, path);
   C3dLayout layout;
   layout.markers = trajectories.labels.size();

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "io/marker_trajectories.hpp"
+#include "tracking/marker_trajectories.hpp"
 
 namespace syncap::io {
 
@@ -12,6 +12,6 @@ namespace syncap::io {
 // input check_exportable refuses, more than 32767 markers (POINT:USED is a signed word) or
 // 2^32 - 1 frames (TRIAL:ACTUAL_END_FIELD), labels that need more than 255 parameter blocks, or a
 // failed write.
-void write_c3d(const std::string& path, const MarkerTrajectories& trajectories);
+void write_c3d(const std::string& path, const tracking::MarkerTrajectories& trajectories);
 
 }  // namespace syncap::io

@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "io/atomic_file.hpp"
+#include "io/export_checks.hpp"
 
 namespace syncap::io {
 namespace {
@@ -18,7 +19,7 @@ std::string exact(double value) {
   return std::string(text, end);
 }
 
-void write_header(std::ostream& out, const std::string& path, const MarkerTrajectories& t) {
+void write_header(std::ostream& out, const std::string& path, const tracking::MarkerTrajectories& t) {
   const std::string rate = exact(t.rate_hz);
   const std::size_t frames = t.samples.size();
   const std::size_t markers = t.labels.size();
@@ -37,7 +38,7 @@ void write_header(std::ostream& out, const std::string& path, const MarkerTrajec
 // One frame; a gap leaves its three fields empty. Each row ends with a tab so that a gap in the
 // last marker still counts three fields for OpenSim, which drops a line's empty last field.
 void write_row(std::ostream& out, std::size_t row_index, double time_s,
-               const std::vector<std::optional<MarkerSample>>& row) {
+               const std::vector<std::optional<tracking::MarkerSample>>& row) {
   char number[48];
   out << row_index + 1 << "\t" << exact(time_s);
   for (const auto& sample : row) {
@@ -54,7 +55,7 @@ void write_row(std::ostream& out, std::size_t row_index, double time_s,
 
 }  // namespace
 
-void write_trc(const std::string& path, const MarkerTrajectories& trajectories) {
+void write_trc(const std::string& path, const tracking::MarkerTrajectories& trajectories) {
   check_exportable(trajectories, path);
   write_file_atomically(path, [&](std::ostream& out) {
     write_header(out, path, trajectories);

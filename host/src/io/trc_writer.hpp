@@ -3,12 +3,12 @@
 
 #include <string>
 
-#include "io/marker_trajectories.hpp"
+#include "tracking/marker_trajectories.hpp"
 
 namespace syncap::io {
 
 // Writes `trajectories` to `path` (whole or not at all). Throws ExportError naming the path for
 // input check_exportable refuses or a failed write.
-void write_trc(const std::string& path, const MarkerTrajectories& trajectories);
+void write_trc(const std::string& path, const tracking::MarkerTrajectories& trajectories);
 
 }  // namespace syncap::io

@@ -3,9 +3,9 @@
 #include <chrono>
 
 #include "hull/silhouette.hpp"
-#include "matching/surface/facet_id_image.hpp"
-#include "matching/surface/hull_consistency.hpp"
-#include "matching/surface/point_files.hpp"
+#include "surface/facet_id_image.hpp"
+#include "surface/hull_consistency.hpp"
+#include "surface/point_files.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "syncap/proto/image_patch.hpp"
 #include "util/printf_string.hpp"
@@ -13,7 +13,7 @@
 namespace syncap::reconstruction {
 namespace {
 
-namespace ms = matching::surface;
+namespace ms = surface;
 
 constexpr std::size_t kFramesKept = 100;
 

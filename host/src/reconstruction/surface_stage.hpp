@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "matching/surface/surface_matcher.hpp"
+#include "surface/surface_matcher.hpp"
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
 #include "reconstruction/hull_stage.hpp"
@@ -27,15 +27,15 @@
 namespace syncap::reconstruction {
 
 struct SurfaceStageOptions {
-  matching::surface::SurfaceMatchingOptions matching;
+  surface::SurfaceMatchingOptions matching;
   // Patches needed for a frame (a reference view and two search views at least).
   int min_cameras = 3;
   // The edges' silhouettes are shrunk by this many pixels into the matching masks: their
   // outline is the classification's (IoU ~0.97 against the truth on the replay bench), not
-  // the exact object's, and a window across it mixes in background (matching/surface's
+  // the exact object's, and a window across it mixes in background (surface's
   // make_matching_view).
   int mask_margin_px = 2;
-  // Writes DIR/surface_<frame>.csv and .ply (matching/surface/point_files.hpp) for every frame
+  // Writes DIR/surface_<frame>.csv and .ply (surface/point_files.hpp) for every frame
   // matched; empty: no files.
   std::filesystem::path out_dir;
   // Called on the matcher's thread with the frame number before it matches a frame (tests hold
@@ -52,7 +52,7 @@ struct SurfaceFrame {
   double median_sigma_mm = 0;  // along the normal
   // Of the points, those whose projection falls outside a camera's silhouette by more than 3
   // of their sigmas, 0.71 px and mask_margin_px (the outline's own error;
-  // matching/surface/hull_consistency.hpp): implausible, a wrong match or cameras that
+  // surface/hull_consistency.hpp): implausible, a wrong match or cameras that
   // disagree with the images.
   std::size_t outside_silhouettes = 0;
   double match_ms = 0;  // decoding the patches, matching, writing (wall)

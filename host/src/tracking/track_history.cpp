@@ -7,8 +7,8 @@
 namespace syncap::tracking {
 namespace {
 
-io::MarkerSample sample_of(const PointObservation& p) {
-  io::MarkerSample s;
+MarkerSample sample_of(const PointObservation& p) {
+  MarkerSample s;
   s.position_mm = p.position_mm;
   // a measured point's residual must be > 0 (0 marks an interpolated one in C3D)
   s.residual_mm = std::max(1e-3, std::sqrt(std::max(0.0, p.covariance_mm2.trace()) / 3));
@@ -43,10 +43,10 @@ void TrackHistory::add(const TrackedFrame& frame, std::span<const PointObservati
   frames_.push_back(std::move(f));
 }
 
-io::MarkerTrajectories to_trajectories(const TrackHistory& history,
+MarkerTrajectories to_trajectories(const TrackHistory& history,
                                        const std::vector<RigidSet>& sets,
                                        const TrajectoryOptions& options) {
-  io::MarkerTrajectories out;
+  MarkerTrajectories out;
   out.rate_hz = options.rate_hz;
   if (history.frames().empty()) return out;
   out.first_frame = history.frames().front().frame;
@@ -68,7 +68,7 @@ io::MarkerTrajectories to_trajectories(const TrackHistory& history,
     out.labels.push_back(track_label(id));
   }
   const int64_t rows = history.frames().back().frame - out.first_frame + 1;
-  out.samples.assign(rows, std::vector<std::optional<io::MarkerSample>>(out.labels.size()));
+  out.samples.assign(rows, std::vector<std::optional<MarkerSample>>(out.labels.size()));
   for (const TrackHistory::Frame& f : history.frames()) {
     auto& row = out.samples[f.frame - out.first_frame];
     for (const TrackHistory::Sample& s : f.samples) {

@@ -1,5 +1,5 @@
 // The tracker's output kept over a recording, and its conversion to the trajectories the C3D and
-// TRC exports write (io::MarkerTrajectories). The tracker itself keeps no history (a live host
+// TRC exports write (MarkerTrajectories). The tracker itself keeps no history (a live host
 // runs for hours); whoever wants the recording adds each frame here.
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "io/marker_trajectories.hpp"
+#include "tracking/marker_trajectories.hpp"
 #include "tracking/marker_tracker.hpp"
 #include "tracking/rigid_set.hpp"
 
@@ -23,7 +23,7 @@ class TrackHistory {
 
   struct Sample {
     TrackId id = kNoTrack;
-    io::MarkerSample sample;
+    MarkerSample sample;
   };
   struct Frame {
     int64_t frame = 0;
@@ -57,7 +57,7 @@ struct TrajectoryOptions {
 // `min_points` points, labelled "M" and its id (at least 3 digits: "M001"), by id. Rows run from
 // the first to the last added frame; frames not added are gaps. A sample's residual is the
 // point's standard error sqrt(trace(covariance) / 3) in mm (the tracker does not see the rays).
-io::MarkerTrajectories to_trajectories(const TrackHistory& history,
+MarkerTrajectories to_trajectories(const TrackHistory& history,
                                        const std::vector<RigidSet>& sets,
                                        const TrajectoryOptions& options = {});
 

@@ -51,7 +51,7 @@ TEST_F(MotionExportTest, ABvhFileReadBackPutsEveryJointWhereTheFitPutIt) {
   frames.insert(frames.begin() + 1, std::nullopt);  // a frame without a fit repeats the last
   const auto file = std::filesystem::path(::testing::TempDir()) / "motion_export_test.bvh";
   io::write_bvh(file.string(), bvh_motion(parameters_, frames, 30.0));
-  const io::MarkerTrajectories joints = joint_trajectories(parameters_, frames, 30.0, 100);
+  const tracking::MarkerTrajectories joints = joint_trajectories(parameters_, frames, 30.0, 100);
   ASSERT_EQ(joints.samples.size(), frames.size());
   EXPECT_FALSE(joints.samples[1][0].has_value());  // the trajectories leave the gap
 

@@ -20,13 +20,13 @@ using testing::fresh_path;
 using testing::synthetic_trajectories;
 
 // The 4th word the guide defines for a seen point: (camera mask << 8 | residual units) as a float.
-float expected_fourth_word(const MarkerSample& s, float scale) {
+float expected_fourth_word(const tracking::MarkerSample& s, float scale) {
   long units = std::lround(s.residual_mm / std::fabs(scale));
   if (s.residual_mm != 0) units = std::clamp(units, 1L, 255L);
   return static_cast<float>((s.cameras & 0x7f) << 8 | static_cast<uint32_t>(units));
 }
 
-float largest_coordinate(const MarkerTrajectories& t) {
+float largest_coordinate(const tracking::MarkerTrajectories& t) {
   double largest = 0;
   for (const auto& row : t.samples) {
     for (const auto& s : row) {
@@ -36,7 +36,7 @@ float largest_coordinate(const MarkerTrajectories& t) {
   return static_cast<float>(largest);
 }
 
-void expect_points_match(const C3dTestReader& c3d, const MarkerTrajectories& t, std::size_t f) {
+void expect_points_match(const C3dTestReader& c3d, const tracking::MarkerTrajectories& t, std::size_t f) {
   const float scale = c3d.header_float(7);
   for (std::size_t m = 0; m < t.labels.size(); ++m) {
     const auto point = c3d.point(f, m, t.labels.size());
@@ -57,7 +57,7 @@ void expect_points_match(const C3dTestReader& c3d, const MarkerTrajectories& t, 
 }
 
 // Exports `t` to a fresh file and opens it with the minimal reader.
-C3dTestReader written(const MarkerTrajectories& t) {
+C3dTestReader written(const tracking::MarkerTrajectories& t) {
   const auto path = fresh_path(".c3d");
   write_c3d(path, t);
   return C3dTestReader(path);
@@ -113,11 +113,11 @@ TEST(C3dWriter, DataHoldsPositionsAndResidualWordsWithGapsInvalid) {
 }
 
 TEST(C3dWriter, ResidualZeroMarksUnmeasuredLargeOnesSaturateCamerasKeepSevenBits) {
-  MarkerTrajectories t;
+  tracking::MarkerTrajectories t;
   t.labels = {"A", "B", "C"};
   t.rate_hz = 50;
-  t.samples = {{MarkerSample{{3200, 0, 0}, 0.0, 0b101},  // scale 0.1 mm
-                MarkerSample{{1, 2, 3}, 1e6, 0x1ff}, MarkerSample{{1, 2, 3}, 0.01, 0}}};
+  t.samples = {{tracking::MarkerSample{{3200, 0, 0}, 0.0, 0b101},  // scale 0.1 mm
+                tracking::MarkerSample{{1, 2, 3}, 1e6, 0x1ff}, tracking::MarkerSample{{1, 2, 3}, 0.01, 0}}};
   const C3dTestReader c3d = written(t);
   EXPECT_FLOAT_EQ(c3d.header_float(7), -0.1f);
   EXPECT_EQ(c3d.point(0, 0, 3).fourth, static_cast<float>(0b101 << 8 | 0));

@@ -9,6 +9,7 @@
 
 #include "export_test_paths.hpp"
 #include "io/atomic_file.hpp"
+#include "io/export_checks.hpp"
 #include "io/c3d_writer.hpp"
 #include "io/export_error.hpp"
 #include "io/trc_writer.hpp"
@@ -19,14 +20,14 @@ namespace {
 
 using testing::fresh_path;
 using testing::synthetic_trajectories;
-using Writer = std::function<void(const std::string&, const MarkerTrajectories&)>;
+using Writer = std::function<void(const std::string&, const tracking::MarkerTrajectories&)>;
 
 const std::vector<std::pair<std::string, Writer>> kWriters = {{".c3d", write_c3d},
                                                               {".trc", write_trc}};
 
 // Each writer refuses `t` with an ExportError naming the file and saying `problem`, and writes
 // nothing.
-void expect_refused(const MarkerTrajectories& t, const std::string& problem) {
+void expect_refused(const tracking::MarkerTrajectories& t, const std::string& problem) {
   for (const auto& [extension, write] : kWriters) {
     const auto path = fresh_path(extension);
     try {
@@ -41,7 +42,7 @@ void expect_refused(const MarkerTrajectories& t, const std::string& problem) {
   }
 }
 
-MarkerTrajectories valid() { return synthetic_trajectories(5, 3, 100.0, 0); }
+tracking::MarkerTrajectories valid() { return synthetic_trajectories(5, 3, 100.0, 0); }
 
 TEST(ExportChecks, RefusesRowsOfTheWrongWidth) {
   auto t = valid();
@@ -59,10 +60,10 @@ TEST(ExportChecks, RefusesRatesThatAreNotPositive) {
 
 TEST(ExportChecks, RefusesNonFinitePositionsAndBadResiduals) {
   auto t = valid();
-  t.samples[1][1] = MarkerSample{{1, std::numeric_limits<double>::infinity(), 3}, 0.1, 1};
+  t.samples[1][1] = tracking::MarkerSample{{1, std::numeric_limits<double>::infinity(), 3}, 0.1, 1};
   expect_refused(t, "frame 1, marker 1: position is not finite");
   t = valid();
-  t.samples[4][0] = MarkerSample{{1, 2, 3}, -0.5, 1};
+  t.samples[4][0] = tracking::MarkerSample{{1, 2, 3}, -0.5, 1};
   expect_refused(t, "frame 4, marker 0: residual is negative or not finite");
 }
 

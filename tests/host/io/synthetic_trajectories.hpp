@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/marker_trajectories.hpp"
+#include "tracking/marker_trajectories.hpp"
 
 namespace syncap::io::testing {
 
@@ -25,9 +25,9 @@ inline std::string numbered_label(long m) {
 }
 
 // `frames` x `markers`, labels M001, M002, ... unless given.
-inline MarkerTrajectories synthetic_trajectories(long frames, long markers, double rate_hz,
+inline tracking::MarkerTrajectories synthetic_trajectories(long frames, long markers, double rate_hz,
                                                  int64_t first_frame) {
-  MarkerTrajectories t;
+  tracking::MarkerTrajectories t;
   t.rate_hz = rate_hz;
   t.first_frame = first_frame;
   for (long m = 0; m < markers; ++m) t.labels.push_back(numbered_label(m));
@@ -38,7 +38,7 @@ inline MarkerTrajectories synthetic_trajectories(long frames, long markers, doub
     for (long m = 0; m < markers; ++m) {
       if (!synthetic_seen(f, m)) continue;
       row[static_cast<std::size_t>(m)] =
-          MarkerSample{synthetic_position(f, m), synthetic_residual(f, m), synthetic_cameras(f, m)};
+          tracking::MarkerSample{synthetic_position(f, m), synthetic_residual(f, m), synthetic_cameras(f, m)};
     }
   }
   return t;

@@ -82,10 +82,10 @@ TEST(TrcWriter, RowsHoldFrameTimeAndMillimetresWithGapsLeftEmpty) {
 
 TEST(TrcWriter, GapInTheLastMarkerStillCountsItsThreeFields) {
   const auto path = fresh_path(".trc");
-  MarkerTrajectories t;
+  tracking::MarkerTrajectories t;
   t.labels = {"A", "B"};
   t.rate_hz = 10;
-  t.samples = {{MarkerSample{{1, 2, 3}, 0.5, 1}, std::nullopt}};
+  t.samples = {{tracking::MarkerSample{{1, 2, 3}, 0.5, 1}, std::nullopt}};
   write_trc(path, t);
   const auto lines = read_lines(path);
   ASSERT_EQ(lines.size(), 7u);

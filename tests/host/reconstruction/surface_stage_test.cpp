@@ -1,4 +1,4 @@
-// The live surface stage on a textured sphere rendered exactly (tests/host/matching/surface's
+// The live surface stage on a textured sphere rendered exactly (tests/host/surface's
 // scene): the edges' image patches and silhouettes as the grouper hands them out, the sphere's
 // stand-in hull as the hull stage leaves it. Points on the true sphere, files written, and the
 // frames it cannot take (busy, no hull, too few cameras) counted, never waited for.
@@ -11,13 +11,13 @@
 #include <future>
 #include <opencv2/imgproc.hpp>
 
-#include "matching/surface/textured_scene.hpp"
+#include "surface/textured_scene.hpp"
 #include "syncap/proto/image_patch.hpp"
 
 namespace syncap::reconstruction {
 namespace {
 
-namespace st = matching::surface::test;
+namespace st = surface::test;
 
 // The contours an edge sends for a mask: through the boundary pixels' centres.
 proto::Silhouette silhouette_of(const cv::Mat& mask, int camera_id, int64_t frame) {

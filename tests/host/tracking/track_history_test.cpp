@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/export_checks.hpp"
 #include "io/export_error.hpp"
 #include "synthetic_motion.hpp"
 
@@ -24,7 +25,7 @@ TEST(TrackHistory, TrajectoriesLabelSetMarkersAndTracks) {
     const TrackedFrame& out = tracker.update(100 + f, f / 100.0, points);
     history.add(out, points, finder.find(points, out.ids));
   }
-  const io::MarkerTrajectories t =
+  const tracking::MarkerTrajectories t =
       to_trajectories(history, {wand}, {.rate_hz = 100, .min_points = 10});
   EXPECT_EQ(t.labels, (std::vector<std::string>{"w1", "w2", "w3", "M004"}));
   EXPECT_EQ(t.first_frame, 100);

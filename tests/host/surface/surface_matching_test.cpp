@@ -6,14 +6,14 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "matching/surface/facet_id_image.hpp"
-#include "matching/surface/multi_image_lsm.hpp"
-#include "matching/surface/scan_line.hpp"
-#include "matching/surface/surface_matcher.hpp"
-#include "matching/surface/surface_mesh.hpp"
+#include "surface/facet_id_image.hpp"
+#include "surface/multi_image_lsm.hpp"
+#include "surface/scan_line.hpp"
+#include "surface/surface_matcher.hpp"
+#include "surface/surface_mesh.hpp"
 #include "textured_scene.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 using test::Sphere;
@@ -318,4 +318,4 @@ TEST_F(TexturedSphere, TheSurfaceMeshKeepsTheMatchedPointsAndFillsTheBackFromThe
 }
 
 }  // namespace
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -1,4 +1,4 @@
-#include "io/marker_trajectories.hpp"
+#include "io/export_checks.hpp"
 
 #include <cmath>
 #include <unordered_set>
@@ -36,7 +36,7 @@ void check_labels(const std::vector<std::string>& labels, const std::string& pat
   }
 }
 
-void check_sample(const MarkerSample& sample, std::size_t frame, std::size_t marker,
+void check_sample(const tracking::MarkerSample& sample, std::size_t frame, std::size_t marker,
                   const std::string& path) {
   const std::string where =
       "frame " + std::to_string(frame) + ", marker " + std::to_string(marker) + ": ";
@@ -48,7 +48,7 @@ void check_sample(const MarkerSample& sample, std::size_t frame, std::size_t mar
 
 }  // namespace
 
-void check_exportable(const MarkerTrajectories& trajectories, const std::string& path) {
+void check_exportable(const tracking::MarkerTrajectories& trajectories, const std::string& path) {
   check_labels(trajectories.labels, path);
   if (!(std::isfinite(trajectories.rate_hz) && trajectories.rate_hz > 0)) {
     throw ExportError(path, "frame rate " + std::to_string(trajectories.rate_hz) +

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "matching/surface/facet_id_image.hpp"
-#include "matching/surface/multi_image_lsm.hpp"
-#include "matching/surface/scan_line.hpp"
+#include "surface/facet_id_image.hpp"
+#include "surface/multi_image_lsm.hpp"
+#include "surface/scan_line.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 struct SurfaceMatchingOptions {
   double seed_spacing_px = 4.0;  // seeds on a grid of this spacing in each reference image
@@ -89,4 +89,4 @@ SurfaceMatchingResult match_surface(const std::vector<MatchingView>& views,
                                     const std::vector<Facet>& hull,
                                     const SurfaceMatchingOptions& options = {});
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -5,7 +5,7 @@
 
 #include <opencv2/core.hpp>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 // A grey value and its gradient at a sub-pixel position.
 struct GreySample {
@@ -41,4 +41,4 @@ class MatchImage {
   cv::Mat dx_, dy_;
 };
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -1,4 +1,4 @@
-#include "matching/surface/surface_mesh.hpp"
+#include "surface/surface_mesh.hpp"
 
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 
@@ -13,7 +13,7 @@
 
 #include "hull/surface_samples.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 // Points hashed into cubic cells: which lie near a query.
@@ -107,4 +107,4 @@ hull::Mesh mesh_surface(const std::vector<Eigen::Vector3d>& matched, const hull:
   return mesh;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -15,7 +15,7 @@
 
 #include "sensor/camera_model.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 // One triangle of a mesh whose faces are outward oriented (a, b, c counter-clockwise seen from
 // outside).
@@ -62,4 +62,4 @@ class FacetIdImage {
   cv::Mat depths_;  // CV_32F
 };
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

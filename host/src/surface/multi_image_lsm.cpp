@@ -1,11 +1,11 @@
-#include "matching/surface/multi_image_lsm.hpp"
+#include "surface/multi_image_lsm.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 // Unknowns shared by every search image: t and the depth's second order over the window,
@@ -274,4 +274,4 @@ LsmSolution solve_multi_image_lsm(const ScanWindow& window,
   return out;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

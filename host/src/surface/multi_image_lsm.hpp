@@ -14,9 +14,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "matching/surface/scan_line.hpp"
+#include "surface/scan_line.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 struct LsmOptions {
   int max_iterations = 20;
@@ -56,4 +56,4 @@ LsmSolution solve_multi_image_lsm(const ScanWindow& window,
                                   const std::vector<const MatchingView*>& search, double t,
                                   const LsmOptions& options = {});
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

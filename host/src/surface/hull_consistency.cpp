@@ -1,10 +1,10 @@
-#include "matching/surface/hull_consistency.hpp"
+#include "surface/hull_consistency.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 // A mask says whether a pixel's centre sees the object: a surface point on the outline can
@@ -49,4 +49,4 @@ HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
   return out;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -9,7 +9,7 @@
 
 #include "hull/mesh.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 struct SurfaceMeshOptions {
   // A hull sample is kept where no matched point lies within this distance (object units); 0:
@@ -38,4 +38,4 @@ inline bool is_matched_vertex(std::size_t vertex, const SurfaceMeshStats& stats)
   return vertex < stats.matched;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -1,4 +1,4 @@
-#include "matching/surface/surface_matcher.hpp"
+#include "surface/surface_matcher.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <numbers>
 #include <optional>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -264,4 +264,4 @@ SurfaceMatchingResult match_surface(const std::vector<MatchingView>& views,
   return result;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -1,4 +1,4 @@
-#include "matching/surface/scan_line.hpp"
+#include "surface/scan_line.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 // The plane's direction of pixel `p`'s ray, scaled so that centre + t * result lies on the
@@ -187,4 +187,4 @@ ScanProfile scan_sncc(const ScanWindow& window, const std::vector<const Matching
   return profile;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

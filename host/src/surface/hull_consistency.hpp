@@ -8,9 +8,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "matching/surface/surface_matcher.hpp"
+#include "surface/surface_matcher.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 struct HullConsistency {
   std::size_t points = 0;
@@ -28,4 +28,4 @@ HullConsistency check_against_masks(const std::vector<MatchedPoint>& points,
                                     const std::vector<cv::Mat>& masks, double k_sigma = 3.0,
                                     double mask_uncertainty_px = 0.0);
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -8,10 +8,10 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "matching/surface/match_image.hpp"
+#include "surface/match_image.hpp"
 #include "sensor/camera_model.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 // One camera with its image and, optionally, the object's mask: a reference window then uses only
 // its pixels on the object. Without it, a window on a limb takes in the limb's outline, whose
@@ -105,4 +105,4 @@ struct ScanProfile {
 ScanProfile scan_sncc(const ScanWindow& window, const std::vector<const MatchingView*>& search,
                       double t_from, double t_to, double step_px, double min_peak);
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <vector>
 
-#include "matching/surface/scan_line.hpp"
-#include "matching/surface/surface_matcher.hpp"
+#include "surface/scan_line.hpp"
+#include "surface/surface_matcher.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 // The camera id of each view, by view index (MatchedPoint::reference and ::search index them).
 std::vector<int> camera_ids(const std::vector<MatchingView>& views);
@@ -23,4 +23,4 @@ void write_points_csv(const std::filesystem::path& file, const std::vector<Match
 // Vertices with their normal (the hull's) and sigma (along the normal, mm).
 void write_points_ply(const std::filesystem::path& file, const std::vector<MatchedPoint>& points);
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

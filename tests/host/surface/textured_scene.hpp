@@ -10,11 +10,11 @@
 #include <random>
 #include <vector>
 
-#include "matching/surface/facet_id_image.hpp"
-#include "matching/surface/scan_line.hpp"
+#include "surface/facet_id_image.hpp"
+#include "surface/scan_line.hpp"
 #include "sensor/test_cameras.hpp"
 
-namespace syncap::matching::surface::test {
+namespace syncap::surface::test {
 
 struct Sphere {
   Eigen::Vector3d centre{0, 0, 1000};
@@ -124,4 +124,4 @@ inline std::vector<Facet> icosphere(const Eigen::Vector3d& centre, double radius
   return facets;
 }
 
-}  // namespace syncap::matching::surface::test
+}  // namespace syncap::surface::test

@@ -1,4 +1,4 @@
-#include "matching/surface/point_files.hpp"
+#include "surface/point_files.hpp"
 
 #include <fstream>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 
 #include "util/printf_string.hpp"
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 
 std::vector<int> camera_ids(const std::vector<MatchingView>& views) {
   std::vector<int> ids;
@@ -49,4 +49,4 @@ void write_points_csv(const std::filesystem::path& file, const std::vector<Match
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

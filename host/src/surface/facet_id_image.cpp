@@ -1,10 +1,10 @@
-#include "matching/surface/facet_id_image.hpp"
+#include "surface/facet_id_image.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 double edge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double x, double y) {
@@ -100,4 +100,4 @@ bool FacetIdImage::sees(const Eigen::Vector3d& point, int facet, double toleranc
   return (point - centre_).norm() <= depth_at(px->x(), px->y()) + tolerance_mm;
 }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface

@@ -1,10 +1,10 @@
-#include "matching/surface/match_image.hpp"
+#include "surface/match_image.hpp"
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
-namespace syncap::matching::surface {
+namespace syncap::surface {
 namespace {
 
 struct Bilinear {
@@ -47,4 +47,4 @@ GreySample MatchImage::sample(double u, double v) const {
 
 float MatchImage::value(double u, double v) const { return Bilinear(u, v).of(grey_); }
 
-}  // namespace syncap::matching::surface
+}  // namespace syncap::surface
