@@ -38,16 +38,16 @@ yaml_lines() {
   done
 }
 
-# write_rig FILE: the run's installation as a rig file (docs/guide/rig.md), read by the host
-# and every edge as on a lab's machines: the scene's true cameras (render/cameras.json), each
-# camera's fake GigE address, the edges' and the host's options.
+# write_rig FILE: the run's installation as a rig file (docs/guide/rig.md), read by the host, the
+# trigger and every edge as on a lab's machines: the scene's true cameras (render/cameras.json),
+# each camera's fake GigE address, the edges', the host's and the trigger's options.
 write_rig() {
   {
     echo "# hil/run's rig: $(basename "$scenario" .yaml), $cameras cameras"
     echo "calibration: \"$render/cameras.json\""
     echo "edges:"
     # Retro-reflective targets and the LED are far above the lit room (<= 190 DN): threshold 200.
-    yaml_lines --lcm-url "$board_url" --exit-after-last --threshold 200 --detection "$detection" \
+    yaml_lines --lcm-url "$board_url" --exit-after-last --threshold-dn 200 --detection "$detection" \
       "${edge_mask_args[@]}"
     echo "cameras:"
     for ((c = 0; c < cameras; c++)); do
@@ -56,6 +56,9 @@ write_rig() {
     echo "host:"
     yaml_lines --until-last --idle-timeout-s 15 --max-lag 30 --lcm-url "$host_url" \
       "${host_hull_args[@]}"
+    # The simulated chip's lines 0..N-1, one a camera, at the scenario's rate.
+    echo "trigger:"
+    yaml_lines --chip "sim:$chip" --lines "$ids" --rate-hz "$rate" --start-delay-ms 500
   } > "$1"
 }
 
@@ -91,8 +94,7 @@ start_edge() {
 
 # start_trigger COUNT LOG
 start_trigger() {
-  "$bin/syncap-trigger" --chip "sim:$chip" --lines "$ids" --rate "$rate" --count "$1" \
-    --start-delay-ms 500 > "$2" 2>&1 &
+  "$bin/syncap-trigger" --config "$out/rig.yaml" --count "$1" > "$2" 2>&1 &
   trigger_pid=$!
   trigger_log=$2
   pids+=("$trigger_pid")

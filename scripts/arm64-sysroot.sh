@@ -14,7 +14,7 @@ PACKAGES=(
   # C and C++ runtime and headers of the target
   libc6-dev libstdc++-12-dev
   # acquisition, messaging, authentication, trigger GPIO
-  libaravis-dev libusb-1.0-0-dev libv4l-dev liblcm-dev libsodium-dev libgpiod-dev
+  libaravis-dev libusb-1.0-0-dev libv4l-dev liblcm-dev libsodium-dev libgpiod-dev libyaml-dev
   # vision and geometry, configuration, options (Ceres' SuiteSparse asks for BLAS and LAPACK)
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
   libcli11-dev libblas-dev liblapack-dev

@@ -19,8 +19,8 @@ PACKAGES=(
   liblcm-dev liblcm-bin
   # authenticated commands to the edges (crypto_auth, docs/design/security.md)
   libsodium-dev
-  # trigger GPIO
-  libgpiod-dev gpiod
+  # trigger GPIO, and its YAML config (libyaml)
+  libgpiod-dev gpiod libyaml-dev
   # vision and geometry
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
   # command-line options (CLI11)

@@ -100,10 +100,10 @@ set -e
 url='udpm://239.255.76.67:7667?ttl=0'
 syncap record --out /tmp/edge.lcm --lcm-url "$url" 2>/tmp/record.err &
 record=$!
-syncap-edge --source replay:/tmp/frames --camera-id 4 --mode blobs --threshold 128 \
+syncap-edge --source replay:/tmp/frames --camera-id 4 --mode blobs --threshold-dn 128 \
   --lcm-url "$url" --exit-after-last --quiet &
 edge=$!
-syncap-trigger --chip sim --rate 10 --count 6 --start-delay-ms 1000 --lcm-url "$url" --quiet
+syncap-trigger --chip sim --rate-hz 10 --count 6 --start-delay-ms 1000 --lcm-url "$url" --quiet
 wait $edge
 sleep 0.5
 kill -INT $record

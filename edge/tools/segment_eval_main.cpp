@@ -47,7 +47,7 @@ struct Arguments {
   syncap::edge::CdnetEvalOptions options;
 };
 
-void add_options(CLI::App& app, Arguments& a) {
+void add_options(cli::App& app, Arguments& a) {
   auto* cdnet = app.add_option("--cdnet", a.cdnet, "a CDnet 2014 folder")->option_text("DIR");
   app.add_option("--scene", a.scene_dir, "a syncap-sim scene (medi-picture only)")
       ->option_text("DIR")
@@ -65,13 +65,14 @@ void add_options(CLI::App& app, Arguments& a) {
                    "score every N-th frame (default 1)");
   // The medi-picture options, checked by apply_masking_option as syncap-edge's --mask-* are;
   // their defaults are medi-picture's own, syncap-edge's too (--thesis changes them).
-  for (const auto& [name, metavar, meaning] : syncap::edge::kMaskingOptions) {
+  for (const auto& [name, metavar, meaning, old_name] : syncap::edge::kMaskingOptions) {
     const std::string fallback =
         syncap::edge::masking_option_value(syncap::edge::MediPictureOptions{}, name);
     app.add_option_function<std::string>(
            std::string("--") + name, [&a, name](const std::string& v) { a.masking[name] = v; },
            std::string(meaning) + " (default " + fallback + ")")
         ->option_text(metavar);
+    if (old_name != nullptr) app.deprecated_name(std::string("--") + old_name, std::string("--") + name);
   }
   app.add_flag("--no-shadows", a.no_shadows, "skip the shadow test");
   app.add_option("--regions", a.regions,

@@ -351,7 +351,7 @@ static const char* option_of(enum syncap_trigger_error error, const struct trigg
     case SYNCAP_TRIGGER_ERR_RATE_TOO_LOW:
     case SYNCAP_TRIGGER_ERR_RATE_TOO_HIGH:
       *value = o->rate_text;
-      return "--rate";
+      return "--rate-hz";
     case SYNCAP_TRIGGER_ERR_WIDTH_NOT_POSITIVE:
     case SYNCAP_TRIGGER_ERR_WIDTH_NOT_BELOW_PERIOD:
       *value = o->width_text;

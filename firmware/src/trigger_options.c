@@ -25,10 +25,11 @@ enum option_id {
   OPT_CONFIG,
   OPT_QUIET,
   OPT_HELP,
+  OPT_RATE_OLD,  // --rate, the old name of --rate-hz
 };
 
 static const struct option long_options[] = {
-    {"rate", required_argument, NULL, OPT_RATE},
+    {"rate-hz", required_argument, NULL, OPT_RATE},
     {"width-us", required_argument, NULL, OPT_WIDTH_US},
     {"count", required_argument, NULL, OPT_COUNT},
     {"lines", required_argument, NULL, OPT_LINES},
@@ -45,6 +46,7 @@ static const struct option long_options[] = {
     {"config", required_argument, NULL, OPT_CONFIG},
     {"quiet", no_argument, NULL, OPT_QUIET},
     {"help", no_argument, NULL, OPT_HELP},
+    {"rate", required_argument, NULL, OPT_RATE_OLD},
     {NULL, 0, NULL, 0},
 };
 
@@ -53,7 +55,7 @@ void trigger_options_usage(FILE* out) {
       "usage: syncap-trigger [OPTIONS]\n"
       "Drives the camera trigger lines and publishes one syncap_trigger_t per pulse on\n"
       "LCM channel SYNCAP_TRIGGER.\n"
-      "  --rate HZ            pulse rate, 0.01 to 1000 (default 30)\n"
+      "  --rate-hz HZ         pulse rate, 0.01 to 1000 (default 30)\n"
       "  --width-us US        pulse high time, shorter than the period (default 1000)\n"
       "  --count N            pulses to send, 0 = until SIGINT/SIGTERM (default 0)\n"
       "  --lines L1,L2,...    GPIO line offsets (default 0)\n"
@@ -73,8 +75,10 @@ void trigger_options_usage(FILE* out) {
       "                       (without it the run starts at once)\n"
       "  --stop-line N        input line on the same chip: a rising edge stops the run\n"
       "  --debounce-us US     ignore input edges this close to the previous one (default 5000)\n"
-      "  --config FILE        'key = value' lines, keys as these options without dashes;\n"
-      "                       the command line overrides the file\n"
+      "  --config FILE        options from a file, keys as these options without dashes:\n"
+      "                       FILE.yaml (or .yml) a flat YAML file or the rig file's\n"
+      "                       trigger: section, any other 'key = value' lines; the\n"
+      "                       command line overrides the file\n"
       "  --bench SECONDS      timing benchmark on the chip (no LCM): prints the rising edges'\n"
       "                       error against the schedule, p50/p99/max in us\n"
       "  --quiet              no start line and no summary\n"
@@ -111,12 +115,29 @@ void trigger_options_defaults(struct trigger_options* options) {
       .quiet = false,
       .config_path = NULL,
       .config_text = NULL,
+      .config_strings = NULL,
   };
 }
 
 void trigger_options_free(struct trigger_options* options) {
   free(options->config_text);
   options->config_text = NULL;
+  while (options->config_strings != NULL) {
+    struct trigger_config_string* next = options->config_strings->next;
+    free(options->config_strings);
+    options->config_strings = next;
+  }
+}
+
+const char* trigger_options_keep(struct trigger_options* options, const char* text,
+                                 size_t length) {
+  struct trigger_config_string* kept = malloc(sizeof(*kept) + length + 1);
+  if (kept == NULL) return NULL;
+  memcpy(kept->text, text, length);
+  kept->text[length] = '\0';
+  kept->next = options->config_strings;
+  options->config_strings = kept;
+  return kept->text;
 }
 
 // Whole-string decimal integer in [min, max].
@@ -278,12 +299,36 @@ static const char* option_name(int id) {
   return "?";
 }
 
+// The option an old name stands for, after a one-line notice on stderr (docs/reference/cli.md,
+// "Old names"); any other id as it is.
+static int current_option(int id, bool as_key) {
+  if (id != OPT_RATE_OLD) return id;
+  fprintf(stderr, as_key ? "syncap-trigger: key 'rate' is deprecated, use 'rate-hz'\n"
+                         : "syncap-trigger: --rate is deprecated, use --rate-hz\n");
+  return OPT_RATE;
+}
+
 // The option id of a config key (a long option's name), or 0.
 static int option_of_key(const char* key) {
   for (const struct option* o = long_options; o->name != NULL; ++o) {
     if (o->val != OPT_HELP && o->val != OPT_CONFIG && strcmp(o->name, key) == 0) return o->val;
   }
   return 0;
+}
+
+bool trigger_options_is_key(const char* key) { return option_of_key(key) != 0; }
+
+const char* trigger_options_apply_key(const char* key, const char* value,
+                                      struct trigger_options* options) {
+  const int id = option_of_key(key);
+  if (id == 0) return "not an option of syncap-trigger";
+  return apply_option(current_option(id, true), value, options);
+}
+
+static bool has_suffix(const char* text, const char* suffix) {
+  const size_t n = strlen(text);
+  const size_t m = strlen(suffix);
+  return n >= m && strcmp(text + n - m, suffix) == 0;
 }
 
 static char* trim(char* text) {
@@ -321,6 +366,9 @@ static char* read_file(const char* path) {
 
 bool trigger_options_load_config(const char* path, struct trigger_options* options, char* error,
                                  size_t size) {
+  if (has_suffix(path, ".yaml") || has_suffix(path, ".yml")) {
+    return trigger_options_load_yaml(path, options, error, size);
+  }
   char* text = read_file(path);
   if (text == NULL) {
     snprintf(error, size, "%s: cannot read: %s", path, strerror(errno));
@@ -357,7 +405,7 @@ bool trigger_options_load_config(const char* path, struct trigger_options* optio
       snprintf(error, size, "%s:%u: missing value for '%s'", path, number, key);
       return false;
     }
-    const char* why = apply_option(id, value, options);
+    const char* why = apply_option(current_option(id, true), value, options);
     if (why != NULL) {
       snprintf(error, size, "%s:%u: invalid %s '%s': %s", path, number, key, value, why);
       return false;
@@ -405,6 +453,7 @@ enum trigger_options_result trigger_options_parse(int argc, char** argv,
       return TRIGGER_OPTIONS_HELP;
     }
     if (id == OPT_CONFIG) continue;  // read first, above
+    id = current_option(id, false);
     if (id == OPT_QUIET) {
       options->quiet = true;
       continue;

@@ -8,6 +8,12 @@
 
 #include "syncap/trigger/gpio.h"
 
+// A value taken from a YAML config file, kept as long as the options that point into it.
+struct trigger_config_string {
+  struct trigger_config_string* next;
+  char text[];
+};
+
 struct trigger_options {
   double rate_hz;
   const char* rate_text;  // as given, for error messages
@@ -31,7 +37,8 @@ struct trigger_options {
   int64_t bench_seconds;  // > 0: timing benchmark instead of a normal run
   bool quiet;
   const char* config_path;  // --config FILE, NULL without
-  char* config_text;        // the file's text, which the values from it point into
+  char* config_text;        // a 'key = value' file's text, which its values point into
+  struct trigger_config_string* config_strings;  // a YAML file's values
 };
 
 enum trigger_options_result {
@@ -44,11 +51,32 @@ enum trigger_options_result {
 enum trigger_options_result trigger_options_parse(int argc, char** argv,
                                                   struct trigger_options* options);
 
-// Applies the `key = value` lines of the file at path to options (keys: the long options without
+// Applies the file at path to options. A path ending in .yaml or .yml is YAML
+// (trigger_options_load_yaml); any other holds `key = value` lines (keys: the long options without
 // their dashes; '#' starts a comment; blank lines are fine; flags take true/false/yes/no/1/0).
 // false with a message "PATH:LINE: what is wrong" in error. options keeps the file's text.
 bool trigger_options_load_config(const char* path, struct trigger_options* options, char* error,
                                  size_t size);
+
+// Applies a YAML file (docs/guide/rig.md): a flat mapping of `key: value` entries, each key an
+// option; or the rig file (a top-level `trigger:`, `host:`, `edges:` or `cameras:`), whose
+// top-level scalar entries that are options of syncap-trigger (`lcm-url`) come first and then
+// every entry of its `trigger:` section. A list value ([17, 27]) is taken as "17,27". false with
+// "PATH:LINE:COLUMN: key 'KEY': what is wrong" in error. trigger_config_yaml.c.
+bool trigger_options_load_yaml(const char* path, struct trigger_options* options, char* error,
+                               size_t size);
+
+// Whether key is one of the options a config file may set (not help or config).
+bool trigger_options_is_key(const char* key);
+
+// Applies one config entry, key a long option's name without dashes; NULL, or why not. The value
+// must live as long as options (trigger_options_keep).
+const char* trigger_options_apply_key(const char* key, const char* value,
+                                      struct trigger_options* options);
+
+// A copy of text[0..length) that lives until trigger_options_free; NULL when out of memory.
+const char* trigger_options_keep(struct trigger_options* options, const char* text,
+                                 size_t length);
 
 // The defaults, without any file or argument.
 void trigger_options_defaults(struct trigger_options* options);

@@ -143,7 +143,7 @@ void parse_frame_range(const std::string& text, CalibrateArgs& a) {
 constexpr const char* kDescription =
     "Calibrates the cameras from wand (or LED) observations and writes the calibration folder "
     "(docs/design/calibration.md).\n"
-    "usage: syncap calibrate --input SOURCE (--wand-length MM | --led) --out-dir DIR [options]\n"
+    "usage: syncap calibrate --input SOURCE (--wand-length-mm MM | --led) --out-dir DIR [options]\n"
     "SOURCE:\n"
     "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --camera-ids; "
     "stops\n"
@@ -190,7 +190,7 @@ void add_source_options(CLI::App& app, CalibrateArgs& a) {
 void add_wand_options(CLI::App& app, CalibrateArgs& a) {
   auto& w = a.options.wand;
   app.add_option_function<double>(
-         "--wand-length", [&a](double mm) { a.wand_length = mm; },
+         "--wand-length-mm", [&a](double mm) { a.wand_length = mm; },
          "distance between the wand's end targets")
       ->option_text("MM")
       ->check(cli::positive());
@@ -279,7 +279,7 @@ void add_adjustment_options(CLI::App& app, CalibrateArgs& a) {
 // The checks that span options, after parsing.
 void check_args(CalibrateArgs& a) {
   if (a.led == a.wand_length.has_value())
-    throw CLI::ValidationError("give exactly one of --wand-length MM and --led");
+    throw CLI::ValidationError("give exactly one of --wand-length-mm MM and --led");
   a.options.wand.led = a.led;
   if (a.wand_length) a.options.wand.length_mm = *a.wand_length;
 }
@@ -291,6 +291,7 @@ std::optional<int> parse_args(std::span<const std::string> args, CalibrateArgs& 
   app.deprecated_name("--cameras", "--camera-ids");
   app.deprecated_name("--out", "--out-dir");
   app.deprecated_name("--idle-timeout", "--idle-timeout-s");
+  app.deprecated_name("--wand-length", "--wand-length-mm");
   app.get_formatter()->column_width(34);
   add_source_options(app, a);
   add_wand_options(app, a);

@@ -8,8 +8,8 @@ export PATH=$bin:$PATH
 
 # Program (or `syncap SUBCOMMAND`) | one numeric option ("" where it has none).
 TABLE=(
-  "syncap-trigger|--rate"
-  "syncap-edge|--threshold"
+  "syncap-trigger|--rate-hz"
+  "syncap-edge|--threshold-dn"
   "syncap-host|--max-lag"
   "syncap calibrate|--frames"
   "syncap bundle|"

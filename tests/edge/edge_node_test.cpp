@@ -774,7 +774,7 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
   EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--roi", "1,2,3"}),
                UsageError);
   const auto patches = parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode",
-                                           "mask", "--patch-every", "30", "--patch-margin", "6"});
+                                           "mask", "--patch-every", "30", "--patch-margin-px", "6"});
   EXPECT_EQ(patches.patch_every, 30);
   EXPECT_EQ(patches.patch_margin_px, 6);
   try {

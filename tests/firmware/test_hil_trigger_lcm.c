@@ -95,7 +95,7 @@ static void count_run_publishes_its_pulses_in_order(void** state) {
   assert_non_null(subscription);
 
   char* argv[] = {
-      SYNCAP_TRIGGER_EXE, "--count", "20",      "--rate", "200", "--start-delay-ms", "300",
+      SYNCAP_TRIGGER_EXE, "--count", "20",      "--rate-hz", "200", "--start-delay-ms", "300",
       "--lcm-url",        LCM_URL,   "--quiet", NULL};
   const pid_t pid = child_spawn(argv, -1);
   assert_true(pid > 0);
@@ -136,7 +136,7 @@ static void heartbeat_every_second_and_a_final_stopped_status(void** state) {
       syncap_trigger_status_t_subscribe(lcm, "SYNCAP_TRIGGER_STATUS", on_status, &statuses);
   assert_non_null(subscription);
 
-  char* argv[] = {SYNCAP_TRIGGER_EXE, "--rate", "100",     "--width-us", "100", "--trigger-id", "4",
+  char* argv[] = {SYNCAP_TRIGGER_EXE, "--rate-hz", "100",     "--width-us", "100", "--trigger-id", "4",
                   "--lcm-url",        LCM_URL,  "--quiet", NULL};
   const pid_t pid = child_spawn(argv, -1);
   assert_true(pid > 0);

@@ -71,9 +71,9 @@ static void unknown_option_exits_2_naming_it(void** state) {
 static void rate_out_of_range_exits_2_naming_it(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--rate", "1000.1", NULL}, -1, 0, &result);
+  run_trigger((char*[]){"--rate-hz", "1000.1", NULL}, -1, 0, &result);
   assert_exit_status(&result, 2);
-  assert_output_has(&result, "--rate '1000.1'");
+  assert_output_has(&result, "--rate-hz '1000.1'");
 }
 
 static void malformed_count_exits_2_naming_it(void** state) {
@@ -116,7 +116,7 @@ static void config_file_error_exits_2_naming_file_and_line(void** state) {
   snprintf(path, sizeof(path), "/tmp/syncap-cli-%ld.conf", (long)getpid());
   FILE* file = fopen(path, "w");
   assert_non_null(file);
-  fputs("rate = 30\n# x\nrat = 3\n", file);
+  fputs("rate-hz = 30\n# x\nrat = 3\n", file);
   fclose(file);
   static struct run_result result;
   run_trigger((char*[]){"--config", path, NULL}, -1, 0, &result);
@@ -130,7 +130,7 @@ static void config_file_error_exits_2_naming_file_and_line(void** state) {
 static void bench_prints_percentiles(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--bench", "1", "--rate", "200", "--width-us", "100", NULL}, -1, 0,
+  run_trigger((char*[]){"--bench", "1", "--rate-hz", "200", "--width-us", "100", NULL}, -1, 0,
               &result);
   assert_exit_status(&result, 0);
   // 200 pulses; on a loaded machine the simulated chip's reader can miss one (the line then says
@@ -205,7 +205,7 @@ static void start_and_stop_lines_drive_the_runs(void** state) {
   snprintf(spec, sizeof(spec), "sim:%s", name);
   char* argv[] = {
       SYNCAP_TRIGGER_EXE, "--chip", spec,     "--lines", "0",          "--start-line", "5",
-      "--stop-line",      "6",      "--rate", "200",     "--width-us", "100",          "--lcm-url",
+      "--stop-line",      "6",      "--rate-hz", "200",     "--width-us", "100",          "--lcm-url",
       "memq://",          NULL};
   FILE* output = tmpfile();
   assert_non_null(output);
@@ -249,7 +249,7 @@ static void stop_line_alone_ends_the_daemon(void** state) {
   assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line0), 0);
   char spec[80];
   snprintf(spec, sizeof(spec), "sim:%s", name);
-  char* argv[] = {SYNCAP_TRIGGER_EXE, "--chip", spec,        "--stop-line", "6", "--rate", "200",
+  char* argv[] = {SYNCAP_TRIGGER_EXE, "--chip", spec,        "--stop-line", "6", "--rate-hz", "200",
                   "--width-us",       "100",    "--lcm-url", "memq://",     NULL};
   FILE* output = tmpfile();
   assert_non_null(output);
@@ -306,7 +306,7 @@ static void phases_delay_the_lines_edges(void** state) {
   char spec[80];
   snprintf(spec, sizeof(spec), "sim:%s", name);
   static struct run_result result;
-  run_trigger((char*[]){"--chip", spec, "--lines", "0,1,2", "--phases-us", "0,2000,2000", "--rate",
+  run_trigger((char*[]){"--chip", spec, "--lines", "0,1,2", "--phases-us", "0,2000,2000", "--rate-hz",
                         "100", "--width-us", "1000", "--count", "10", "--lcm-url", "memq://", NULL},
               -1, 0, &result);
   assert_exit_status(&result, 0);
@@ -339,7 +339,7 @@ static void phases_must_match_the_lines(void** state) {
   run_trigger((char*[]){"--lines", "0,1", "--phases-us", "0", NULL}, -1, 0, &result);
   assert_exit_status(&result, 2);
   assert_output_has(&result, "--phases-us '0'");
-  run_trigger((char*[]){"--lines", "0,1", "--phases-us", "0,33000", "--rate", "30", NULL}, -1, 0,
+  run_trigger((char*[]){"--lines", "0,1", "--phases-us", "0,33000", "--rate-hz", "30", NULL}, -1, 0,
               &result);
   assert_exit_status(&result, 2);
   assert_output_has(&result, "--phases-us '0,33000'");
@@ -356,7 +356,7 @@ static void help_exits_0(void** state) {
 static void count_run_ends_with_a_summary(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--count", "5", "--rate", "50", "--lcm-url", "memq://", NULL}, -1, 0,
+  run_trigger((char*[]){"--count", "5", "--rate-hz", "50", "--lcm-url", "memq://", NULL}, -1, 0,
               &result);
   assert_exit_status(&result, 0);
   // A period the trigger wakes too late for is skipped by design (counted as missed), as a
@@ -373,7 +373,7 @@ static void count_run_ends_with_a_summary(void** state) {
 static void quiet_run_prints_no_summary(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--count", "2", "--rate", "500", "--quiet", "--lcm-url", "memq://", NULL},
+  run_trigger((char*[]){"--count", "2", "--rate-hz", "500", "--quiet", "--lcm-url", "memq://", NULL},
               -1, 0, &result);
   assert_exit_status(&result, 0);
   assert_null(strstr(result.output, "pulses="));
@@ -383,7 +383,7 @@ static void quiet_run_prints_no_summary(void** state) {
 static void sigterm_stops_cleanly_with_status_0(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--rate", "0.01", "--lcm-url", "memq://", NULL}, 300, SIGTERM, &result);
+  run_trigger((char*[]){"--rate-hz", "0.01", "--lcm-url", "memq://", NULL}, 300, SIGTERM, &result);
   assert_exit_status(&result, 0);
   assert_output_has(&result, "pulses=1 ");
 }

@@ -58,7 +58,7 @@ static void a_count_run_publishes_every_pulse_and_ends_with_the_last(void** stat
   char url[128];
   snprintf(url, sizeof url, "file://%s?mode=w", path);
   struct trigger_options options;
-  assert_int_equal(parse((char*[]){"--chip", "sim", "--lines", "0,1", "--rate", "200", "--count",
+  assert_int_equal(parse((char*[]){"--chip", "sim", "--lines", "0,1", "--rate-hz", "200", "--count",
                                    "5", "--width-us", "100", "--start-delay-ms", "0", "--lcm-url",
                                    url, "--quiet", NULL},
                          &options),

@@ -42,7 +42,7 @@ static void keys_comments_and_blank_lines(void** state) {
   char error[512] = "";
   const bool ok = load(
       "# the rig's trigger\n"
-      "rate = 100\n"
+      "rate-hz = 100\n"
       "\n"
       "   width-us=500   # half a millisecond\n"
       "lines = 0,1,2\n"
@@ -98,7 +98,7 @@ static void unknown_key_names_file_and_line(void** state) {
   (void)state;
   struct trigger_options options;
   char error[512] = "";
-  assert_false(load("# comment\nrate = 30\nrat = 100\n", &options, error, sizeof(error)));
+  assert_false(load("# comment\nrate-hz = 30\nrat = 100\n", &options, error, sizeof(error)));
   assert_string_equal(error, "trigger.conf:3: unknown key 'rat'");
   trigger_options_free(&options);
 }
@@ -119,11 +119,11 @@ static void line_without_equals_or_value_is_an_error(void** state) {
   (void)state;
   struct trigger_options options;
   char error[512] = "";
-  assert_false(load("rate 30\n", &options, error, sizeof(error)));
-  assert_string_equal(error, "trigger.conf:1: expected 'key = value', got 'rate 30'");
+  assert_false(load("rate-hz 30\n", &options, error, sizeof(error)));
+  assert_string_equal(error, "trigger.conf:1: expected 'key = value', got 'rate-hz 30'");
   trigger_options_free(&options);
-  assert_false(load("rate =   # nothing\n", &options, error, sizeof(error)));
-  assert_string_equal(error, "trigger.conf:1: missing value for 'rate'");
+  assert_false(load("rate-hz =   # nothing\n", &options, error, sizeof(error)));
+  assert_string_equal(error, "trigger.conf:1: missing value for 'rate-hz'");
   trigger_options_free(&options);
 }
 
@@ -150,8 +150,8 @@ static void missing_file_is_named(void** state) {
 static void command_line_overrides_the_file(void** state) {
   (void)state;
   char path[128];
-  write_config("rate = 100\nwidth-us = 500\ncount = 7\n", path, sizeof(path));
-  char* argv[] = {"syncap-trigger", "--rate", "50", "--config", path, "--count=9", NULL};
+  write_config("rate-hz = 100\nwidth-us = 500\ncount = 7\n", path, sizeof(path));
+  char* argv[] = {"syncap-trigger", "--rate-hz", "50", "--config", path, "--count=9", NULL};
   struct trigger_options options;
   assert_int_equal(trigger_options_parse(6, argv, &options), TRIGGER_OPTIONS_RUN);
   unlink(path);
@@ -160,6 +160,135 @@ static void command_line_overrides_the_file(void** state) {
   assert_int_equal(options.width_us, 500);  // the file
   assert_int_equal(options.count, 9);
   assert_string_equal(options.config_path, path);
+  trigger_options_free(&options);
+}
+
+// --rate and the key rate, the old names of --rate-hz, still set the rate.
+static void old_rate_name_still_sets_the_rate(void** state) {
+  (void)state;
+  struct trigger_options options;
+  char error[512] = "";
+  assert_true(load("rate = 100\n", &options, error, sizeof(error)));
+  assert_true(options.rate_hz == 100.0);
+  trigger_options_free(&options);
+  char* argv[] = {"syncap-trigger", "--rate", "50", NULL};
+  assert_int_equal(trigger_options_parse(3, argv, &options), TRIGGER_OPTIONS_RUN);
+  assert_true(options.rate_hz == 50.0);
+  trigger_options_free(&options);
+}
+
+// Writes text to DIR/name in a new temporary folder; its path goes to path. The folder is left
+// for remove_yaml.
+static void write_named(const char* text, const char* name, char* path, size_t size) {
+  char folder[] = "/tmp/syncap-trigger-yaml-XXXXXX";
+  assert_non_null(mkdtemp(folder));
+  snprintf(path, size, "%s/%s", folder, name);
+  FILE* file = fopen(path, "w");
+  assert_non_null(file);
+  fputs(text, file);
+  fclose(file);
+}
+
+static void remove_named(const char* path) {
+  unlink(path);
+  char folder[256];
+  snprintf(folder, sizeof(folder), "%s", path);
+  *strrchr(folder, '/') = '\0';
+  rmdir(folder);
+}
+
+// Loads text as DIR/trigger.yaml; the error with "trigger.yaml" for the path.
+static bool load_yaml(const char* text, struct trigger_options* options, char* error, size_t size) {
+  char path[256];
+  write_named(text, "trigger.yaml", path, sizeof(path));
+  trigger_options_defaults(options);
+  const bool ok = trigger_options_load_config(path, options, error, size);
+  if (!ok) {
+    const char* rest = error + strlen(path);
+    char copy[512];
+    snprintf(copy, sizeof(copy), "trigger.yaml%s", rest);
+    snprintf(error, size, "%s", copy);
+  }
+  remove_named(path);
+  return ok;
+}
+
+static void yaml_file_of_options(void** state) {
+  (void)state;
+  struct trigger_options options;
+  char error[512] = "";
+  assert_true(load_yaml("# the trigger\nrate-hz: 100\nwidth-us: 500\nlines: [0, 1, 2]\n"
+                        "phases-us: 0,250,250\nchip: gpiochip0\nquiet: true\n",
+                        &options, error, sizeof(error)));
+  assert_true(options.rate_hz == 100.0);
+  assert_int_equal(options.width_us, 500);
+  assert_int_equal(options.num_lines, 3);
+  assert_int_equal(options.lines[2], 2);
+  assert_string_equal(options.lines_text, "0,1,2");
+  assert_int_equal(options.phases_us[1], 250);
+  assert_string_equal(options.chip, "gpiochip0");
+  assert_true(options.quiet);
+  trigger_options_free(&options);
+}
+
+static void yaml_errors_name_file_line_column_and_key(void** state) {
+  (void)state;
+  struct trigger_options options;
+  char error[512] = "";
+  assert_false(load_yaml("rate-hz: 30\nrat: 100\n", &options, error, sizeof(error)));
+  assert_string_equal(error, "trigger.yaml:2:1: key 'rat': not an option of syncap-trigger");
+  trigger_options_free(&options);
+  assert_false(load_yaml("rate-hz: 30\ncount:   12x\n", &options, error, sizeof(error)));
+  assert_string_equal(error, "trigger.yaml:2:10: key 'count': '12x' must be a whole number >= 0");
+  trigger_options_free(&options);
+  assert_false(load_yaml("lines: {a: 1}\n", &options, error, sizeof(error)));
+  assert_string_equal(error, "trigger.yaml:1:8: key 'lines': is not a single value or a list");
+  trigger_options_free(&options);
+  assert_false(load_yaml("width-us:\n", &options, error, sizeof(error)));
+  assert_string_equal(error, "trigger.yaml:1:10: key 'width-us': missing value");
+  trigger_options_free(&options);
+  assert_false(load_yaml("rate-hz: [30\n", &options, error, sizeof(error)));
+  assert_memory_equal(error, "trigger.yaml:2:1: not YAML: ", 27);
+  trigger_options_free(&options);
+}
+
+// The rig file: the shared lcm-url, the trigger: section; the other programs' parts passed over.
+static void rig_file_gives_the_trigger_its_section(void** state) {
+  (void)state;
+  struct trigger_options options;
+  char error[512] = "";
+  assert_true(load_yaml("calibration: /etc/syncap/cameras.json\n"
+                        "lcm-url: udpm://239.255.76.67:7667?ttl=1\n"
+                        "trigger:\n  chip: gpiochip0\n  lines: 17,27\n  rate-hz: 60\n"
+                        "host:\n  hull: true\n"
+                        "edges:\n  threshold: 200\n"
+                        "cameras:\n  - {camera-id: 0, board: a}\n",
+                        &options, error, sizeof(error)));
+  assert_string_equal(options.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
+  assert_string_equal(options.chip, "gpiochip0");
+  assert_int_equal(options.num_lines, 2);
+  assert_int_equal(options.lines[1], 27);
+  assert_true(options.rate_hz == 60.0);
+  trigger_options_free(&options);
+  assert_false(load_yaml("host:\n  hull: true\ntrigger:\n  chip: sim\n  hull: true\n", &options,
+                         error, sizeof(error)));
+  assert_string_equal(error, "trigger.yaml:5:3: key 'hull': not an option of syncap-trigger");
+  trigger_options_free(&options);
+}
+
+// The rig example the guide shows (docs/examples/rig-8cam.yaml) parses as the trigger's.
+static void shipped_rig_example_parses(void** state) {
+  (void)state;
+  struct trigger_options options;
+  trigger_options_defaults(&options);
+  char error[512] = "";
+  const bool ok = trigger_options_load_config(SYNCAP_SOURCE_DIR "/docs/examples/rig-8cam.yaml",
+                                              &options, error, sizeof(error));
+  if (!ok) fail_msg("%s", error);
+  assert_string_equal(options.chip, "gpiochip0");
+  assert_int_equal(options.num_lines, 4);
+  assert_true(options.rate_hz == 30.0);
+  assert_string_equal(options.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
   trigger_options_free(&options);
 }
 
@@ -186,6 +315,11 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(help_and_config_are_not_keys),
     cmocka_unit_test(missing_file_is_named),
     cmocka_unit_test(command_line_overrides_the_file),
+    cmocka_unit_test(old_rate_name_still_sets_the_rate),
+    cmocka_unit_test(yaml_file_of_options),
+    cmocka_unit_test(yaml_errors_name_file_line_column_and_key),
+    cmocka_unit_test(rig_file_gives_the_trigger_its_section),
+    cmocka_unit_test(shipped_rig_example_parses),
     cmocka_unit_test(defaults_without_a_file),
 };
 

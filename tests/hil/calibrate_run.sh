@@ -17,7 +17,7 @@ status=0
 [ "$status" -eq 77 ] && { cat "$out/run.log"; exit 77; }
 tail -n 3 "$out/run.log"
 [ -s "$out/run/traffic.lcmlog" ] || { echo "no traffic.lcmlog (hil/run exit $status)" >&2; cat "$out/run.log" >&2; exit 1; }
-"$build/bin/syncap" calibrate --input "lcmlog:$out/run/traffic.lcmlog" --wand-length "$wand" \
+"$build/bin/syncap" calibrate --input "lcmlog:$out/run/traffic.lcmlog" --wand-length-mm "$wand" \
   --pixel-size "$pixel" --out-dir "$out/calibration" --progress
 "$build/bin/syncap-hil-compare" --truth "$out/run/render" --calibration "$out/calibration/cameras.json" \
   --max-reprojection-px "$max_px"
@@ -25,7 +25,7 @@ tail -n 3 "$out/run.log"
 # The live source on the same traffic.
 "$root/hil/netns-run" bash -c '
   url="udpm://239.255.76.67:7667?ttl=0"
-  "$1/bin/syncap" calibrate --input "lcm:$url" --camera-ids "$2" --wand-length "$3" --pixel-size "$4" \
+  "$1/bin/syncap" calibrate --input "lcm:$url" --camera-ids "$2" --wand-length-mm "$3" --pixel-size "$4" \
     --idle-timeout-s 3 --out-dir "$5/live" > "$5/live.log" 2>&1 &
   sleep 1
   lcm-logplayer --lcm-url="$url" "$5/run/traffic.lcmlog" > /dev/null

@@ -50,14 +50,14 @@ TEST(CalibrateCommand, CsvWandRecordingGivesTheCalibrationFolder) {
   write_csv(dir / "wand.csv", net.network);
   // A CSV carries no image sizes: without --image-size the camera is named.
   std::string out, err;
-  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length", "1000", "--out",
+  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length-mm", "1000", "--out",
                  (dir / "out").string()},
                 out, err),
             kExitReportedErrors);
   EXPECT_NE(err.find("camera 0 of csv:"), std::string::npos) << err;
   EXPECT_NE(err.find("has no image size"), std::string::npos) << err;
 
-  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length", "1000",
+  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length-mm", "1000",
                  "--image-size", "1280x1024", "--pixel-size", "0.0067", "--sigma-px", "0.2",
                  "--out", (dir / "out").string()},
                 out, err),
@@ -120,7 +120,7 @@ TEST(CalibrateCommand, AFailedVerdictExitsWithStatusOne) {
 TEST(CalibrateCommand, UsageErrorsNameTheOption) {
   std::string out, err;
   EXPECT_EQ(run({"--input", "csv:x.csv", "--out", "d"}, out, err), kExitUsage);
-  EXPECT_NE(err.find("give exactly one of --wand-length MM and --led"), std::string::npos);
+  EXPECT_NE(err.find("give exactly one of --wand-length-mm MM and --led"), std::string::npos);
   EXPECT_EQ(run({"--input", "tcp:x", "--led", "--out", "d"}, out, err), kExitUsage);
   EXPECT_NE(err.find("unknown source 'tcp'"), std::string::npos) << err;
   EXPECT_EQ(run({"--input", "csv:x", "--led", "--out", "d", "--interior", "c,q"}, out, err),
@@ -178,7 +178,7 @@ TEST(CalibrateCommand, HelpIsComplete) {
                                            "mcsc:DIR",
                                            "--input SOURCE",
                                            "--out-dir DIR",
-                                           "--wand-length MM",
+                                           "--wand-length-mm MM",
                                            "--led",
                                            "--scale-from A,B,MM",
                                            "--wand-targets N",
@@ -278,7 +278,7 @@ TEST(CalibrateCommand, FrameRangeTakesTheWandPhaseOfASessionsLog) {
     }
   }
   write_log(dir / "session.lcmlog", frames);
-  const std::vector<std::string> common = {"--wand-length", "1000", "--pixel-size",  "0.0067",
+  const std::vector<std::string> common = {"--wand-length-mm", "1000", "--pixel-size",  "0.0067",
                                            "--sigma-px",    "0.2",  "--check-share", "0"};
   auto summary = [&](const std::string& log, const std::string& out_dir,
                      std::vector<std::string> more) {
@@ -336,7 +336,7 @@ TEST(CalibrateCommand, MalformedLogRecordIsSkippedAndTheRestCalibrates) {
     file.write(reinterpret_cast<const char*>(log.data()), static_cast<std::streamsize>(log.size()));
   }
   std::string out, err;
-  EXPECT_EQ(run({"--input", "lcmlog:" + (dir / "wand.lcmlog").string(), "--wand-length", "1000",
+  EXPECT_EQ(run({"--input", "lcmlog:" + (dir / "wand.lcmlog").string(), "--wand-length-mm", "1000",
                  "--pixel-size", "0.0067", "--sigma-px", "0.2", "--out", (dir / "out").string()},
                 out, err),
             kExitOk)

@@ -156,12 +156,18 @@ void Parser::add_detection_options() {
       "windowed: a full scan for new blobs every N frames" + by_default(o.full_scan_every));
   app_->add_flag("--roi-follows-windows", o.roi_follows_windows,
                  "windowed: the sensor ROI follows the union of the windows");
-  cli::add_checked(*app_, "--threshold", o.detector.threshold, "DN", cli::whole_in<int>(1, 255),
+  cli::add_checked(*app_, "--threshold-dn", o.detector.threshold, "DN",
+                   cli::whole_in<int>(1, 255),
                    "blob threshold, DN 1..255" + by_default(o.detector.threshold));
-  cli::add_checked(*app_, "--min-area", o.detector.min_area, "PX", cli::whole_in<int>(1, 1 << 24),
+  cli::add_checked(*app_, "--min-area-px", o.detector.min_area, "PX",
+                   cli::whole_in<int>(1, 1 << 24),
                    "smallest blob area, pixels" + by_default(o.detector.min_area));
-  cli::add_checked(*app_, "--max-area", o.detector.max_area, "PX", cli::whole_in<int>(1, 1 << 24),
+  cli::add_checked(*app_, "--max-area-px", o.detector.max_area, "PX",
+                   cli::whole_in<int>(1, 1 << 24),
                    "largest blob area, pixels" + by_default(o.detector.max_area));
+  app_->deprecated_name("--threshold", "--threshold-dn");
+  app_->deprecated_name("--min-area", "--min-area-px");
+  app_->deprecated_name("--max-area", "--max-area-px");
 }
 
 void Parser::add_mask_options() {
@@ -180,9 +186,10 @@ void Parser::add_mask_options() {
   cli::add_checked(*app_, "--train-from-frame", o.train_from_frame, "F",
                    cli::whole_in<int64_t>(0, int64_t{1} << 53),
                    "... numbered F..F+N-1 (default: the first N frames)");
-  cli::add_checked(*app_, "--contour-tolerance", o.contour_tolerance_px, "PX",
+  cli::add_checked(*app_, "--contour-tolerance-px", o.contour_tolerance_px, "PX",
                    cli::number_in(0, 100),
                    "mask: polygon simplification, pixels" + by_default(o.contour_tolerance_px));
+  app_->deprecated_name("--contour-tolerance", "--contour-tolerance-px");
   // --mask-NAME: the medi-picture option NAME, from the defaults (docs/design/segmentation.md),
   // checked by apply_masking_option as segment-eval's are.
   for (const MaskingOptionHelp& m : kMaskingOptions) {
@@ -200,14 +207,16 @@ void Parser::add_mask_options() {
             std::string("mask: ") + m.meaning + " (default " +
                 masking_option_value(o.masking, name) + ")")
         ->option_text(m.metavar);
+    if (m.old_name != nullptr) app_->deprecated_name(std::string("--mask-") + m.old_name, option);
   }
   cli::add_checked(*app_, "--patch-every", o.patch_every, "N", cli::whole_in<int>(0, 100000),
                    "mask: send the person's grey values (image_patch_t) every Nth frame\n"
                    "(frame_number % N == 0) for the host's surface matching; 0: never" +
                        by_default(o.patch_every));
   cli::add_checked(
-      *app_, "--patch-margin", o.patch_margin_px, "PX", cli::whole_in<int>(0, 64),
+      *app_, "--patch-margin-px", o.patch_margin_px, "PX", cli::whole_in<int>(0, 64),
       "mask: pixels beyond the silhouette a patch holds" + by_default(o.patch_margin_px));
+  app_->deprecated_name("--patch-margin", "--patch-margin-px");
   app_->add_flag_callback(
       "--mask-no-shadows", [this] { o.masking.remove_shadows = false; },
       "mask: skip the shadow test");

@@ -37,17 +37,20 @@ struct MaskingOptionHelp {
   const char* name;
   const char* metavar;
   const char* meaning;
+  // The name before the option grammar put the unit in it (docs/reference/cli.md, "Old names"),
+  // still taken with a notice; nullptr for none.
+  const char* old_name = nullptr;
 };
 
 inline constexpr std::array<MaskingOptionHelp, 10> kMaskingOptions{{
     {"k", "K", "interval width in units of d"},
-    {"min-difference", "D", "floor of d, DN"},
+    {"min-difference-dn", "D", "floor of d, DN", "min-difference"},
     {"ncc", "L", "shadow threshold L_NCC (correlation test)"},
     {"shadow-test", "T", "correlation (eqs 5.6-5.11) or common-ratio"},
     {"shadow-sigmas", "S", "common-ratio tolerance in training sigmas"},
-    {"fill-holes", "A", "fill holes of the mask up to A pixels"},
-    {"closing", "D", "elliptical closing diameter, pixels, 0 = none"},
-    {"min-area", "A", "smallest component kept, pixels"},
+    {"fill-holes-px", "A", "fill holes of the mask up to A pixels", "fill-holes"},
+    {"closing-px", "D", "elliptical closing diameter, pixels, 0 = none", "closing"},
+    {"min-area-px", "A", "smallest component kept, pixels", "min-area"},
     {"update-rate", "R", "slow model update where background, per frame, 0 = frozen"},
     {"illumination", "M", "lsm (correct each frame's illumination, eqs 5.12-5.20) or off"},
 }};
@@ -56,9 +59,9 @@ inline constexpr std::array<MaskingOptionHelp, 10> kMaskingOptions{{
 // "0.98", "common-ratio"): a program's default in its help.
 std::string masking_option_value(const MediPictureOptions& m, std::string_view name);
 
-// One medi-picture option by its name without dashes or prefix ("k", "min-difference",
-// "shadow-test", "shadow-sigmas", "ncc", "fill-holes", "closing", "min-area", "update-rate",
-// "illumination"):
+// One medi-picture option by its name without dashes or prefix ("k", "min-difference-dn",
+// "shadow-test", "shadow-sigmas", "ncc", "fill-holes-px", "closing-px", "min-area-px",
+// "update-rate", "illumination"):
 // false for another name; throws BadValue for a value out of range.
 bool apply_masking_option(MediPictureOptions& m, std::string_view name, const std::string& value);
 

@@ -115,7 +115,7 @@ void check_mesh_against_body(const Mesh& mesh, const Body& body, double body_vol
 
 // The frame's hull from the true masks through the true cameras, as the host builds it (the
 // edges' contour tolerance, the stage's default method, its voxel fallback).
-constexpr double kReferenceSimplifyPx = 0.5;  // syncap-edge --contour-tolerance's default
+constexpr double kReferenceSimplifyPx = 0.5;  // syncap-edge --contour-tolerance-px's default
 constexpr int kReferenceResolution = 128;     // syncap-host --hull-resolution's default
 
 Mesh reference_hull(const fs::path& truth_dir, long frame,

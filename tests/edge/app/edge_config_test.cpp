@@ -38,7 +38,7 @@ TEST_F(EdgeConfigTest, KeysAreTheLongOptions) {
       "camera-id: 3\n"
       "source: aravis:192.168.1.10\n"
       "mode: both\n"
-      "threshold: 200\n"
+      "threshold-dn: 200\n"
       "lcm-url: udpm://239.255.76.67:7667?ttl=1\n"
       "train-frames: 30\n"
       "train-from-frame: 100\n"
@@ -61,8 +61,9 @@ TEST_F(EdgeConfigTest, KeysAreTheLongOptions) {
 }
 
 TEST_F(EdgeConfigTest, CommandLineOverridesTheFile) {
-  write("camera-id: 3\nsource: replay:/tmp/a\nthreshold: 200\n");
-  // Before or after --config: the command line wins either way.
+  write("camera-id: 3\nsource: replay:/tmp/a\nthreshold-dn: 200\n");
+  // Before or after --config: the command line wins either way, under an old name too
+  // (--threshold for --threshold-dn).
   const EdgeOptions o = parse_edge_options(
       {"--threshold", "90", "--config", file_.string(), "--source", "replay:/tmp/b", "--quiet"});
   EXPECT_EQ(o.camera_id, 3);
@@ -73,14 +74,14 @@ TEST_F(EdgeConfigTest, CommandLineOverridesTheFile) {
 
 // The masking starts from medi-picture's defaults; --mask-* options (or their keys) change them.
 TEST_F(EdgeConfigTest, MaskOptionsChangeTheDefaults) {
-  write("camera-id: 1\nsource: replay:/tmp/a\nmode: mask\nmask-fill-holes: 0\n");
+  write("camera-id: 1\nsource: replay:/tmp/a\nmode: mask\nmask-fill-holes-px: 0\n");
   const EdgeOptions preset = parse_edge_options({"--camera-id", "1", "--source", "replay:/x"});
   EXPECT_EQ(preset.masking.k, MediPictureOptions{}.k);
   EXPECT_EQ(preset.masking.shadow_test, ShadowTest::kCommonRatio);
   EXPECT_TRUE(preset.masking.correct_illumination);
   const EdgeOptions o = parse_edge_options(
       {"--config", file_.string(), "--mask-k", "2.5", "--mask-shadow-test", "correlation",
-       "--mask-ncc", "0.95", "--mask-no-shadows", "--mask-closing", "9", "--mask-update-rate",
+       "--mask-ncc", "0.95", "--mask-no-shadows", "--mask-closing-px", "9", "--mask-update-rate",
        "0.01", "--mask-illumination", "off"});
   EXPECT_FLOAT_EQ(o.masking.k, 2.5f);
   EXPECT_EQ(o.masking.shadow_test, ShadowTest::kCorrelation);
@@ -99,9 +100,9 @@ TEST_F(EdgeConfigTest, MaskOptionsChangeTheDefaults) {
 }
 
 TEST_F(EdgeConfigTest, ErrorsNameFileLineAndKey) {
-  write("camera-id: 3\nsource: replay:/x\n\nthreshold: 300\n");
+  write("camera-id: 3\nsource: replay:/x\n\nthreshold-dn: 300\n");
   EXPECT_EQ(error_of(), "syncap-edge: " + file_.string() +
-                            ":4:1: key 'threshold': '300' is not a whole number in [1, 255]");
+                            ":4:1: key 'threshold-dn': '300' is not a whole number in [1, 255]");
   write("camera-id: 3\n  thresold: 20\n");
   EXPECT_NE(error_of().find(file_.string() + ":2:"), std::string::npos) << error_of();
   write("camera-id: 3\nsource: replay:/x\nthresold: 20\n");
@@ -128,7 +129,7 @@ TEST_F(EdgeConfigTest, AKeyThatIsNotTextIsAUsageError) {
 }
 
 TEST_F(EdgeConfigTest, TheFileStillNeedsACameraAndASource) {
-  write("threshold: 50\n");
+  write("threshold-dn: 50\n");
   EXPECT_EQ(error_of(), "syncap-edge: --camera-id is required");
   EXPECT_EQ(error_of({"--camera-id", "1"}),
             "syncap-edge: --source '': expected replay:FOLDER, aravis:ADDRESS or v4l2:DEVICE");
@@ -229,16 +230,16 @@ TEST(EdgeOptions, ABadNumberNamesTheOptionAndTheValue) {
     args.insert(args.end(), {option, value});
     return command_line_error(args);
   };
-  EXPECT_EQ(error("--threshold", "12x"),
-            "syncap-edge: --threshold: '12x' is not a whole number in [1, 255]");
-  EXPECT_EQ(error("--threshold", "010"), "no error");  // decimal, not octal
+  EXPECT_EQ(error("--threshold-dn", "12x"),
+            "syncap-edge: --threshold-dn: '12x' is not a whole number in [1, 255]");
+  EXPECT_EQ(error("--threshold-dn", "010"), "no error");  // decimal, not octal
   EXPECT_EQ(error("--gain-db", "nan"), "syncap-edge: --gain-db: 'nan' is not a number in [0, 100]");
   EXPECT_EQ(error("--reopen-max-s", "0"),
             "syncap-edge: --reopen-max-s: '0' is not a number in [0.01, 3600]");
   EXPECT_EQ(error("--roi", "1,2,3"),
             "syncap-edge: --roi: '1,2,3' is not X,Y,WIDTH,HEIGHT in sensor pixels, each 0..32767");
   EXPECT_EQ(error("--mode", "all"), "syncap-edge: --mode: 'all' is not one of blobs, mask, both");
-  EXPECT_NE(error("--mask-closing", "-1").find("syncap-edge: --mask-closing: '-1': expected"),
+  EXPECT_NE(error("--mask-closing-px", "-1").find("syncap-edge: --mask-closing-px: '-1': expected"),
             std::string::npos);
 }
 
@@ -266,28 +267,28 @@ TEST(EdgeOptions, HelpIsComplete) {
                                       "--mode M",
                                       "--train-frames N",
                                       "--train-from-frame F",
-                                      "--contour-tolerance PX",
+                                      "--contour-tolerance-px PX",
                                       "(default 0.5)",
                                       "--mask-k K",
                                       "(default 1)",
-                                      "--mask-min-difference D",
+                                      "--mask-min-difference-dn D",
                                       "(default 6)",
                                       "--mask-ncc L",
                                       "--mask-shadow-test T",
                                       "(default common-ratio)",
                                       "--mask-shadow-sigmas S",
-                                      "--mask-fill-holes A",
+                                      "--mask-fill-holes-px A",
                                       "(default 100)",
-                                      "--mask-closing D",
+                                      "--mask-closing-px D",
                                       "(default 5)",
-                                      "--mask-min-area A",
+                                      "--mask-min-area-px A",
                                       "--mask-update-rate R",
                                       "--mask-no-shadows",
-                                      "--threshold DN",
+                                      "--threshold-dn DN",
                                       "(default 128)",
-                                      "--min-area PX",
+                                      "--min-area-px PX",
                                       "(default 2)",
-                                      "--max-area PX",
+                                      "--max-area-px PX",
                                       "(default 20000)",
                                       "--lcm-url URL",
                                       "udpm://239.255.76.67:7667?ttl=0",

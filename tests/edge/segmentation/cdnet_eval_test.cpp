@@ -90,10 +90,10 @@ TEST(CdnetEval, TruncatedJpegIsNamedWithItsFrame) {
 TEST(MaskingOptions, RefuseNanTrailingTextAndOutOfRange) {
   MediPictureOptions m;
   EXPECT_THROW(apply_masking_option(m, "k", "nan"), BadValue);
-  EXPECT_THROW(apply_masking_option(m, "closing", "99999"), BadValue);
-  EXPECT_THROW(apply_masking_option(m, "min-area", "2xyz"), BadValue);
+  EXPECT_THROW(apply_masking_option(m, "closing-px", "99999"), BadValue);
+  EXPECT_THROW(apply_masking_option(m, "min-area-px", "2xyz"), BadValue);
   try {
-    apply_masking_option(m, "closing", "99999");
+    apply_masking_option(m, "closing-px", "99999");
   } catch (const BadValue& e) {
     EXPECT_STREQ(e.what(), "'99999': expected a number in 0..255");
   }

@@ -31,8 +31,8 @@ TEST(SegmentEvalProgram, BadValuesUnknownOptionsAndBadInputExitTwoNamingThem) {
   expect_usage_error(scene + " --k nan", "--k: 'nan': expected a number in 0.100000..100.000000");
   expect_usage_error(scene + " --frame-step 2xyz",
                      "--frame-step: '2xyz' is not a whole number in [1, 16777216]");
-  expect_usage_error(scene + " --min-area x", "--min-area: 'x': expected a number in 0..16777216");
-  expect_usage_error(scene + " --closing 99999", "--closing: '99999': expected a number in 0..255");
+  expect_usage_error(scene + " --min-area-px x", "--min-area-px: 'x': expected a number in 0..16777216");
+  expect_usage_error(scene + " --closing-px 99999", "--closing-px: '99999': expected a number in 0..255");
   expect_usage_error(scene + " --method mog2", "--scene scores medi-picture only");
   expect_usage_error("--cdnet /nonexistent/cdnet", "--method is required");
   expect_usage_error("--cdnet /nonexistent/cdnet --method x",
@@ -72,7 +72,7 @@ TEST(SegmentEvalProgram, HelpIsComplete) {
                                                   "(default 1)",
                                                   "--k K",
                                                   "(default 1.5)",
-                                                  "--min-difference D",
+                                                  "--min-difference-dn D",
                                                   "(default 6)",
                                                   "--ncc L",
                                                   "(default 0.98)",
@@ -80,11 +80,11 @@ TEST(SegmentEvalProgram, HelpIsComplete) {
                                                   "--shadow-test T",
                                                   "--shadow-sigmas S",
                                                   "(default 3)",
-                                                  "--fill-holes A",
+                                                  "--fill-holes-px A",
                                                   "(default 100)",
-                                                  "--closing D",
+                                                  "--closing-px D",
                                                   "(default 5)",
-                                                  "--min-area A",
+                                                  "--min-area-px A",
                                                   "(default 40)",
                                                   "--update-rate R",
                                                   "--illumination M",

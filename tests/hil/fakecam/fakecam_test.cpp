@@ -261,7 +261,7 @@ TEST_F(FakecamTest, TriggerRunDeliversEveryFrameOnceWithItsNumberTimeAndImage) {
   ASSERT_TRUE(log.good());
 
   ChildProcess trigger({SYNCAP_TRIGGER_EXE, "--chip", "sim:" + chip_, "--count",
-                        std::to_string(kPeriods), "--rate", "200", "--lines", "0",
+                        std::to_string(kPeriods), "--rate-hz", "200", "--lines", "0",
                         "--start-delay-ms", "100", "--lcm-url", proto::kDefaultLcmUrl});
   // Received while the trigger runs: the client has fewer buffers than the run has frames. With a
   // skipped period this waits one frame timeout for the frame that never comes.
