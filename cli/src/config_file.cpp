@@ -2,6 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <utility>
+#include <vector>
+
 #include "syncap/cli/options.hpp"
 
 namespace syncap::cli {
@@ -121,9 +124,11 @@ bool is_rig_file(const YAML::Node& root) {
   return false;
 }
 
-// The `cameras` entry with `camera-id: id`; nothing when the rig has none.
-std::optional<YAML::Node> camera_entry(const YAML::Node& cameras, int id, Reader& reader) {
-  if (!cameras) return std::nullopt;
+// The rig's cameras with their ids, in the file's order, each checked once: a map with a
+// `camera-id` 0..99. Empty when the rig lists none.
+std::vector<std::pair<int, YAML::Node>> rig_cameras(const YAML::Node& cameras, Reader& reader) {
+  std::vector<std::pair<int, YAML::Node>> out;
+  if (!cameras) return out;
   if (!cameras.IsSequence()) throw reader.error(cameras, "cameras: expected a list of cameras");
   for (const YAML::Node& camera : cameras) {
     if (!camera.IsMap()) throw reader.error(camera, "a camera: expected `key: value` lines");
@@ -132,22 +137,16 @@ std::optional<YAML::Node> camera_entry(const YAML::Node& cameras, int id, Reader
     const std::optional<long long> value =
         camera_id.IsScalar() ? whole_number(camera_id.Scalar(), 0, 99) : std::nullopt;
     if (!value) throw reader.error(camera_id, "camera-id: expected a camera id 0..99");
-    if (*value == id) return camera;
+    out.emplace_back(static_cast<int>(*value), camera);
   }
-  return std::nullopt;
+  return out;
 }
 
 // The rig's camera ids, "0,1,2", as the value of the part's camera list option.
-void add_camera_ids(const YAML::Node& cameras, const RigPart& part, Reader& reader) {
-  if (!cameras) return;
-  if (!cameras.IsSequence()) throw reader.error(cameras, "cameras: expected a list of cameras");
+void add_camera_ids(const std::vector<std::pair<int, YAML::Node>>& cameras, const RigPart& part,
+                    Reader& reader) {
   std::string ids;
-  for (const YAML::Node& camera : cameras) {
-    const YAML::Node id = camera.IsMap() ? camera["camera-id"] : YAML::Node();
-    if (!id || !id.IsScalar() || !whole_number(id.Scalar(), 0, 99))
-      throw reader.error(camera, "a camera without its camera-id 0..99");
-    ids += (ids.empty() ? "" : ",") + id.Scalar();
-  }
+  for (const auto& [id, camera] : cameras) ids += (ids.empty() ? "" : ",") + std::to_string(id);
   if (!ids.empty()) reader.add_argument(part.camera_ids_option + "=" + ids);
 }
 
@@ -156,12 +155,13 @@ void read_rig(const YAML::Node& root, const RigPart& part, Reader& reader) {
     if (!entry.first.IsScalar() || !is_rig_section(entry.first.Scalar()))
       reader.add(entry.first, entry.second, /*shared=*/true);
   }
-  if (!part.camera_ids_option.empty()) add_camera_ids(root["cameras"], part, reader);
+  const std::vector<std::pair<int, YAML::Node>> cameras = rig_cameras(root["cameras"], reader);
+  if (!part.camera_ids_option.empty()) add_camera_ids(cameras, part, reader);
   if (const YAML::Node section = root[part.section]) reader.add_map(section, false, "");
   if (!part.camera_id) return;
-  if (const std::optional<YAML::Node> camera =
-          camera_entry(root["cameras"], *part.camera_id, reader)) {
-    for (const auto& entry : *camera) {
+  for (const auto& [id, camera] : cameras) {
+    if (id != *part.camera_id) continue;
+    for (const auto& entry : camera) {
       // Where the camera's edge runs: the deployment's, not an option of the edge.
       if (entry.first.IsScalar() && entry.first.Scalar() == "board") continue;
       reader.add(entry.first, entry.second, /*shared=*/false);

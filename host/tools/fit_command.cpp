@@ -113,12 +113,11 @@ int fit_command(std::span<const std::string> args, std::ostream& out, std::ostre
   sinks.poses = &record;
   controllers::StageChain chain = controllers::make_stages(in.cameras, a.pipeline, sinks);
   const reconstruction::BodyFitStage& body = *chain.body;
-  pipeline::HostNode node(
-      {expected_cameras(a.offline.camera_ids, in.cameras), a.offline.max_lag, 1'000'000},
-      std::move(chain.stages));
-  auto [rejected, damaged] = replay_log(in.log, node, true, kName, err, a.gap);
+  const OfflineReplay run =
+      replay_offline(in, a.offline, std::move(chain.stages), true, kName, err, a.gap);
+  auto [rejected, damaged] = run.outcome;
   if (!export_motion(body.parameters(), record, dir, err)) damaged = true;
-  const auto s = node.stats();
+  const auto s = run.node->stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), " << rejected
       << " messages rejected; " << (dir / "body.jsonl").string()
       << " (and body.bvh, joints.c3d, joints.trc)\n";

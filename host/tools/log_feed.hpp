@@ -3,6 +3,7 @@
 #pragma once
 
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <set>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "io/lcm_log_reader.hpp"
+#include "offline_options.hpp"
 #include "pipeline/host_node.hpp"
 #include "sensor/camera_model.hpp"
 
@@ -62,5 +64,18 @@ struct SilhouetteGap {
 ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silhouettes,
                          const char* name, std::ostream& err,
                          const std::optional<SilhouetteGap>& gap = std::nullopt);
+
+// An offline command's run: the host's node over the stages of controllers::make_stages,
+// expecting `args`' cameras (else the calibration's) with its --max-lag, fed the whole of
+// `in.log` (replay_log). The node owns the stages, which keep their results and counters for the
+// command's summary while it lives.
+struct OfflineReplay {
+  std::unique_ptr<pipeline::HostNode> node;
+  ReplayOutcome outcome;
+};
+OfflineReplay replay_offline(OfflineInputs& in, const OfflineArgs& args,
+                             std::vector<std::unique_ptr<pipeline::Stage>> stages,
+                             bool silhouettes, const char* name, std::ostream& err,
+                             const std::optional<SilhouetteGap>& gap = std::nullopt);
 
 }  // namespace syncap::tools

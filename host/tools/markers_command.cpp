@@ -94,12 +94,11 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   controllers::StageChain chain = controllers::make_stages(in.cameras, a.pipeline, sinks);
   const reconstruction::MarkerStage& markers = *chain.markers;
   const reconstruction::TrackingStage& tracker = *chain.tracking;
-  pipeline::HostNode node(
-      {expected_cameras(a.offline.camera_ids, in.cameras), a.offline.max_lag, 1'000'000},
-      std::move(chain.stages));
-  auto [rejected, damaged] = replay_log(in.log, node, a.pipeline.hull.enabled, kName, err);
+  const OfflineReplay run =
+      replay_offline(in, a.offline, std::move(chain.stages), a.pipeline.hull.enabled, kName, err);
+  auto [rejected, damaged] = run.outcome;
   if (!export_trajectories(history, tracker.rate_hz(), a.offline.out, err)) damaged = true;
-  const auto s = node.stats();
+  const auto s = run.node->stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), "
       << markers.stats().markers << " markers (" << markers.stats().two_camera_markers
       << " seen by two cameras only, " << markers.stats().partial_spots_left_out
