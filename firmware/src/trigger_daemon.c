@@ -1,7 +1,8 @@
 // The trigger daemon (trigger_daemon.h): drives the camera trigger lines on an absolute
 // CLOCK_MONOTONIC schedule and publishes one syncap_trigger_t per pulse, and a
 // syncap_trigger_status_t heartbeat once a second. Optional start/stop input lines start and stop
-// runs. See docs/design/trigger.md.
+// runs. See docs/design/trigger.md. The options become a trigger and lines in trigger_setup.c;
+// --bench records its edges in trigger_bench.c.
 #include "trigger_daemon.h"
 
 #include <errno.h>
@@ -20,10 +21,11 @@
 
 #include "syncap/proto/channels.h"
 #include "syncap/trigger/gpio.h"
-#include "syncap/trigger/gpiosim.h"
 #include "syncap/trigger/trigger.h"
 #include "syncap_trigger_status_t.h"
 #include "syncap_trigger_t.h"
+#include "trigger_bench.h"
+#include "trigger_setup.h"
 
 #define STATUS_PERIOD_NS NS_PER_S
 // A heartbeat is not sent when the next rising edge is closer than this, so it never delays one.
@@ -69,9 +71,7 @@ struct daemon {
   struct input_queue inputs;
   pthread_t input_thread;
   atomic_bool input_quit;
-  int64_t* bench_errors_ns;  // bench mode: each rising edge's error against its schedule
-  size_t bench_count;
-  size_t bench_capacity;
+  struct trigger_bench bench;  // bench mode: each rising edge's error (errors_ns NULL otherwise)
 };
 
 static volatile sig_atomic_t stop_requested = 0;
@@ -261,11 +261,6 @@ static enum wait_result wait_until(struct daemon* d, int64_t deadline_ns) {
   }
 }
 
-static void bench_record(struct daemon* d, int64_t error_ns) {
-  if (d->bench_count == d->bench_capacity) return;
-  d->bench_errors_ns[d->bench_count++] = error_ns;
-}
-
 static void publish_pulse(struct daemon* d, const struct syncap_trigger_pulse* pulse,
                           int64_t edge_ns, int64_t realtime_ns) {
   if (d->lcm == NULL) return;
@@ -314,7 +309,7 @@ static bool drive_pulse(struct daemon* d) {
     const int64_t realtime_ns = clock_ns(CLOCK_REALTIME);
     syncap_trigger_edge_driven(d->trigger, &pulse, edge_ns);
     d->last_frame_number = (int64_t)pulse.index;
-    if (d->bench_errors_ns != NULL) bench_record(d, edge_ns - pulse.rise_ns);
+    if (d->bench.errors_ns != NULL) trigger_bench_record(&d->bench, edge_ns - pulse.rise_ns);
     publish_pulse(d, &pulse, edge_ns, realtime_ns);
   }
   return true;
@@ -344,153 +339,6 @@ static bool run_pulses(struct daemon* d) {
   return true;
 }
 
-static const char* option_of(enum syncap_trigger_error error, const struct trigger_options* o,
-                             const char** value) {
-  switch (error) {
-    case SYNCAP_TRIGGER_ERR_RATE_NOT_FINITE:
-    case SYNCAP_TRIGGER_ERR_RATE_TOO_LOW:
-    case SYNCAP_TRIGGER_ERR_RATE_TOO_HIGH:
-      *value = o->rate_text;
-      return "--rate-hz";
-    case SYNCAP_TRIGGER_ERR_WIDTH_NOT_POSITIVE:
-    case SYNCAP_TRIGGER_ERR_WIDTH_NOT_BELOW_PERIOD:
-      *value = o->width_text;
-      return "--width-us";
-    case SYNCAP_TRIGGER_ERR_PHASE_NEGATIVE:
-    case SYNCAP_TRIGGER_ERR_PHASE_NOT_BELOW_PERIOD:
-    case SYNCAP_TRIGGER_ERR_PHASE_PLUS_WIDTH_BEYOND_PERIOD:
-      *value = o->phases_text;
-      return "--phases-us";
-    case SYNCAP_TRIGGER_ERR_DEBOUNCE_NEGATIVE:
-      *value = "(negative)";
-      return "--debounce-us";
-    default:
-      *value = o->lines_text;
-      return "--lines";
-  }
-}
-
-// The trigger for the options, or NULL after printing why (*status says usage or runtime).
-static struct syncap_trigger* create_trigger(const struct trigger_options* options, int* status) {
-  struct syncap_trigger_config config;
-  syncap_trigger_config_init(&config);
-  config.rate_hz = options->rate_hz;
-  config.pulse_width_ns = options->width_us * 1000;
-  config.count = options->count;
-  config.num_lines = options->num_lines;
-  if (options->num_phases != 0 && options->num_phases != options->num_lines) {
-    *status = STATUS_USAGE;
-    char why[96];
-    snprintf(why, sizeof(why), "needs one phase per line (%zu lines, %zu phases)",
-             options->num_lines, options->num_phases);
-    trigger_options_reject("--phases-us", options->phases_text, why);
-    return NULL;
-  }
-  for (size_t i = 0; i < options->num_phases; ++i)
-    config.phase_ns[i] = options->phases_us[i] * 1000;
-  config.debounce_ns = options->debounce_us * 1000;
-  enum syncap_trigger_error error = SYNCAP_TRIGGER_OK;
-  struct syncap_trigger* trigger = syncap_trigger_new(&config, &error);
-  if (trigger != NULL) return trigger;
-  if (error == SYNCAP_TRIGGER_ERR_NO_MEMORY) {
-    *status = STATUS_RUNTIME_ERROR;
-    fprintf(stderr, "syncap-trigger: %s\n", syncap_trigger_strerror(error));
-  } else {
-    *status = STATUS_USAGE;
-    const char* value = NULL;
-    const char* option = option_of(error, options, &value);
-    trigger_options_reject(option, value, syncap_trigger_strerror(error));
-  }
-  return NULL;
-}
-
-// "sim:NAME" (a name, not a ring size): the chip shared with other processes.
-static bool is_shared_sim(const char* chip) {
-  return strncmp(chip, "sim:", 4) == 0 && strspn(chip + 4, "0123456789") != strlen(chip + 4);
-}
-
-static void describe_chip_error(const char* chip, int error, char* why, size_t size) {
-  if (is_shared_sim(chip)) {
-    syncap_gpiosim_describe_error(chip + 4, error, why, size);
-  } else if (error == EINVAL && strncmp(chip, "sim", 3) == 0) {
-    snprintf(why, size,
-             "sim:N needs 1 to 1000000 edges, sim:NAME a name of A-Z a-z 0-9 . _ - (at most 64, "
-             "not starting with . or -)");
-  } else {
-    syncap_gpio_describe_open_error(chip, error, why, size);
-  }
-}
-
-// Why a line request failed, naming the lines and the chip.
-static void report_request_error(const struct trigger_options* o, const char* what,
-                                 const char* lines, int error, int* status) {
-  *status = error == EINVAL ? STATUS_USAGE : STATUS_RUNTIME_ERROR;
-  if (error == EBUSY) {
-    fprintf(stderr,
-            "syncap-trigger: %s %s on chip '%s' are busy (requested by another program; see "
-            "gpioinfo)\n",
-            what, lines, o->chip);
-  } else if (error == EINVAL) {
-    fprintf(stderr,
-            "syncap-trigger: cannot request %s %s on chip '%s': the chip has no such line, or a "
-            "line is used twice\n",
-            what, lines, o->chip);
-  } else {
-    fprintf(stderr, "syncap-trigger: cannot request %s %s on chip '%s': %s\n", what, lines, o->chip,
-            strerror(error));
-  }
-}
-
-static bool request_inputs(struct syncap_gpio* gpio, const struct trigger_options* o, int* status) {
-  unsigned offsets[2];
-  size_t count = 0;
-  if (o->start_line >= 0) offsets[count++] = (unsigned)o->start_line;
-  if (o->stop_line >= 0) offsets[count++] = (unsigned)o->stop_line;
-  if (count == 0) return true;
-  if (count == 2 && offsets[0] == offsets[1]) {
-    *status = STATUS_USAGE;
-    fprintf(stderr, "syncap-trigger: --start-line and --stop-line must be different lines\n");
-    return false;
-  }
-  if (syncap_gpio_request_inputs(gpio, offsets, count, "syncap-trigger") == 0) return true;
-  char lines[32];
-  if (count == 1) {
-    snprintf(lines, sizeof(lines), "%u", offsets[0]);
-  } else {
-    snprintf(lines, sizeof(lines), "%u,%u", offsets[0], offsets[1]);
-  }
-  report_request_error(o, "input lines", lines, errno, status);
-  return false;
-}
-
-// The chip with the lines requested, or NULL after printing why (*status says usage or runtime).
-static struct syncap_gpio* open_lines(const struct trigger_options* options, int* status) {
-  struct syncap_gpio* gpio = syncap_gpio_open(options->chip);
-  if (gpio == NULL) {
-    const int error = errno;
-    char why[320];
-    describe_chip_error(options->chip, error, why, sizeof(why));
-    if (error == ENODEV || error == EINVAL || error == ENOENT) {
-      *status = STATUS_USAGE;
-      trigger_options_reject("--chip", options->chip, why);
-    } else {
-      *status = STATUS_RUNTIME_ERROR;
-      fprintf(stderr, "syncap-trigger: %s\n", why);
-    }
-    return NULL;
-  }
-  if (syncap_gpio_request_outputs(gpio, options->lines, options->num_lines, "syncap-trigger") < 0) {
-    report_request_error(options, "lines", options->lines_text, errno, status);
-    syncap_gpio_close(gpio);
-    return NULL;
-  }
-  if (!request_inputs(gpio, options, status)) {
-    syncap_gpio_close(gpio);
-    return NULL;
-  }
-  return gpio;
-}
-
 static void print_start(const struct trigger_options* o) {
   char count[32] = "forever";
   if (o->count > 0) snprintf(count, sizeof(count), "%" PRIu64 " pulses", o->count);
@@ -505,37 +353,6 @@ static void print_summary(const struct syncap_trigger* trigger) {
   syncap_trigger_get_stats(trigger, &stats);
   printf("syncap-trigger: pulses=%" PRIu64 " late=%" PRIu64 " missed=%" PRIu64 "\n", stats.pulses,
          stats.late, stats.missed);
-}
-
-static int compare_ns(const void* a, const void* b) {
-  const int64_t x = *(const int64_t*)a;
-  const int64_t y = *(const int64_t*)b;
-  return (x > y) - (x < y);
-}
-
-// Nearest-rank percentile of sorted values.
-static int64_t percentile(const int64_t* sorted, size_t count, double p) {
-  size_t rank = (size_t)(p / 100.0 * (double)count + 0.999999);
-  if (rank < 1) rank = 1;
-  if (rank > count) rank = count;
-  return sorted[rank - 1];
-}
-
-static void print_bench(struct daemon* d) {
-  struct syncap_trigger_stats stats;
-  syncap_trigger_get_stats(d->trigger, &stats);
-  if (d->bench_count == 0) {
-    printf("syncap-trigger: bench: no pulses\n");
-    return;
-  }
-  qsort(d->bench_errors_ns, d->bench_count, sizeof(int64_t), compare_ns);
-  printf(
-      "syncap-trigger: bench %g Hz, %zu edges on chip %s: rising-edge error p50 %.1f us, "
-      "p99 %.1f us, max %.1f us (late=%" PRIu64 " missed=%" PRIu64 ")\n",
-      d->options->rate_hz, d->bench_count, d->options->chip,
-      (double)percentile(d->bench_errors_ns, d->bench_count, 50.0) / 1000.0,
-      (double)percentile(d->bench_errors_ns, d->bench_count, 99.0) / 1000.0,
-      (double)d->bench_errors_ns[d->bench_count - 1] / 1000.0, stats.late, stats.missed);
 }
 
 static bool start_input_thread(struct daemon* d) {
@@ -569,8 +386,8 @@ static int run_daemon(struct daemon* d, const struct trigger_daemon_settings* se
   d->last_frame_number = -1;
   const bool ok = run_pulses(d);
   stop_input_thread(d);
-  if (d->bench_errors_ns != NULL) {
-    print_bench(d);
+  if (d->bench.errors_ns != NULL) {
+    trigger_bench_print(&d->bench, d->options, d->trigger);
   } else if (!d->options->quiet) {
     print_summary(d->trigger);
   }
@@ -584,15 +401,13 @@ static int run_daemon(struct daemon* d, const struct trigger_daemon_settings* se
 // Creates the trigger, the lines and LCM; STATUS_OK, or the exit status after printing why.
 static int set_up(struct daemon* d) {
   int status = STATUS_OK;
-  d->trigger = create_trigger(d->options, &status);
+  d->trigger = trigger_setup_create(d->options, &status);
   if (d->trigger == NULL) return status;
-  d->gpio = open_lines(d->options, &status);
+  d->gpio = trigger_setup_open_lines(d->options, &status);
   if (d->gpio == NULL) return status;
   if (d->options->bench_seconds > 0) {
-    // Bench: no LCM; room for every pulse of the run (count = rate * seconds).
-    d->bench_capacity = (size_t)(d->options->rate_hz * (double)d->options->bench_seconds) + 1;
-    d->bench_errors_ns = calloc(d->bench_capacity, sizeof(int64_t));
-    if (d->bench_errors_ns == NULL) {
+    // Bench: no LCM.
+    if (!trigger_bench_init(&d->bench, d->options->rate_hz, d->options->bench_seconds)) {
       fprintf(stderr, "syncap-trigger: out of memory\n");
       return STATUS_RUNTIME_ERROR;
     }
@@ -611,7 +426,7 @@ static void tear_down(struct daemon* d) {
   syncap_gpio_close(d->gpio);  // leaves every line low
   if (d->lcm != NULL) lcm_destroy(d->lcm);
   syncap_trigger_free(d->trigger);
-  free(d->bench_errors_ns);
+  trigger_bench_free(&d->bench);
 }
 
 void trigger_daemon_request_stop(void) { stop_requested = 1; }
