@@ -107,14 +107,13 @@ ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silho
   return outcome;
 }
 
-OfflineReplay replay_offline(OfflineInputs& in, const OfflineArgs& args,
+OfflineReplay replay_offline(OfflineInputs& in, const std::set<int>& camera_ids, int max_lag,
                              std::vector<std::unique_ptr<pipeline::Stage>> stages,
                              bool silhouettes, const char* name, std::ostream& err,
                              const std::optional<SilhouetteGap>& gap) {
   OfflineReplay run;
   run.node = std::make_unique<pipeline::HostNode>(
-      pipeline::HostNodeOptions{expected_cameras(args.camera_ids, in.cameras), args.max_lag,
-                                1'000'000},
+      pipeline::HostNodeOptions{expected_cameras(camera_ids, in.cameras), max_lag, 1'000'000},
       std::move(stages));
   run.outcome = replay_log(in.log, *run.node, silhouettes, name, err, gap);
   return run;

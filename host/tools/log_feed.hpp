@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "io/lcm_log_reader.hpp"
-#include "offline_options.hpp"
 #include "pipeline/host_node.hpp"
 #include "sensor/camera_model.hpp"
 
@@ -66,14 +65,15 @@ ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silho
                          const std::optional<SilhouetteGap>& gap = std::nullopt);
 
 // An offline command's run: the host's node over the stages of controllers::make_stages,
-// expecting `args`' cameras (else the calibration's) with its --max-lag, fed the whole of
+// expecting the cameras `camera_ids` (--camera-ids; empty: the calibration's), waiting
+// `max_lag` frames (--max-lag) for late messages, fed the whole of
 // `in.log` (replay_log). The node owns the stages, which keep their results and counters for the
 // command's summary while it lives.
 struct OfflineReplay {
   std::unique_ptr<pipeline::HostNode> node;
   ReplayOutcome outcome;
 };
-OfflineReplay replay_offline(OfflineInputs& in, const OfflineArgs& args,
+OfflineReplay replay_offline(OfflineInputs& in, const std::set<int>& camera_ids, int max_lag,
                              std::vector<std::unique_ptr<pipeline::Stage>> stages,
                              bool silhouettes, const char* name, std::ostream& err,
                              const std::optional<SilhouetteGap>& gap = std::nullopt);

@@ -95,7 +95,8 @@ int markers_command(std::span<const std::string> args, std::ostream& out, std::o
   const reconstruction::MarkerStage& markers = *chain.markers;
   const reconstruction::TrackingStage& tracker = *chain.tracking;
   const OfflineReplay run =
-      replay_offline(in, a.offline, std::move(chain.stages), a.pipeline.hull.enabled, kName, err);
+      replay_offline(in, a.offline.camera_ids, a.offline.max_lag, std::move(chain.stages),
+                     a.pipeline.hull.enabled, kName, err);
   auto [rejected, damaged] = run.outcome;
   if (!export_trajectories(history, tracker.rate_hz(), a.offline.out, err)) damaged = true;
   const auto s = run.node->stats();
