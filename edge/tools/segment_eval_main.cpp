@@ -72,7 +72,8 @@ void add_options(cli::App& app, Arguments& a) {
            std::string("--") + name, [&a, name](const std::string& v) { a.masking[name] = v; },
            std::string(meaning) + " (default " + fallback + ")")
         ->option_text(metavar);
-    if (old_name != nullptr) app.deprecated_name(std::string("--") + old_name, std::string("--") + name);
+    if (old_name != nullptr)
+      app.deprecated_name(std::string("--") + old_name, std::string("--") + name);
   }
   app.add_flag("--no-shadows", a.no_shadows, "skip the shadow test");
   app.add_option("--regions", a.regions,

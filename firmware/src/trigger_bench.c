@@ -50,8 +50,7 @@ void trigger_bench_print(struct trigger_bench* b, const struct trigger_options* 
   printf(
       "syncap-trigger: bench %g Hz, %zu edges on chip %s: rising-edge error p50 %.1f us, "
       "p99 %.1f us, max %.1f us (late=%" PRIu64 " missed=%" PRIu64 ")\n",
-      o->rate_hz, b->count, o->chip,
-      (double)percentile(b->errors_ns, b->count, 50.0) / 1000.0,
+      o->rate_hz, b->count, o->chip, (double)percentile(b->errors_ns, b->count, 50.0) / 1000.0,
       (double)percentile(b->errors_ns, b->count, 99.0) / 1000.0,
       (double)b->errors_ns[b->count - 1] / 1000.0, stats.late, stats.missed);
 }

@@ -63,8 +63,8 @@ static const char* value_text(const struct yaml_reading* r, const char* key,
       fail_at(r, value, key, "a list holds something other than single values");
       return NULL;
     }
-    const int n = snprintf(joined + length, sizeof(joined) - length, "%s%s",
-                           length > 0 ? "," : "", text);
+    const int n =
+        snprintf(joined + length, sizeof(joined) - length, "%s%s", length > 0 ? "," : "", text);
     if (n < 0 || (size_t)n >= sizeof(joined) - length) {
       fail_at(r, value, key, "list too long");
       return NULL;

@@ -129,8 +129,7 @@ void trigger_options_free(struct trigger_options* options) {
   }
 }
 
-const char* trigger_options_keep(struct trigger_options* options, const char* text,
-                                 size_t length) {
+const char* trigger_options_keep(struct trigger_options* options, const char* text, size_t length) {
   struct trigger_config_string* kept = malloc(sizeof(*kept) + length + 1);
   if (kept == NULL) return NULL;
   memcpy(kept->text, text, length);

@@ -75,8 +75,7 @@ const char* trigger_options_apply_key(const char* key, const char* value,
                                       struct trigger_options* options);
 
 // A copy of text[0..length) that lives until trigger_options_free; NULL when out of memory.
-const char* trigger_options_keep(struct trigger_options* options, const char* text,
-                                 size_t length);
+const char* trigger_options_keep(struct trigger_options* options, const char* text, size_t length);
 
 // The defaults, without any file or argument.
 void trigger_options_defaults(struct trigger_options* options);

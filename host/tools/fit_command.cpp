@@ -113,9 +113,8 @@ int fit_command(std::span<const std::string> args, std::ostream& out, std::ostre
   sinks.poses = &record;
   controllers::StageChain chain = controllers::make_stages(in.cameras, a.pipeline, sinks);
   const reconstruction::BodyFitStage& body = *chain.body;
-  const OfflineReplay run =
-      replay_offline(in, a.offline.camera_ids, a.offline.max_lag, std::move(chain.stages),
-                     true, kName, err, a.gap);
+  const OfflineReplay run = replay_offline(in, a.offline.camera_ids, a.offline.max_lag,
+                                           std::move(chain.stages), true, kName, err, a.gap);
   auto [rejected, damaged] = run.outcome;
   if (!export_motion(body.parameters(), record, dir, err)) damaged = true;
   const auto s = run.node->stats();

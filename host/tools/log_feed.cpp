@@ -108,8 +108,8 @@ ReplayOutcome replay_log(std::istream& log, pipeline::HostNode& node, bool silho
 }
 
 OfflineReplay replay_offline(OfflineInputs& in, const std::set<int>& camera_ids, int max_lag,
-                             std::vector<std::unique_ptr<pipeline::Stage>> stages,
-                             bool silhouettes, const char* name, std::ostream& err,
+                             std::vector<std::unique_ptr<pipeline::Stage>> stages, bool silhouettes,
+                             const char* name, std::ostream& err,
                              const std::optional<SilhouetteGap>& gap) {
   OfflineReplay run;
   run.node = std::make_unique<pipeline::HostNode>(

@@ -74,8 +74,8 @@ struct OfflineReplay {
   ReplayOutcome outcome;
 };
 OfflineReplay replay_offline(OfflineInputs& in, const std::set<int>& camera_ids, int max_lag,
-                             std::vector<std::unique_ptr<pipeline::Stage>> stages,
-                             bool silhouettes, const char* name, std::ostream& err,
+                             std::vector<std::unique_ptr<pipeline::Stage>> stages, bool silhouettes,
+                             const char* name, std::ostream& err,
                              const std::optional<SilhouetteGap>& gap = std::nullopt);
 
 }  // namespace syncap::tools

@@ -9,11 +9,11 @@
 
 #include "hull/polyhedral_hull.hpp"
 #include "hull/views_io.hpp"
+#include "subcommand.hpp"
 #include "surface/hull_consistency.hpp"
 #include "surface/point_files.hpp"
 #include "surface/surface_matcher.hpp"
 #include "surface/surface_mesh.hpp"
-#include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "util/printf_string.hpp"
 

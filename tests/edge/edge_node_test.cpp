@@ -773,8 +773,9 @@ TEST(EdgeOptions, ParsesAndNamesBadOptions) {
                UsageError);  // from which frame, but how many?
   EXPECT_THROW(parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--roi", "1,2,3"}),
                UsageError);
-  const auto patches = parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode",
-                                           "mask", "--patch-every", "30", "--patch-margin-px", "6"});
+  const auto patches =
+      parse_edge_options({"--camera-id", "2", "--source", "replay:/x", "--mode", "mask",
+                          "--patch-every", "30", "--patch-margin-px", "6"});
   EXPECT_EQ(patches.patch_every, 30);
   EXPECT_EQ(patches.patch_margin_px, 6);
   try {

@@ -136,8 +136,9 @@ static void heartbeat_every_second_and_a_final_stopped_status(void** state) {
       syncap_trigger_status_t_subscribe(lcm, "SYNCAP_TRIGGER_STATUS", on_status, &statuses);
   assert_non_null(subscription);
 
-  char* argv[] = {SYNCAP_TRIGGER_EXE, "--rate-hz", "100",     "--width-us", "100", "--trigger-id", "4",
-                  "--lcm-url",        LCM_URL,  "--quiet", NULL};
+  char* argv[] = {
+      SYNCAP_TRIGGER_EXE, "--rate-hz", "100",     "--width-us", "100", "--trigger-id", "4",
+      "--lcm-url",        LCM_URL,     "--quiet", NULL};
   const pid_t pid = child_spawn(argv, -1);
   assert_true(pid > 0);
   const int64_t stop_ms = monotonic_ms() + 1500;

@@ -203,10 +203,22 @@ static void start_and_stop_lines_drive_the_runs(void** state) {
   assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line0), 0);
   char spec[80];
   snprintf(spec, sizeof(spec), "sim:%s", name);
-  char* argv[] = {
-      SYNCAP_TRIGGER_EXE, "--chip", spec,     "--lines", "0",          "--start-line", "5",
-      "--stop-line",      "6",      "--rate-hz", "200",     "--width-us", "100",          "--lcm-url",
-      "memq://",          NULL};
+  char* argv[] = {SYNCAP_TRIGGER_EXE,
+                  "--chip",
+                  spec,
+                  "--lines",
+                  "0",
+                  "--start-line",
+                  "5",
+                  "--stop-line",
+                  "6",
+                  "--rate-hz",
+                  "200",
+                  "--width-us",
+                  "100",
+                  "--lcm-url",
+                  "memq://",
+                  NULL};
   FILE* output = tmpfile();
   assert_non_null(output);
   const pid_t pid = child_spawn(argv, fileno(output));
@@ -306,9 +318,10 @@ static void phases_delay_the_lines_edges(void** state) {
   char spec[80];
   snprintf(spec, sizeof(spec), "sim:%s", name);
   static struct run_result result;
-  run_trigger((char*[]){"--chip", spec, "--lines", "0,1,2", "--phases-us", "0,2000,2000", "--rate-hz",
-                        "100", "--width-us", "1000", "--count", "10", "--lcm-url", "memq://", NULL},
-              -1, 0, &result);
+  run_trigger(
+      (char*[]){"--chip", spec, "--lines", "0,1,2", "--phases-us", "0,2000,2000", "--rate-hz",
+                "100", "--width-us", "1000", "--count", "10", "--lcm-url", "memq://", NULL},
+      -1, 0, &result);
   assert_exit_status(&result, 0);
   struct syncap_gpiosim_line line0;
   assert_int_equal(syncap_gpiosim_read_line(chip, 0, &line0), 0);
@@ -373,8 +386,9 @@ static void count_run_ends_with_a_summary(void** state) {
 static void quiet_run_prints_no_summary(void** state) {
   (void)state;
   static struct run_result result;
-  run_trigger((char*[]){"--count", "2", "--rate-hz", "500", "--quiet", "--lcm-url", "memq://", NULL},
-              -1, 0, &result);
+  run_trigger(
+      (char*[]){"--count", "2", "--rate-hz", "500", "--quiet", "--lcm-url", "memq://", NULL}, -1, 0,
+      &result);
   assert_exit_status(&result, 0);
   assert_null(strstr(result.output, "pulses="));
 }

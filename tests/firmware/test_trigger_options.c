@@ -217,9 +217,10 @@ static void yaml_file_of_options(void** state) {
   (void)state;
   struct trigger_options options;
   char error[512] = "";
-  assert_true(load_yaml("# the trigger\nrate-hz: 100\nwidth-us: 500\nlines: [0, 1, 2]\n"
-                        "phases-us: 0,250,250\nchip: gpiochip0\nquiet: true\n",
-                        &options, error, sizeof(error)));
+  assert_true(
+      load_yaml("# the trigger\nrate-hz: 100\nwidth-us: 500\nlines: [0, 1, 2]\n"
+                "phases-us: 0,250,250\nchip: gpiochip0\nquiet: true\n",
+                &options, error, sizeof(error)));
   assert_true(options.rate_hz == 100.0);
   assert_int_equal(options.width_us, 500);
   assert_int_equal(options.num_lines, 3);
@@ -257,13 +258,14 @@ static void rig_file_gives_the_trigger_its_section(void** state) {
   (void)state;
   struct trigger_options options;
   char error[512] = "";
-  assert_true(load_yaml("calibration: /etc/syncap/cameras.json\n"
-                        "lcm-url: udpm://239.255.76.67:7667?ttl=1\n"
-                        "trigger:\n  chip: gpiochip0\n  lines: 17,27\n  rate-hz: 60\n"
-                        "host:\n  hull: true\n"
-                        "edges:\n  threshold: 200\n"
-                        "cameras:\n  - {camera-id: 0, board: a}\n",
-                        &options, error, sizeof(error)));
+  assert_true(
+      load_yaml("calibration: /etc/syncap/cameras.json\n"
+                "lcm-url: udpm://239.255.76.67:7667?ttl=1\n"
+                "trigger:\n  chip: gpiochip0\n  lines: 17,27\n  rate-hz: 60\n"
+                "host:\n  hull: true\n"
+                "edges:\n  threshold: 200\n"
+                "cameras:\n  - {camera-id: 0, board: a}\n",
+                &options, error, sizeof(error)));
   assert_string_equal(options.lcm_url, "udpm://239.255.76.67:7667?ttl=1");
   assert_string_equal(options.chip, "gpiochip0");
   assert_int_equal(options.num_lines, 2);

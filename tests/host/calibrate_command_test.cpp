@@ -50,8 +50,8 @@ TEST(CalibrateCommand, CsvWandRecordingGivesTheCalibrationFolder) {
   write_csv(dir / "wand.csv", net.network);
   // A CSV carries no image sizes: without --image-size the camera is named.
   std::string out, err;
-  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length-mm", "1000", "--out",
-                 (dir / "out").string()},
+  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length-mm", "1000",
+                 "--out", (dir / "out").string()},
                 out, err),
             kExitReportedErrors);
   EXPECT_NE(err.find("camera 0 of csv:"), std::string::npos) << err;
@@ -279,7 +279,7 @@ TEST(CalibrateCommand, FrameRangeTakesTheWandPhaseOfASessionsLog) {
   }
   write_log(dir / "session.lcmlog", frames);
   const std::vector<std::string> common = {"--wand-length-mm", "1000", "--pixel-size",  "0.0067",
-                                           "--sigma-px",    "0.2",  "--check-share", "0"};
+                                           "--sigma-px",       "0.2",  "--check-share", "0"};
   auto summary = [&](const std::string& log, const std::string& out_dir,
                      std::vector<std::string> more) {
     std::vector<std::string> a = {"--input", "lcmlog:" + (dir / log).string(), "--out",

@@ -14,9 +14,9 @@
 #include "hull/mesh.hpp"
 #include "hull/polyhedral_hull.hpp"
 #include "hull/views_io.hpp"
-#include "surface/textured_scene.hpp"
 #include "sensor/camera_file.hpp"
 #include "subcommand.hpp"
+#include "surface/textured_scene.hpp"
 
 namespace syncap::tools {
 namespace {

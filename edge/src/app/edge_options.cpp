@@ -156,8 +156,7 @@ void Parser::add_detection_options() {
       "windowed: a full scan for new blobs every N frames" + by_default(o.full_scan_every));
   app_->add_flag("--roi-follows-windows", o.roi_follows_windows,
                  "windowed: the sensor ROI follows the union of the windows");
-  cli::add_checked(*app_, "--threshold-dn", o.detector.threshold, "DN",
-                   cli::whole_in<int>(1, 255),
+  cli::add_checked(*app_, "--threshold-dn", o.detector.threshold, "DN", cli::whole_in<int>(1, 255),
                    "blob threshold, DN 1..255" + by_default(o.detector.threshold));
   cli::add_checked(*app_, "--min-area-px", o.detector.min_area, "PX",
                    cli::whole_in<int>(1, 1 << 24),

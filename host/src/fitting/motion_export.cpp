@@ -68,8 +68,8 @@ io::BvhMotion bvh_motion(const PoseParameters& parameters,
 }
 
 tracking::MarkerTrajectories joint_trajectories(const PoseParameters& parameters,
-                                          std::span<const std::optional<PoseVector>> frames,
-                                          double rate_hz, int64_t first_frame) {
+                                                std::span<const std::optional<PoseVector>> frames,
+                                                double rate_hz, int64_t first_frame) {
   tracking::MarkerTrajectories out;
   const std::vector<int>& nodes = parameters.reported_nodes();
   for (const int node : nodes) out.labels.push_back(parameters.skeleton().node(node).name);

@@ -1,9 +1,9 @@
 // A fitted motion as the exports take it (docs/design/body-fit.md, "Exports"): the BVH skeleton of
 // the root and the fitted joints with the subject's offsets and, per frame, their rotations
 // (io/bvh_writer.hpp); the joints' centres as trajectories for C3D and TRC
-// (tracking/marker_trajectories.hpp). Every joint between two fitted ones keeps its rest orientation
-// relative to its parent, so the BVH chain from one fitted joint to the next is one rigid
-// offset: the BVH figure's joints are exactly the fitted figure's.
+// (tracking/marker_trajectories.hpp). Every joint between two fitted ones keeps its rest
+// orientation relative to its parent, so the BVH chain from one fitted joint to the next is one
+// rigid offset: the BVH figure's joints are exactly the fitted figure's.
 #pragma once
 
 #include <optional>
@@ -31,7 +31,7 @@ io::BvhMotion bvh_motion(const PoseParameters& parameters,
 // The centres of bvh_joints' joints per frame, labelled with their names; a frame without a pose
 // is a gap. `first_frame` is the frame number of frames[0].
 tracking::MarkerTrajectories joint_trajectories(const PoseParameters& parameters,
-                                          std::span<const std::optional<PoseVector>> frames,
-                                          double rate_hz, int64_t first_frame);
+                                                std::span<const std::optional<PoseVector>> frames,
+                                                double rate_hz, int64_t first_frame);
 
 }  // namespace syncap::fitting

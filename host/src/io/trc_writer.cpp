@@ -19,7 +19,8 @@ std::string exact(double value) {
   return std::string(text, end);
 }
 
-void write_header(std::ostream& out, const std::string& path, const tracking::MarkerTrajectories& t) {
+void write_header(std::ostream& out, const std::string& path,
+                  const tracking::MarkerTrajectories& t) {
   const std::string rate = exact(t.rate_hz);
   const std::size_t frames = t.samples.size();
   const std::size_t markers = t.labels.size();

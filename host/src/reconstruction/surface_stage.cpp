@@ -3,10 +3,10 @@
 #include <chrono>
 
 #include "hull/silhouette.hpp"
+#include "reconstruction/hull_stage.hpp"
 #include "surface/facet_id_image.hpp"
 #include "surface/hull_consistency.hpp"
 #include "surface/point_files.hpp"
-#include "reconstruction/hull_stage.hpp"
 #include "syncap/proto/image_patch.hpp"
 #include "util/printf_string.hpp"
 

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "surface/surface_matcher.hpp"
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
 #include "reconstruction/hull_stage.hpp"
 #include "sensor/camera_model.hpp"
+#include "surface/surface_matcher.hpp"
 #include "syncap/image_patch_t.hpp"
 #include "syncap/proto/contour_codec.hpp"
 

@@ -8,8 +8,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "surface/match_image.hpp"
 #include "sensor/camera_model.hpp"
+#include "surface/match_image.hpp"
 
 namespace syncap::surface {
 

@@ -43,9 +43,8 @@ void TrackHistory::add(const TrackedFrame& frame, std::span<const PointObservati
   frames_.push_back(std::move(f));
 }
 
-MarkerTrajectories to_trajectories(const TrackHistory& history,
-                                       const std::vector<RigidSet>& sets,
-                                       const TrajectoryOptions& options) {
+MarkerTrajectories to_trajectories(const TrackHistory& history, const std::vector<RigidSet>& sets,
+                                   const TrajectoryOptions& options) {
   MarkerTrajectories out;
   out.rate_hz = options.rate_hz;
   if (history.frames().empty()) return out;

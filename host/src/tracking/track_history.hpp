@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "tracking/marker_trajectories.hpp"
 #include "tracking/marker_tracker.hpp"
+#include "tracking/marker_trajectories.hpp"
 #include "tracking/rigid_set.hpp"
 
 namespace syncap::tracking {
@@ -57,8 +57,7 @@ struct TrajectoryOptions {
 // `min_points` points, labelled "M" and its id (at least 3 digits: "M001"), by id. Rows run from
 // the first to the last added frame; frames not added are gaps. A sample's residual is the
 // point's standard error sqrt(trace(covariance) / 3) in mm (the tracker does not see the rays).
-MarkerTrajectories to_trajectories(const TrackHistory& history,
-                                       const std::vector<RigidSet>& sets,
-                                       const TrajectoryOptions& options = {});
+MarkerTrajectories to_trajectories(const TrackHistory& history, const std::vector<RigidSet>& sets,
+                                   const TrajectoryOptions& options = {});
 
 }  // namespace syncap::tracking

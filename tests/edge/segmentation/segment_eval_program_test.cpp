@@ -31,8 +31,10 @@ TEST(SegmentEvalProgram, BadValuesUnknownOptionsAndBadInputExitTwoNamingThem) {
   expect_usage_error(scene + " --k nan", "--k: 'nan': expected a number in 0.100000..100.000000");
   expect_usage_error(scene + " --frame-step 2xyz",
                      "--frame-step: '2xyz' is not a whole number in [1, 16777216]");
-  expect_usage_error(scene + " --min-area-px x", "--min-area-px: 'x': expected a number in 0..16777216");
-  expect_usage_error(scene + " --closing-px 99999", "--closing-px: '99999': expected a number in 0..255");
+  expect_usage_error(scene + " --min-area-px x",
+                     "--min-area-px: 'x': expected a number in 0..16777216");
+  expect_usage_error(scene + " --closing-px 99999",
+                     "--closing-px: '99999': expected a number in 0..255");
   expect_usage_error(scene + " --method mog2", "--scene scores medi-picture only");
   expect_usage_error("--cdnet /nonexistent/cdnet", "--method is required");
   expect_usage_error("--cdnet /nonexistent/cdnet --method x",

@@ -36,7 +36,8 @@ float largest_coordinate(const tracking::MarkerTrajectories& t) {
   return static_cast<float>(largest);
 }
 
-void expect_points_match(const C3dTestReader& c3d, const tracking::MarkerTrajectories& t, std::size_t f) {
+void expect_points_match(const C3dTestReader& c3d, const tracking::MarkerTrajectories& t,
+                         std::size_t f) {
   const float scale = c3d.header_float(7);
   for (std::size_t m = 0; m < t.labels.size(); ++m) {
     const auto point = c3d.point(f, m, t.labels.size());
@@ -117,7 +118,8 @@ TEST(C3dWriter, ResidualZeroMarksUnmeasuredLargeOnesSaturateCamerasKeepSevenBits
   t.labels = {"A", "B", "C"};
   t.rate_hz = 50;
   t.samples = {{tracking::MarkerSample{{3200, 0, 0}, 0.0, 0b101},  // scale 0.1 mm
-                tracking::MarkerSample{{1, 2, 3}, 1e6, 0x1ff}, tracking::MarkerSample{{1, 2, 3}, 0.01, 0}}};
+                tracking::MarkerSample{{1, 2, 3}, 1e6, 0x1ff},
+                tracking::MarkerSample{{1, 2, 3}, 0.01, 0}}};
   const C3dTestReader c3d = written(t);
   EXPECT_FLOAT_EQ(c3d.header_float(7), -0.1f);
   EXPECT_EQ(c3d.point(0, 0, 3).fourth, static_cast<float>(0b101 << 8 | 0));

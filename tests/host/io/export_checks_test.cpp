@@ -9,8 +9,8 @@
 
 #include "export_test_paths.hpp"
 #include "io/atomic_file.hpp"
-#include "io/export_checks.hpp"
 #include "io/c3d_writer.hpp"
+#include "io/export_checks.hpp"
 #include "io/export_error.hpp"
 #include "io/trc_writer.hpp"
 #include "synthetic_trajectories.hpp"

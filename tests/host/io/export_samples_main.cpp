@@ -16,7 +16,7 @@
 
 namespace {
 
-void write_both(const std::string& stem, const syncap::io::MarkerTrajectories& trajectories) {
+void write_both(const std::string& stem, const syncap::tracking::MarkerTrajectories& trajectories) {
   syncap::io::write_c3d(stem + ".c3d", trajectories);
   syncap::io::write_trc(stem + ".trc", trajectories);
 }

@@ -25,8 +25,8 @@ inline std::string numbered_label(long m) {
 }
 
 // `frames` x `markers`, labels M001, M002, ... unless given.
-inline tracking::MarkerTrajectories synthetic_trajectories(long frames, long markers, double rate_hz,
-                                                 int64_t first_frame) {
+inline tracking::MarkerTrajectories synthetic_trajectories(long frames, long markers,
+                                                           double rate_hz, int64_t first_frame) {
   tracking::MarkerTrajectories t;
   t.rate_hz = rate_hz;
   t.first_frame = first_frame;
@@ -37,8 +37,8 @@ inline tracking::MarkerTrajectories synthetic_trajectories(long frames, long mar
     row.resize(static_cast<std::size_t>(markers));
     for (long m = 0; m < markers; ++m) {
       if (!synthetic_seen(f, m)) continue;
-      row[static_cast<std::size_t>(m)] =
-          tracking::MarkerSample{synthetic_position(f, m), synthetic_residual(f, m), synthetic_cameras(f, m)};
+      row[static_cast<std::size_t>(m)] = tracking::MarkerSample{
+          synthetic_position(f, m), synthetic_residual(f, m), synthetic_cameras(f, m)};
     }
   }
   return t;

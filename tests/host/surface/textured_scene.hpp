@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
+#include "sensor/test_cameras.hpp"
 #include "surface/facet_id_image.hpp"
 #include "surface/scan_line.hpp"
-#include "sensor/test_cameras.hpp"
 
 namespace syncap::surface::test {
 
