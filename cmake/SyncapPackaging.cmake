@@ -3,7 +3,7 @@
 # Three install components become three Debian packages (CPack's DEB generator,
 # scripts/package.sh):
 #   trigger -> syncap-trigger: syncap-trigger, syncap-gpiosim, the unit, the udev rule for GPIO
-#   edge    -> syncap-edge:    syncap-edge, syncap-segment-eval, the unit syncap-edge@
+#   edge    -> syncap-edge:    syncap-edge, syncap-segment-eval, syncap-mask, the unit syncap-edge@
 #   host    -> syncap-host:    syncap-host, syncap (only in a build with SYNCAP_BUILD_HOST)
 # each with an example config in /etc/syncap (a conffile), its docs, copyright and changelog,
 # and the maintainer scripts of packaging/deb/<component>. Depends come from dpkg-shlibdeps at
@@ -110,7 +110,7 @@ command-line front end (record, calibrate, control the edges).")
 
   # Depends: computed when cpack runs (SyncapCPackProject.cmake.in), from the built programs.
   set(SYNCAP_PACKAGE_PROGRAMS_TRIGGER syncap-trigger syncap-gpiosim)
-  set(SYNCAP_PACKAGE_PROGRAMS_EDGE syncap-edge syncap-segment-eval)
+  set(SYNCAP_PACKAGE_PROGRAMS_EDGE syncap-edge syncap-segment-eval syncap-mask)
   set(SYNCAP_PACKAGE_PROGRAMS_HOST syncap-host syncap)
   set(SYNCAP_PACKAGE_BIN_DIR ${CMAKE_RUNTIME_OUTPUT_DIRECTORY})
   set(SYNCAP_PACKAGE_SYSROOT "")

@@ -23,6 +23,7 @@ PROGRAMS=(
   "syncap log|workstation: recording"
   "syncap markers|workstation: offline reconstruction"
   "syncap fit|workstation: offline reconstruction"
+  "syncap mask|workstation: offline reconstruction"
   "syncap hull|workstation: offline reconstruction"
   "syncap match|workstation: offline reconstruction"
   "syncap clip|workstation: commanding the edges"

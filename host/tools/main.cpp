@@ -80,6 +80,7 @@ struct ProgramSubcommand {
 constexpr std::array kProgramSubcommands{
     ProgramSubcommand{"sim", "render a scenario into camera images and ground truth"},
     ProgramSubcommand{"segment-eval", "score foreground masking on a CDnet 2014 folder"},
+    ProgramSubcommand{"mask", "mask a recording as the edge does, writing the masks as images"},
     ProgramSubcommand{"view", "show the LCM traffic, live or recorded, in Rerun (Python)"},
 };
 

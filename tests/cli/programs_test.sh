@@ -25,6 +25,7 @@ TABLE=(
   "syncap keygen|"
   "syncap sim|--max-phase-frames"
   "syncap segment-eval|--frame-step"
+  "syncap mask|--every"
   "syncap-gpiosim|"
   "syncap-fakecam|--seed"
   "syncap-hil-compare|--max-rms-px"

@@ -2,12 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <thread>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
 #include "app/edge_options.hpp"
 #include "syncap/proto/contour_codec.hpp"
 #include "syncap/proto/image_patch.hpp"
@@ -413,6 +417,64 @@ TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
   EXPECT_NEAR(x1, 159, 2);
   EXPECT_NEAR(y0, 40, 2);
   EXPECT_NEAR(y1, 189, 2);
+}
+
+// Issue 36: a capture that starts with the person in view. Trained on its own first frames the
+// model takes the person for background; trained on a recording of the empty scene
+// (--background) the person is masked from the first frame on.
+TEST_F(EdgeNodeMaskTest, ABackgroundClipTrainsBeforeTheFirstFrame) {
+  const std::filesystem::path clip = std::filesystem::temp_directory_path() /
+                                     ("syncap_edge_background_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(clip);
+  for (int k = 0; k < 10; ++k)
+    cv::imwrite((clip / ("empty_" + std::to_string(k) + ".png")).string(), scene(100 + k, false));
+  for (int k = 0; k < 12; ++k) source_.images[k] = scene(k, true);
+  const auto make_node = [this] {
+    return std::make_unique<EdgeNode>(
+        options_, source_,
+        EdgePublisher{[this](const blob_frame_t& f) { frames_.push_back(f); },
+                      [this](const camera_status_t& s) { statuses_.push_back(s); },
+                      [this](const silhouette_part_t& p) { silhouettes_.push_back(p); },
+                      {}},
+        key_);
+  };
+  // Without the clip: trained on frames 0..7, the person is background in frame 9.
+  options_.train_frames = 8;
+  node_ = make_node();
+  for (int k = 0; k <= 9; ++k) node_->on_trigger(trigger(k));
+  // Frames 8 and 9 are masked, and empty: the person standing still was learned as background.
+  ASSERT_FALSE(silhouettes_.empty());
+  EXPECT_TRUE(proto::decode_silhouette(silhouettes_).contours.empty());
+  silhouettes_.clear();
+
+  options_.train_frames = 0;
+  options_.background = clip.string();
+  node_ = make_node();
+  node_->on_trigger(trigger(0));
+  std::filesystem::remove_all(clip);
+  ASSERT_FALSE(silhouettes_.empty()) << "frame 0 is masked against the clip's model";
+  const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
+  EXPECT_EQ(s.frame_number, 0);
+  ASSERT_EQ(s.contours.size(), 1u);
+  int x0 = 1000, x1 = -1, y0 = 1000, y1 = -1;
+  for (const auto& p : s.contours[0].points) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  EXPECT_NEAR(x0, 100, 2);
+  EXPECT_NEAR(x1, 159, 2);
+  EXPECT_NEAR(y0, 40, 2);
+  EXPECT_NEAR(y1, 189, 2);
+}
+
+TEST_F(EdgeNodeMaskTest, ABackgroundClipItCannotReadIsNamed) {
+  options_.background = "/nonexistent/background.avi";
+  try {
+    EdgeNode node(options_, source_, EdgePublisher{{}, {}, {}, {}}, key_);
+    FAIL() << "the clip cannot be read";
+  } catch (const FrameSourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/background.avi"), std::string::npos)
+        << e.what();
+  }
 }
 
 // Issue 21: every Nth frame the person's grey values go out as an image patch, before the

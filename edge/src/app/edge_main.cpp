@@ -103,14 +103,23 @@ int run(const syncap::edge::EdgeOptions& options) {
   auto send = [&](const std::string& channel, auto message) {
     queue.push([&lcm, &channel, message] { lcm.publish(channel, &message); });
   };
-  syncap::edge::EdgeNode node(
-      options, *source,
-      {[&](const syncap::blob_frame_t& m) { send(blob_channel, m); },
-       [&](const syncap::camera_status_t& m) { send(status_channel, m); },
-       [&](const syncap::silhouette_part_t& m) { send(silhouette_channel, m); },
-       [&] { return queue.stats(); },
-       [&](const syncap::image_patch_t& m) { send(patch_channel, m); }},
-      command_key);
+  // A --background clip that cannot be read is bad input (exit 2), named with its path.
+  std::optional<syncap::edge::EdgeNode> built;
+  try {
+    built.emplace(options, *source,
+                  syncap::edge::EdgePublisher{
+                      [&](const syncap::blob_frame_t& m) { send(blob_channel, m); },
+                      [&](const syncap::camera_status_t& m) { send(status_channel, m); },
+                      [&](const syncap::silhouette_part_t& m) { send(silhouette_channel, m); },
+                      [&] { return queue.stats(); },
+                      [&](const syncap::image_patch_t& m) { send(patch_channel, m); }},
+                  command_key);
+  } catch (const syncap::edge::FrameSourceError& e) {
+    if (options.background.empty()) throw;
+    std::cerr << "syncap-edge: " << e.what() << "\n";
+    return 2;
+  }
+  syncap::edge::EdgeNode& node = *built;
 
   bool shutdown = false;
   syncap::proto::Subscriber subscriber(

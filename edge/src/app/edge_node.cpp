@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "detection/blob_detector.hpp"
+#include "sensor/background_clip.hpp"
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/clock.hpp"
 #include "syncap/proto/image_patch.hpp"
@@ -98,8 +99,12 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
   if (options_.mask) {
     silhouettes_.emplace(options_.contour_tolerance_px, options_.masking,
                          options_.train_in_background);
-    if (options_.train_frames > 0)
+    if (!options_.background.empty()) {
+      const int frames = options_.train_frames > 0 ? options_.train_frames : kBackgroundClipFrames;
+      silhouettes_->train_on(read_background_clip(options_.background, frames, options_.roi));
+    } else if (options_.train_frames > 0) {
       silhouettes_->start_training(options_.train_frames, options_.train_from_frame);
+    }
   }
   if (!options_.roi.empty()) source_.set_roi(options_.roi);
 }

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "segmentation/masking_options.hpp"
+#include "sensor/background_clip.hpp"
 #include "syncap/cli/config_file.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
@@ -182,6 +183,14 @@ void Parser::add_mask_options() {
   cli::add_checked(*app_, "--train-frames", o.train_frames, "N", cli::whole_in<int>(1, 10000),
                    "mask: train the background on N frames (default: on the\n"
                    "host's TRAIN_BACKGROUND command) ...");
+  app_->add_option("--background", o.background,
+                   "mask: a recording of the empty scene, a video file or a folder of\n"
+                   "numbered images: the model trains on --train-frames N of its frames\n"
+                   "(default " +
+                       std::to_string(kBackgroundClipFrames) +
+                       ", spread over it) before the first frame, for a capture\n"
+                       "that starts with the person in view")
+      ->option_text("FILE|DIR");
   cli::add_checked(*app_, "--train-from-frame", o.train_from_frame, "F",
                    cli::whole_in<int64_t>(0, int64_t{1} << 53),
                    "... numbered F..F+N-1 (default: the first N frames)");
@@ -264,6 +273,13 @@ void check_combination(const EdgeOptions& o, bool have_camera) {
     throw UsageError(
         "syncap-edge: --patch-every needs --mode mask or both (a patch is where "
         "the silhouette is)");
+  }
+  if (!o.background.empty() && !o.mask) {
+    throw UsageError("syncap-edge: --background needs --mode mask or both");
+  }
+  if (!o.background.empty() && o.train_from_frame >= 0) {
+    throw UsageError(
+        "syncap-edge: --background and --train-from-frame are two ways to train: give one");
   }
   if (o.train_frames > 0 && !o.mask) {
     throw UsageError("syncap-edge: --train-frames needs --mode mask or both");

@@ -24,6 +24,10 @@ struct EdgeOptions {
   bool mask = false;
   int train_frames = 0;           // mask: train on N frames (0: wait for the command) ...
   int64_t train_from_frame = -1;  // ... numbered from this one (-1: the first N frames)
+  // mask: a recording of the empty scene (a video file or an image folder) to train on before
+  // the first frame, N frames of it spread over it (--train-frames, default
+  // kBackgroundClipFrames, sensor/background_clip.hpp); empty: train on the capture's own frames.
+  std::string background;
   // The background model is computed on a thread of its own (not an option: tests turn it off to
   // see the model at once).
   bool train_in_background = true;

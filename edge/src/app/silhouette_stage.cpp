@@ -1,6 +1,7 @@
 #include "app/silhouette_stage.hpp"
 
 #include <chrono>
+#include <stdexcept>
 
 #include "segmentation/silhouette_contours.hpp"
 #include "syncap/proto/contour_codec.hpp"
@@ -27,6 +28,17 @@ void SilhouetteStage::start_training(int frames, int64_t from_frame) {
   training_wanted_ = frames;
   training_from_ = from_frame;
   training_.clear();
+}
+
+void SilhouetteStage::train_on(std::span<const cv::Mat> frames) {
+  if (frames.size() < 2) throw std::invalid_argument("a background model needs at least 2 frames");
+  if (training_result_.valid()) training_result_.wait();  // a training under way is superseded
+  training_result_ = {};
+  training_wanted_ = 0;
+  training_.clear();
+  model_.emplace(train_medi_picture(frames, options_), options_);
+  paused_.clear();
+  for (RegionState& r : regions_) r.applied.clear();  // a new model has none
 }
 
 bool SilhouetteStage::in_training_range(int64_t frame_number) const {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <future>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ class SilhouetteStage {
   // from_frame..from_frame+frames-1 (frames of that range lost on the way are done without).
   // The previous model is kept, and used, until the new one is trained.
   void start_training(int frames, int64_t from_frame = -1);
+  // A model trained at once on `frames` of the empty scene (a recording of it, --background),
+  // replacing any other and any training under way. std::invalid_argument for fewer than two.
+  void train_on(std::span<const cv::Mat> frames);
   // Trains on the image, or returns its silhouette parts (of this camera and frame number);
   // nothing before a model exists, or while the frame's size differs from the model's (a
   // sensor region of interest). Contours are given in sensor pixels: shifted by `origin`, the

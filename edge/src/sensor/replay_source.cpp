@@ -125,8 +125,13 @@ std::optional<Frame> VideoReplaySource::grab(int64_t frame_number) {
   while (next_index_ <= frame_number) {
     if (!video_.read(picture)) {
       if (next_index_ >= frame_count_) return std::nullopt;  // past the end
-      throw FrameSourceError("replay video " + file_.string() + ": frame " +
-                             std::to_string(next_index_) + " cannot be decoded");
+      // The container promised more frames than the stream holds (a recording cut short): the
+      // video ends here, once, rather than every later frame failing on its own.
+      ended_early_ = "replay video " + file_.string() + ": its frames end at " +
+                     std::to_string(next_index_) + " (the container says " +
+                     std::to_string(frame_count_) + ")";
+      frame_count_ = next_index_;
+      return std::nullopt;
     }
     ++next_index_;
   }

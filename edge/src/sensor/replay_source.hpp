@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <string>
 
 #include <opencv2/videoio.hpp>
 
@@ -45,9 +46,11 @@ class VideoReplaySource : public FrameSource {
   // Opens the video. Throws FrameSourceError when it cannot be opened or holds no frame.
   VideoReplaySource(std::filesystem::path file, int camera_id, int32_t exposure_us = 0);
 
-  // Frame k: read on from the last frame, or sought when k lies behind it. nullopt past the end.
-  // A frame that cannot be decoded throws FrameSourceError naming the file and the frame.
+  // Frame k: read on from the last frame, or sought when k lies behind it. nullopt past the end:
+  // where the container says the video ends, or where its stream does when that is sooner (a
+  // recording cut short; note() then says where, and frame_count() becomes it).
   std::optional<Frame> grab(int64_t frame_number) override;
+  std::string note() const override { return ended_early_; }
   std::string describe() const override;
   cv::Rect set_roi(const cv::Rect& roi) override;
 
@@ -60,6 +63,7 @@ class VideoReplaySource : public FrameSource {
   cv::VideoCapture video_;
   int64_t frame_count_ = 0;  // as the container says; may be an estimate
   int64_t next_index_ = 0;   // the frame the next read() returns
+  std::string ended_early_;  // where the stream ended before the container's count
   cv::Rect roi_;
 };
 

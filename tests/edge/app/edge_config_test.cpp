@@ -223,6 +223,19 @@ TEST(EdgeOptions, AnUnknownOptionOrAStrayArgumentIsNamed) {
             "syncap-edge: unexpected argument 'stray'");
 }
 
+TEST(EdgeOptions, ABackgroundClipNeedsTheMaskAndIsOneWayToTrain) {
+  EXPECT_EQ(command_line_error(
+                {"--camera-id", "1", "--source", "replay:/x", "--background", "/data/empty.avi"}),
+            "syncap-edge: --background needs --mode mask or both");
+  EXPECT_EQ(command_line_error({"--camera-id", "1", "--source", "replay:/x", "--mode", "mask",
+                                "--background", "/data/empty.avi", "--train-frames", "20",
+                                "--train-from-frame", "5"}),
+            "syncap-edge: --background and --train-from-frame are two ways to train: give one");
+  const EdgeOptions o = parse_edge_options({"--camera-id", "1", "--source", "replay:/x", "--mode",
+                                            "mask", "--background", "/data/empty.avi"});
+  EXPECT_EQ(o.background, "/data/empty.avi");
+}
+
 TEST(EdgeOptions, ABadNumberNamesTheOptionAndTheValue) {
   const std::vector<std::string> camera{"--camera-id", "1", "--source", "replay:/x"};
   const auto error = [&](const std::string& option, const std::string& value) {

@@ -1,0 +1,190 @@
+// syncap-mask: the edge's masking of any recording, written as images.
+//   syncap-mask --input VIDEO|DIR --background VIDEO|DIR --out-dir DIR [options]
+// The model is trained on the empty scene's clip as syncap-edge --background trains it, with the
+// same defaults and --mask-* options; every frame's mask goes to DIR/mask_NNNNNN.png (255 where
+// the person is), numbered as the input's frames.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "segmentation/masking_options.hpp"
+#include "segmentation/medi_picture.hpp"
+#include "sensor/background_clip.hpp"
+#include "sensor/replay_source.hpp"
+#include "syncap/cli/options.hpp"
+
+namespace {
+
+namespace cli = syncap::cli;
+namespace edge = syncap::edge;
+
+constexpr const char* kDescription =
+    "usage: syncap mask --input VIDEO|DIR --background VIDEO|DIR --out-dir DIR [options]\n"
+    "Masks every frame of a recording as syncap-edge does, the model trained on a recording of\n"
+    "the empty scene (--background, as syncap-edge --background), and writes each frame's mask\n"
+    "as DIR/mask_NNNNNN.png (255 foreground, 0 background; NNNNNN the frame's number: a video's\n"
+    "from 0, a folder's from its file names).\n";
+
+constexpr const char* kFooter =
+    "Exit status: 0 masks written, 2 bad arguments or an input that cannot be read (named).";
+
+struct Arguments {
+  std::string input, background, out_dir;
+  int train_frames = edge::kBackgroundClipFrames;
+  int64_t first_frame = 0;
+  int64_t frames = 0;  // 0: to the end
+  int every = 1;
+  std::map<std::string, std::string> masking;  // --mask-NAME by NAME
+  bool no_shadows = false;
+  edge::MediPictureOptions options;
+};
+
+void add_options(cli::App& app, Arguments& a) {
+  app.add_option("--input", a.input,
+                 "the recording to mask: a video file or a folder of numbered "
+                 "images")
+      ->option_text("VIDEO|DIR")
+      ->required();
+  app.add_option("--background", a.background, "a recording of the empty scene, likewise")
+      ->option_text("VIDEO|DIR")
+      ->required();
+  app.add_option("--out-dir", a.out_dir, "the folder the masks go to (created)")->required();
+  cli::add_checked(app, "--train-frames", a.train_frames, "N", cli::whole_in<int>(2, 10000),
+                   "frames of the background clip the model trains on, spread over it "
+                   "(default " +
+                       std::to_string(edge::kBackgroundClipFrames) + ")");
+  cli::add_checked(app, "--first-frame", a.first_frame, "F",
+                   cli::whole_in<int64_t>(0, int64_t{1} << 40),
+                   "the first frame masked (default 0: a video's first, a folder's lowest number)");
+  cli::add_checked(app, "--frames", a.frames, "N", cli::whole_in<int64_t>(1, int64_t{1} << 40),
+                   "mask N frames (default: to the end)");
+  cli::add_checked(app, "--every", a.every, "N", cli::whole_in<int>(1, 100000),
+                   "every Nth frame (default 1)");
+  // The medi-picture options with syncap-edge's names and checks.
+  for (const auto& [name, metavar, meaning, old_name] : edge::kMaskingOptions) {
+    const std::string fallback = edge::masking_option_value(edge::MediPictureOptions{}, name);
+    const std::string option = std::string("--mask-") + name;
+    app.add_option_function<std::string>(
+           option, [&a, name](const std::string& v) { a.masking[name] = v; },
+           std::string(meaning) + " (default " + fallback + ")")
+        ->option_text(metavar);
+    if (old_name != nullptr) app.deprecated_name(std::string("--mask-") + old_name, option);
+  }
+  app.add_flag("--mask-no-shadows", a.no_shadows, "skip the shadow test");
+}
+
+void apply_options(Arguments& a) {
+  for (const auto& [name, value] : a.masking) {
+    try {
+      edge::apply_masking_option(a.options, name, value);
+    } catch (const edge::BadValue& e) {
+      throw CLI::ValidationError("--mask-" + name, e.what());
+    }
+  }
+  if (a.no_shadows) a.options.remove_shadows = false;
+}
+
+// The input's frames: a folder by its file numbers, a video from 0; and where they start.
+struct Input {
+  std::unique_ptr<edge::FrameSource> source;
+  int64_t first = 0, last = -1;  // last: -1 for a video (to its end)
+};
+
+Input open_input(const std::filesystem::path& path) {
+  Input in;
+  if (std::filesystem::is_directory(path)) {
+    auto folder = std::make_unique<edge::ReplaySource>(path, 0);
+    in.first = folder->first_frame();
+    in.last = folder->last_frame();
+    in.source = std::move(folder);
+  } else {
+    in.source = std::make_unique<edge::VideoReplaySource>(path, 0);
+  }
+  return in;
+}
+
+struct Tally {
+  int64_t masks = 0;
+  double foreground = 0;  // share of the pixels, summed over the masks
+  double mask_ms = 0;     // masking alone, summed
+};
+
+// Masks the frames the arguments ask for; stops at a video frame that cannot be decoded after
+// the first (a container that promised more frames than it holds), saying so once.
+Tally mask_all(const Arguments& a, Input& in, edge::MediPicture& masking) {
+  Tally t;
+  const std::filesystem::path out(a.out_dir);
+  const int64_t start = std::max(in.first, a.first_frame);
+  for (int64_t k = start; a.frames == 0 || k < start + a.frames; k += a.every) {
+    if (in.last >= 0 && k > in.last) break;
+    std::optional<edge::Frame> frame;
+    try {
+      frame = in.source->grab(k);
+    } catch (const edge::FrameSourceError& e) {
+      if (t.masks == 0) throw;
+      std::cerr << "syncap-mask: " << e.what() << ": the masks end at the frame before\n";
+      break;
+    }
+    if (!frame) {
+      if (in.last < 0) break;  // past the video's end
+      continue;                // a number the folder does not have
+    }
+    const cv::Size model_size = masking.model().median.size();
+    if (frame->image.size() != model_size)
+      throw edge::FrameSourceError(
+          "--input frame " + std::to_string(k) + " is " + std::to_string(frame->image.cols) + "x" +
+          std::to_string(frame->image.rows) + " pixels, the --background clip's " +
+          std::to_string(model_size.width) + "x" + std::to_string(model_size.height));
+    const auto begin = std::chrono::steady_clock::now();
+    const cv::Mat mask = masking.apply(frame->image);
+    t.mask_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    char name[32];
+    std::snprintf(name, sizeof name, "mask_%06lld.png", static_cast<long long>(k));
+    if (!cv::imwrite((out / name).string(), mask))
+      throw edge::FrameSourceError("cannot write " + (out / name).string());
+    t.foreground += static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total());
+    ++t.masks;
+  }
+  if (!in.source->note().empty()) std::cerr << "syncap-mask: " << in.source->note() << '\n';
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Arguments a;
+  cli::App app("syncap-mask", kDescription, kFooter);
+  add_options(app, a);
+  if (const auto status = cli::parse_main(app, argc, argv, [&] { apply_options(a); }))
+    return *status;
+  try {
+    const std::vector<cv::Mat> clip = edge::read_background_clip(a.background, a.train_frames);
+    edge::MediPicture masking(edge::train_medi_picture(clip, a.options), a.options);
+    Input in = open_input(a.input);
+    std::filesystem::create_directories(a.out_dir);
+    const Tally t = mask_all(a, in, masking);
+    if (t.masks == 0) {
+      std::cerr << "syncap-mask: --input " << a.input << ": no frame to mask\n";
+      return cli::kExitUsage;
+    }
+    std::printf(
+        "syncap-mask: %lld masks in %s (trained on %zu frames of %s); foreground %.1f %% "
+        "of the pixels on average; masking %.1f ms a frame\n",
+        static_cast<long long>(t.masks), a.out_dir.c_str(), clip.size(), a.background.c_str(),
+        100.0 * t.foreground / static_cast<double>(t.masks),
+        t.mask_ms / static_cast<double>(t.masks));
+  } catch (const std::exception& e) {  // a clip or input that cannot be read, a size mismatch
+    std::cerr << "syncap-mask: " << e.what() << "\n";
+    return cli::kExitUsage;
+  }
+  return cli::kExitOk;
+}
