@@ -367,6 +367,19 @@ cv::Mat scene(int seed, bool with_person) {
   return image;
 }
 
+// The outline of scene()'s person: the block at x 100..159, y 40..189, within the contour's
+// tolerance.
+void expect_the_persons_outline(const proto::Contour& contour) {
+  int x0 = 1000, x1 = -1, y0 = 1000, y1 = -1;
+  for (const auto& p : contour.points) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  EXPECT_NEAR(x0, 100, 2);
+  EXPECT_NEAR(x1, 159, 2);
+  EXPECT_NEAR(y0, 40, 2);
+  EXPECT_NEAR(y1, 189, 2);
+}
+
 class EdgeNodeMaskTest : public EdgeNodeTest {
  protected:
   void SetUp() override {
@@ -409,14 +422,7 @@ TEST_F(EdgeNodeMaskTest, TrainsOnCommandThenPublishesTheSilhouette) {
   EXPECT_EQ(s.frame_number, 10);
   EXPECT_EQ(s.camera_id, 4);
   ASSERT_EQ(s.contours.size(), 1u);
-  int x0 = 1000, x1 = -1, y0 = 1000, y1 = -1;
-  for (const auto& p : s.contours[0].points) {
-    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  }
-  EXPECT_NEAR(x0, 100, 2);
-  EXPECT_NEAR(x1, 159, 2);
-  EXPECT_NEAR(y0, 40, 2);
-  EXPECT_NEAR(y1, 189, 2);
+  expect_the_persons_outline(s.contours[0]);
 }
 
 // Issue 36: a capture that starts with the person in view. Trained on its own first frames the
@@ -456,14 +462,7 @@ TEST_F(EdgeNodeMaskTest, ABackgroundClipTrainsBeforeTheFirstFrame) {
   const proto::Silhouette s = proto::decode_silhouette(silhouettes_);
   EXPECT_EQ(s.frame_number, 0);
   ASSERT_EQ(s.contours.size(), 1u);
-  int x0 = 1000, x1 = -1, y0 = 1000, y1 = -1;
-  for (const auto& p : s.contours[0].points) {
-    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  }
-  EXPECT_NEAR(x0, 100, 2);
-  EXPECT_NEAR(x1, 159, 2);
-  EXPECT_NEAR(y0, 40, 2);
-  EXPECT_NEAR(y1, 189, 2);
+  expect_the_persons_outline(s.contours[0]);
 }
 
 TEST_F(EdgeNodeMaskTest, ABackgroundClipItCannotReadIsNamed) {
