@@ -4,6 +4,7 @@
 #include "syncap/cli/config_file.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -47,8 +48,11 @@ class ConfigFileTest : public ::testing::Test {
     }
     return "no error";
   }
+  // One file per test and process: ctest runs the cases side by side.
   const std::filesystem::path file_ =
-      std::filesystem::path(::testing::TempDir()) / "config_file_test.yaml";
+      std::filesystem::path(::testing::TempDir()) /
+      ("config_file_test_" + std::to_string(::getpid()) + "_" +
+       ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml");
   std::vector<std::unique_ptr<Program>> programs_;
 };
 
