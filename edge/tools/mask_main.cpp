@@ -8,14 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <memory>
 #include <optional>
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "segmentation/masking_options.hpp"
+#include "app/mask_options.hpp"
 #include "segmentation/medi_picture.hpp"
 #include "sensor/background_clip.hpp"
 #include "sensor/replay_source.hpp"
@@ -42,8 +40,6 @@ struct Arguments {
   int64_t first_frame = 0;
   int64_t frames = 0;  // 0: to the end
   int every = 1;
-  std::map<std::string, std::string> masking;  // --mask-NAME by NAME
-  bool no_shadows = false;
   edge::MediPictureOptions options;
 };
 
@@ -69,46 +65,9 @@ void add_options(cli::App& app, Arguments& a) {
   cli::add_checked(app, "--every", a.every, "N", cli::whole_in<int>(1, 100000),
                    "every Nth frame (default 1)");
   // The medi-picture options with syncap-edge's names and checks.
-  for (const auto& [name, metavar, meaning, old_name] : edge::kMaskingOptions) {
-    const std::string fallback = edge::masking_option_value(edge::MediPictureOptions{}, name);
-    const std::string option = std::string("--mask-") + name;
-    app.add_option_function<std::string>(
-           option, [&a, name](const std::string& v) { a.masking[name] = v; },
-           std::string(meaning) + " (default " + fallback + ")")
-        ->option_text(metavar);
-    if (old_name != nullptr) app.deprecated_name(std::string("--mask-") + old_name, option);
-  }
-  app.add_flag("--mask-no-shadows", a.no_shadows, "skip the shadow test");
-}
-
-void apply_options(Arguments& a) {
-  for (const auto& [name, value] : a.masking) {
-    try {
-      edge::apply_masking_option(a.options, name, value);
-    } catch (const edge::BadValue& e) {
-      throw CLI::ValidationError("--mask-" + name, e.what());
-    }
-  }
-  if (a.no_shadows) a.options.remove_shadows = false;
-}
-
-// The input's frames: a folder by its file numbers, a video from 0; and where they start.
-struct Input {
-  std::unique_ptr<edge::FrameSource> source;
-  int64_t first = 0, last = -1;  // last: -1 for a video (to its end)
-};
-
-Input open_input(const std::filesystem::path& path) {
-  Input in;
-  if (std::filesystem::is_directory(path)) {
-    auto folder = std::make_unique<edge::ReplaySource>(path, 0);
-    in.first = folder->first_frame();
-    in.last = folder->last_frame();
-    in.source = std::move(folder);
-  } else {
-    in.source = std::make_unique<edge::VideoReplaySource>(path, 0);
-  }
-  return in;
+  edge::add_mask_options(app, a.options, "");
+  app.add_flag_callback(
+      "--mask-no-shadows", [&a] { a.options.remove_shadows = false; }, "skip the shadow test");
 }
 
 struct Tally {
@@ -117,26 +76,16 @@ struct Tally {
   double mask_ms = 0;     // masking alone, summed
 };
 
-// Masks the frames the arguments ask for; stops at a video frame that cannot be decoded after
-// the first (a container that promised more frames than it holds), saying so once.
-Tally mask_all(const Arguments& a, Input& in, edge::MediPicture& masking) {
+// Masks the frames the arguments ask for: a folder's numbers it lacks are passed over, a video
+// cut short ends where its frames do (said once).
+Tally mask_all(const Arguments& a, edge::ReplayClip& in, edge::MediPicture& masking) {
   Tally t;
   const std::filesystem::path out(a.out_dir);
   const int64_t start = std::max(in.first, a.first_frame);
   for (int64_t k = start; a.frames == 0 || k < start + a.frames; k += a.every) {
-    if (in.last >= 0 && k > in.last) break;
-    std::optional<edge::Frame> frame;
-    try {
-      frame = in.source->grab(k);
-    } catch (const edge::FrameSourceError& e) {
-      if (t.masks == 0) throw;
-      std::cerr << "syncap-mask: " << e.what() << ": the masks end at the frame before\n";
-      break;
-    }
-    if (!frame) {
-      if (in.last < 0) break;  // past the video's end
-      continue;                // a number the folder does not have
-    }
+    if (k > in.last) break;
+    const std::optional<edge::Frame> frame = in.source->grab(k);
+    if (!frame) continue;
     const cv::Size model_size = masking.model().median.size();
     if (frame->image.size() != model_size)
       throw edge::FrameSourceError(
@@ -164,12 +113,11 @@ int main(int argc, char** argv) {
   Arguments a;
   cli::App app("syncap-mask", kDescription, kFooter);
   add_options(app, a);
-  if (const auto status = cli::parse_main(app, argc, argv, [&] { apply_options(a); }))
-    return *status;
+  if (const auto status = cli::parse_main(app, argc, argv)) return *status;
   try {
     const std::vector<cv::Mat> clip = edge::read_background_clip(a.background, a.train_frames);
     edge::MediPicture masking(edge::train_medi_picture(clip, a.options), a.options);
-    Input in = open_input(a.input);
+    edge::ReplayClip in = edge::open_replay_clip(a.input, 0);
     std::filesystem::create_directories(a.out_dir);
     const Tally t = mask_all(a, in, masking);
     if (t.masks == 0) {

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <optional>
 
+#include "app/mask_options.hpp"
 #include "segmentation/masking_options.hpp"
 #include "sensor/background_clip.hpp"
 #include "syncap/cli/config_file.hpp"
@@ -200,23 +201,7 @@ void Parser::add_mask_options() {
   app_->deprecated_name("--contour-tolerance", "--contour-tolerance-px");
   // --mask-NAME: the medi-picture option NAME, from the defaults (docs/design/segmentation.md),
   // checked by apply_masking_option as segment-eval's are.
-  for (const MaskingOptionHelp& m : kMaskingOptions) {
-    const std::string option = std::string("--mask-") + m.name;
-    const std::string name = m.name;
-    app_->add_option_function<std::string>(
-            option,
-            [this, option, name](const std::string& v) {
-              try {
-                apply_masking_option(o.masking, name, v);
-              } catch (const BadValue& e) {
-                throw CLI::ValidationError(option, e.what());
-              }
-            },
-            std::string("mask: ") + m.meaning + " (default " +
-                masking_option_value(o.masking, name) + ")")
-        ->option_text(m.metavar);
-    if (m.old_name != nullptr) app_->deprecated_name(std::string("--mask-") + m.old_name, option);
-  }
+  syncap::edge::add_mask_options(*app_, o.masking, "mask: ");
   cli::add_checked(*app_, "--patch-every", o.patch_every, "N", cli::whole_in<int>(0, 100000),
                    "mask: send the person's grey values (image_patch_t) every Nth frame\n"
                    "(frame_number % N == 0) for the host's surface matching; 0: never" +

@@ -36,9 +36,7 @@ void SilhouetteStage::train_on(std::span<const cv::Mat> frames) {
   training_result_ = {};
   training_wanted_ = 0;
   training_.clear();
-  model_.emplace(train_medi_picture(frames, options_), options_);
-  paused_.clear();
-  for (RegionState& r : regions_) r.applied.clear();  // a new model has none
+  adopt(train_medi_picture(frames, options_));
 }
 
 bool SilhouetteStage::in_training_range(int64_t frame_number) const {
@@ -53,9 +51,7 @@ void SilhouetteStage::finish_training() {
           return train_medi_picture(frames, options);
         });
   } else if (training_.size() >= 2) {
-    model_.emplace(train_medi_picture(training_, options_), options_);
-    paused_.clear();
-    for (RegionState& r : regions_) r.applied.clear();  // a new model has none
+    adopt(train_medi_picture(training_, options_));
   } else {
     paused_ = "training failed: " + std::to_string(training_.size()) + " frame(s) of " +
               std::to_string(training_from_) + ".." +
@@ -70,7 +66,11 @@ void SilhouetteStage::collect_trained_model() {
   const bool ready =
       training_result_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
   if (!ready && model_) return;
-  model_.emplace(training_result_.get(), options_);
+  adopt(training_result_.get());
+}
+
+void SilhouetteStage::adopt(const MediPictureModel& trained) {
+  model_.emplace(trained, options_);
   paused_.clear();
   for (RegionState& r : regions_) r.applied.clear();  // a new model has none
 }

@@ -69,6 +69,8 @@ class SilhouetteStage {
   // Takes the model the training thread computed: once it is ready, or at once (waiting for it)
   // when there is no model to mask with meanwhile.
   void collect_trained_model();
+  // Masks with `trained` from now on: the pause lifted, the regions handed to it anew.
+  void adopt(const MediPictureModel& trained);
   // Hands the regions to the model, shifted into the frame's window, when they changed (a new
   // region, a new model or window, a search region starting or expiring).
   void apply_regions(cv::Point origin, cv::Size sensor_size, int64_t frame_number);

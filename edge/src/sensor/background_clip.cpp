@@ -1,7 +1,6 @@
 #include "sensor/background_clip.hpp"
 
 #include <algorithm>
-#include <memory>
 #include <optional>
 #include <string>
 
@@ -22,29 +21,16 @@ std::vector<int64_t> spread(int64_t first, int64_t length, int count) {
 
 std::vector<cv::Mat> read_background_clip(const std::filesystem::path& path, int max_frames,
                                           const cv::Rect& roi) {
-  std::unique_ptr<FrameSource> source;
-  std::vector<int64_t> numbers;
-  if (std::filesystem::is_directory(path)) {
-    auto folder = std::make_unique<ReplaySource>(path, 0);
-    // Frame numbers may have gaps: those missing are passed over.
-    numbers =
-        spread(folder->first_frame(), folder->last_frame() - folder->first_frame() + 1, max_frames);
-    source = std::move(folder);
-  } else {
-    auto video = std::make_unique<VideoReplaySource>(path, 0);
-    numbers = spread(0, video->frame_count(), max_frames);
-    source = std::move(video);
-  }
-  if (!roi.empty()) source->set_roi(roi);
+  ReplayClip clip = open_replay_clip(path, 0);
+  FrameSource& source = *clip.source;
+  // A folder's numbers may have gaps: those missing are passed over.
+  const std::vector<int64_t> numbers = spread(clip.first, clip.last - clip.first + 1, max_frames);
+  if (!roi.empty()) source.set_roi(roi);
   std::vector<cv::Mat> frames;
+  // A video cut short ends where its frames do (nullopt beyond); an image that cannot be decoded
+  // is named (FrameSourceError).
   for (const int64_t k : numbers) {
-    std::optional<Frame> frame;
-    try {
-      frame = source->grab(k);
-    } catch (const FrameSourceError&) {
-      break;  // a video's container promised more frames than it can decode: what came serves
-    }
-    if (frame) frames.push_back(frame->image.clone());
+    if (const std::optional<Frame> frame = source.grab(k)) frames.push_back(frame->image.clone());
   }
   if (frames.size() < 2) {
     throw FrameSourceError("--background " + path.string() + ": " + std::to_string(frames.size()) +

@@ -166,10 +166,22 @@ std::string VideoReplaySource::describe() const {
 }
 
 std::unique_ptr<FrameSource> make_replay_source(const std::filesystem::path& path, int camera_id) {
+  return open_replay_clip(path, camera_id).source;
+}
+
+ReplayClip open_replay_clip(const std::filesystem::path& path, int camera_id) {
+  ReplayClip clip;
   if (std::filesystem::is_regular_file(path)) {
-    return std::make_unique<VideoReplaySource>(path, camera_id);
+    auto video = std::make_unique<VideoReplaySource>(path, camera_id);
+    clip.last = video->frame_count() - 1;
+    clip.source = std::move(video);
+  } else {
+    auto folder = std::make_unique<ReplaySource>(path, camera_id);
+    clip.first = folder->first_frame();
+    clip.last = folder->last_frame();
+    clip.source = std::move(folder);
   }
-  return std::make_unique<ReplaySource>(path, camera_id);
+  return clip;
 }
 
 }  // namespace syncap::edge

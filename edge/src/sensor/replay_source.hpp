@@ -70,6 +70,15 @@ class VideoReplaySource : public FrameSource {
 // The replay source for `path`: a VideoReplaySource for a file, a ReplaySource for a folder.
 std::unique_ptr<FrameSource> make_replay_source(const std::filesystem::path& path, int camera_id);
 
+// The same with the frame numbers it holds: a folder's lowest to highest file number (numbers
+// between may be missing), a video's 0..frame_count() - 1 as its container says (grab() ends
+// sooner where the stream does).
+struct ReplayClip {
+  std::unique_ptr<FrameSource> source;
+  int64_t first = 0, last = -1;
+};
+ReplayClip open_replay_clip(const std::filesystem::path& path, int camera_id);
+
 // The frame number in a file name: its last run of decimal digits, or nothing.
 std::optional<int64_t> frame_number_from_name(const std::string& file_name);
 
