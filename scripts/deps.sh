@@ -23,6 +23,8 @@ PACKAGES=(
   libgpiod-dev gpiod libyaml-dev
   # vision and geometry
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
+  # anipose / Pose2Sim camera files (TOML: toml++)
+  libtomlplusplus-dev
   # command-line options (CLI11)
   libcli11-dev
   # tests and benchmarks

@@ -59,6 +59,7 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
   app.deprecated_name("--body-point-sigma", "--body-point-sigma-mm");
   return cli::parse(app, args, out, err, [&] {
     check_offline_options(a.offline);
+    host_app::set_capture_volume(a.offline.volume, p);
     if (!a.silhouette_gap.empty()) {
       try {
         a.gap = SilhouetteGap::parse(a.silhouette_gap);

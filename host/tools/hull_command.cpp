@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "app/host_options.hpp"
 #include "hull/polyhedral_hull.hpp"
 #include "hull/reprojection.hpp"
 #include "hull/views_io.hpp"
@@ -28,6 +29,8 @@ struct HullArgs {
   int threshold = -1;  // none: any non-zero pixel
   int resolution = hull::VoxelOptions{}.resolution;
   bool largest = false;
+  std::vector<double> volume;  // --volume: the capture volume, empty: none
+  hull::HullOptions options;   // the capture volume and margin, after the parse
 };
 
 constexpr const char* kDescription =
@@ -61,9 +64,9 @@ void add_hull_options(CLI::App& app, HullArgs& a) {
       ->required();
   cli::add_checked(app, "--method", a.method, "exact|polyhedral|voxel",
                    cli::one_of({"exact", "polyhedral", "voxel"}),
-                   "exact (default): intersect the viewing cones by corefinement; polyhedral:\n"
-                   "the same intersection cone face by cone face; voxel: octree carving and\n"
-                   "marching tetrahedra");
+                   "polyhedral (default): the viewing cones' exact intersection, cone face by\n"
+                   "cone face (milliseconds); exact: the same solid by CGAL corefinement\n"
+                   "(seconds, a reference); voxel: octree carving and marching tetrahedra");
   cli::add_checked(app, "--simplify-px", a.simplify_px, "PX", cli::number_in(0, 100),
                    "contour simplification, cv::approxPolyDP's epsilon in pixels (default " +
                        cli::number_text(a.simplify_px) + ")");
@@ -72,6 +75,12 @@ void add_hull_options(CLI::App& app, HullArgs& a) {
                    "default: any non-zero pixel");
   app.add_flag("--largest", a.largest,
                "keep only each mask's largest connected foreground component (one object)");
+  host_app::add_volume_option(app, a.volume);
+  cli::add_checked(app, "--margin", a.options.volume_margin, "F", cli::number_in(1, 100),
+                   "the working ball the cones are cut to: the ball around the silhouettes'\n"
+                   "rays, its radius times F (default " +
+                       cli::number_text(a.options.volume_margin) +
+                       "); larger when the hull reaches it");
   cli::add_checked(app, "--resolution", a.resolution, "N", cli::whole_in<int>(8, 1024),
                    "voxel method: grid cells along the hull's longest side (default " +
                        std::to_string(a.resolution) + ")");
@@ -84,13 +93,15 @@ std::optional<int> parse_hull_args(std::span<const std::string> args, HullArgs& 
   app.deprecated_name("--out", "--out-dir");
   app.deprecated_name("--simplify", "--simplify-px");
   add_hull_options(app, a);
-  return cli::parse(app, args, out, err);
+  return cli::parse(app, args, out, err, [&a] {
+    if (!a.volume.empty()) a.options.capture_volume = host_app::parse_volume(a.volume);
+  });
 }
 
 hull::Mesh build(const std::vector<hull::HullView>& views, const HullArgs& a, std::ostream& out) {
   if (a.method == "voxel") {
     hull::VoxelStats s;
-    hull::Mesh mesh = hull::voxel_visual_hull(views, {a.resolution}, {}, &s);
+    hull::Mesh mesh = hull::voxel_visual_hull(views, {a.resolution}, a.options, &s);
     out << util::printf_string(
         "voxel: %dx%dx%d cells of %.4g, %zu points tested one by one, "
         "carving %.3f s, marching tetrahedra %.3f s\n",
@@ -100,7 +111,7 @@ hull::Mesh build(const std::vector<hull::HullView>& views, const HullArgs& a, st
   }
   if (a.method == "polyhedral") {
     hull::PolyhedralStats s;
-    hull::Mesh mesh = hull::polyhedral_visual_hull(views, {}, &s);
+    hull::Mesh mesh = hull::polyhedral_visual_hull(views, a.options, &s);
     out << util::printf_string(
         "polyhedral: %zu cone faces, %zu boundary candidates, %zu vertices, %zu triangles, "
         "%u retries, %.3f s\n",
@@ -109,7 +120,7 @@ hull::Mesh build(const std::vector<hull::HullView>& views, const HullArgs& a, st
     return mesh;
   }
   hull::HullStats s;
-  hull::Mesh mesh = hull::exact_visual_hull(views, {}, &s);
+  hull::Mesh mesh = hull::exact_visual_hull(views, a.options, &s);
   out << util::printf_string("exact: %zu cone triangles, cones %.3f s, intersection %.3f s\n",
                              s.cone_faces, s.cones_seconds, s.intersect_seconds);
   return mesh;
@@ -125,6 +136,24 @@ void print_ious(const std::vector<hull::HullView>& views, const hull::Mesh& mesh
   std::ranges::sort(ious);
   out << util::printf_string("reprojection IoU: min %.4f, median %.4f over %zu views\n",
                              ious.front(), ious[ious.size() / 2], ious.size());
+}
+
+// The hull's box and size in the cameras' units (mm for cameras.json and OpenCV files in mm), and
+// where it stands against the floor of --volume.
+void print_extent(const hull::Mesh& mesh, const HullArgs& a, std::ostream& out) {
+  Eigen::AlignedBox3d box;
+  for (const hull::Point3& p : mesh.points()) box.extend(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  if (box.isEmpty()) return;
+  const hull::MeshReport r = hull::check_mesh(mesh, false);
+  out << util::printf_string(
+      "extent: x %.1f..%.1f, y %.1f..%.1f, z %.1f..%.1f mm (%.1f x %.1f x %.1f mm); volume %.4g "
+      "L, area %.4g m^2\n",
+      box.min().x(), box.max().x(), box.min().y(), box.max().y(), box.min().z(), box.max().z(),
+      box.sizes().x(), box.sizes().y(), box.sizes().z(), r.volume * 1e-6, r.area * 1e-6);
+  if (a.options.capture_volume)
+    out << util::printf_string("floor: the hull's lowest point %.1f mm above z = %.1f\n",
+                               box.min().z() - a.options.capture_volume->min().z(),
+                               a.options.capture_volume->min().z());
 }
 
 }  // namespace
@@ -148,6 +177,7 @@ int hull_command(std::span<const std::string> args, std::ostream& out, std::ostr
     print_ious(views, mesh, out);
     const hull::MeshReport report = hull::check_mesh(mesh);
     out << "mesh: " << report.summary() << '\n';
+    print_extent(mesh, a, out);
     out << util::printf_string("time: %.3f s for %zu views (%s)\n", seconds, views.size(),
                                a.method.c_str());
     if (!report.good()) {

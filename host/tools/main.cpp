@@ -16,6 +16,7 @@
 
 #include "bundle_command.hpp"
 #include "calibrate_command.hpp"
+#include "cameras_command.hpp"
 #include "clip_command.hpp"
 #include "ctl_command.hpp"
 #include "fit_command.hpp"
@@ -47,6 +48,9 @@ constexpr std::array kSubcommands{
                &syncap::tools::bundle_command},
     Subcommand{"calibrate", "calibrate the cameras from wand or LED observations",
                &syncap::tools::calibrate_command},
+    Subcommand{"cameras",
+               "convert camera files: cameras.json, OpenCV YAML/JSON, anipose/Pose2Sim TOML",
+               &syncap::tools::cameras_command},
     Subcommand{"clip", "send each camera the capture volume's outline as its masking's clip",
                &syncap::tools::clip_command},
     Subcommand{"regions",

@@ -25,7 +25,6 @@ constexpr const char* kName = "syncap markers";
 
 struct MarkersArgs {
   OfflineArgs offline;
-  std::vector<double> volume;
   std::string rigid_sets_path;
   controllers::PipelineOptions pipeline;
 };
@@ -41,9 +40,6 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
       "(docs/design/visual-hull.md).",
       "Exit status: 0 done, 1 messages rejected or damage reported, 2 a usage error.");
   add_offline_options(app, a.offline);
-  app.add_option("--volume", a.volume, "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm]")
-      ->delimiter(',')
-      ->expected(6);
   controllers::PipelineOptions& p = a.pipeline;
   host_app::add_marker_options(app, p.markers);
   host_app::add_tracking_options(app, p.markers, a.rigid_sets_path);
@@ -52,7 +48,7 @@ std::optional<int> parse_args(std::span<const std::string> args, MarkersArgs& a,
   app.deprecated_name("--acceleration", "--acceleration-m-s2");
   return cli::parse(app, args, out, err, [&] {
     check_offline_options(a.offline);
-    if (!a.volume.empty()) p.markers.matching.volume = host_app::parse_volume(a.volume);
+    host_app::set_capture_volume(a.offline.volume, p);
     host_app::load_rigid_sets(a.rigid_sets_path, p.markers);
   });
 }

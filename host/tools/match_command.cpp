@@ -129,6 +129,19 @@ std::vector<hull::HullView> read_hull_views(const MatchArgs& a) {
   return hull::read_views(a.cameras, a.masks, files);
 }
 
+// An image resampled into the pixels of the camera without its OpenCV lens.
+cv::Mat ideal_image(const sensor::OpenCvLens& lens, const cv::Mat& image, int interpolation) {
+  cv::Matx33d k;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) k(r, c) = lens.camera_matrix(r, c);
+  }
+  const cv::Vec<double, 5> d(lens.distortion.data());
+  cv::Mat map_x, map_y, ideal;
+  cv::initUndistortRectifyMap(k, d, cv::noArray(), k, image.size(), CV_32FC1, map_x, map_y);
+  cv::remap(image, ideal, map_x, map_y, interpolation);
+  return ideal;
+}
+
 std::vector<ms::MatchingView> read_images(const MatchArgs& a,
                                           const std::vector<hull::HullView>& cameras) {
   const std::vector<fs::path> files = hull::mask_files(a.images);
@@ -140,18 +153,18 @@ std::vector<ms::MatchingView> read_images(const MatchArgs& a,
     cv::Mat image = cv::imread(files[i].string(), cv::IMREAD_UNCHANGED);
     if (image.empty() || image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3))
       throw hull::HullError(files[i].string() + ": not a readable 8-bit grey or colour image");
-    const auto& camera = cameras[i].camera;
+    sensor::CameraModel camera = cameras[i].camera;
     if (image.cols != camera.sensor.width_px || image.rows != camera.sensor.height_px)
       throw hull::HullError(util::printf_string(
           "%s: image is %dx%d, camera %d's %dx%d", files[i].string().c_str(), image.cols,
           image.rows, camera.id, camera.sensor.width_px, camera.sensor.height_px));
-    if (const auto& lens = cameras[i].lens) {  // into the ideal camera's pixels, as the masks
-      cv::Mat undistorted;
-      cv::undistort(image, undistorted, lens->camera_matrix, lens->distortion);
-      image = undistorted;
+    cv::Mat mask = a.masks.empty() ? cv::Mat() : cameras[i].mask;
+    if (camera.opencv_lens) {  // the matcher's scan lines are straight: the ideal camera's pixels
+      image = ideal_image(*camera.opencv_lens, image, cv::INTER_LINEAR);
+      if (!mask.empty()) mask = ideal_image(*camera.opencv_lens, mask, cv::INTER_NEAREST);
+      camera.opencv_lens.reset();
     }
-    views.push_back(
-        ms::make_matching_view(camera, image, a.masks.empty() ? cv::Mat() : cameras[i].mask));
+    views.push_back(ms::make_matching_view(camera, image, mask));
   }
   return views;
 }

@@ -13,6 +13,7 @@ void add_offline_options(cli::App& app, OfflineArgs& a) {
   app.add_option("--camera-ids", a.cameras, "expected camera ids (default: the calibration's)");
   app.add_option("--max-lag", a.max_lag, "frames to wait for missing messages (30)")
       ->transform(cli::whole_in<int>(0, 100000));
+  host_app::add_volume_option(app, a.volume);
   app.deprecated_name("--cameras", "--camera-ids");
   app.deprecated_name("--out", "--out-dir");
 }

@@ -5,6 +5,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 #include "syncap/cli/options.hpp"
 
@@ -17,10 +18,11 @@ struct OfflineArgs {
   std::string cameras;      // --camera-ids: expected ids; default: the calibration's
   std::set<int> camera_ids;
   int max_lag = 30;
+  std::vector<double> volume;  // --volume: the capture volume (host_app::set_capture_volume)
 };
 
-// --input, --calibration, --out-dir, --camera-ids and --max-lag on `app` (old names --cameras,
-// --out).
+// --input, --calibration, --out-dir, --camera-ids, --max-lag and --volume on `app` (old names
+// --cameras, --out).
 void add_offline_options(cli::App& app, OfflineArgs& args);
 // After the parse: the input is lcmlog:FILE, the ids are camera ids; CLI::ValidationError naming
 // the option otherwise.

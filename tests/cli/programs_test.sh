@@ -19,6 +19,7 @@ TABLE=(
   "syncap fit|--max-lag"
   "syncap hull|--resolution"
   "syncap match|--spacing"
+  "syncap cameras convert|--toml-unit-mm"
   "syncap clip|--margin"
   "syncap regions|--margin"
   "syncap ctl|--wait-s"

@@ -78,6 +78,26 @@ TEST_F(HullCommand, WritesTheMeshesAndPrintsEachViewsIou) {
   }
 }
 
+// With the capture volume the hull stands on its floor (z = -300 cuts the 500 mm ball's bottom
+// 200 mm off), and the output gives the extent in mm and the lowest point above the floor.
+TEST_F(HullCommand, TheCaptureVolumesFloorClipsTheHull) {
+  std::vector<std::string> a = args("polyhedral");
+  a.insert(a.end(), {"--volume", "-2000,-2000,-300,2000,2000,2000"});
+  const HullRun r = run(a);
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("extent: x -5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(", z -300.0.."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("floor: the hull's lowest point 0.0 mm above z = -300.0"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find(" mm^3, area "), std::string::npos) << r.out;
+  a.back() = "-2000,-2000,600,2000,2000,2000";  // above the ball: nothing left
+  const HullRun missed = run(a);
+  EXPECT_EQ(missed.status, kExitUsage);
+  EXPECT_NE(missed.err.find("do not meet"), std::string::npos) << missed.err;
+  a.back() = "1,2,3";
+  EXPECT_EQ(run(a).status, kExitUsage);
+}
+
 TEST_F(HullCommand, AMaskTooManyIsNamed) {
   cv::imwrite((dir_ / "masks" / "cam04.png").string(), cv::Mat::zeros(480, 640, CV_8UC1));
   const HullRun r = run(args());

@@ -127,10 +127,7 @@ Mesh reference_hull(const fs::path& truth_dir, long frame,
     if (!mask) continue;
     views.push_back({"camera " + std::to_string(camera.id) + " (true mask of frame " +
                          std::to_string(frame) + ")",
-                     camera,
-                     hull::silhouette_from_mask(*mask, kReferenceSimplifyPx),
-                     *mask,
-                     {}});
+                     camera, hull::silhouette_from_mask(*mask, kReferenceSimplifyPx), *mask});
   }
   try {
     return hull::polyhedral_visual_hull(views);

@@ -86,6 +86,11 @@ void add_hull_options(CLI::App& app, controllers::HullOptions& args) {
                  "voxel method: grid cells along the hull's longest side (default " +
                      std::to_string(stage.voxel_resolution) + ")")
       ->check(cli::whole_in<int>(8, 1024));
+  app.add_option("--hull-margin", stage.margin,
+                 "the working ball the cones are cut to: the ball around the silhouettes' rays, "
+                 "its radius times F (default " +
+                     cli::number_text(stage.margin) + "); larger when the hull reaches it")
+      ->check(cli::number_in(1, 100));
   app.add_option("--hull-every", stage.every,
                  "a hull every N frames (frame number divisible by N; default 1)")
       ->check(cli::whole_in<int>(1, 100000));
@@ -114,6 +119,11 @@ void add_body_options(CLI::App& app, controllers::BodyOptions& args) {
                  "the hull points' standard deviation [mm] (default " +
                      cli::number_text(args.stage.point_sigma_mm) + ")")
       ->check(cli::number_in(0.1, 1000));
+  app.add_option("--body-start-retry-frames", args.stage.start_retry_frames,
+                 "after a start that found no body, try the next one N frames later (the frames "
+                 "between are flagged, at no cost; default " +
+                     std::to_string(args.stage.start_retry_frames) + ")")
+      ->check(cli::whole_in<int>(1, 100000));
 }
 
 void load_rigid_sets(const std::string& path, controllers::MarkerOptions& markers) {
@@ -130,6 +140,21 @@ Eigen::AlignedBox3d parse_volume(const std::vector<double>& v) {
     throw CLI::ValidationError("--volume",
                                "expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX in mm, min < max");
   return Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
+}
+
+void add_volume_option(CLI::App& app, std::vector<double>& volume) {
+  app.add_option("--volume", volume,
+                 "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm, the calibration's frame; "
+                 "ZMIN is the floor): points outside are no markers, hulls are clipped to it")
+      ->delimiter(',')
+      ->expected(6);
+}
+
+void set_capture_volume(const std::vector<double>& volume, controllers::PipelineOptions& p) {
+  if (volume.empty()) return;
+  const Eigen::AlignedBox3d box = parse_volume(volume);
+  p.markers.matching.volume = box;
+  p.hull.stage.capture_volume = box;
 }
 
 namespace {
@@ -154,11 +179,7 @@ void add_options(CLI::App& app, HostOptions& o, std::string& cameras, std::vecto
                  "the markers of every frame live, "
                  "publish them on SYNCAP_MARKERS and add them to --out")
       ->check(CLI::ExistingFile);
-  app.add_option("--volume", volume,
-                 "the capture volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm, the calibration's frame): "
-                 "points outside are no markers")
-      ->delimiter(',')
-      ->expected(6);
+  add_volume_option(app, volume);
   controllers::PipelineOptions& p = o.pipeline;
   add_marker_options(app, p.markers);
   add_tracking_options(app, p.markers, o.files.rigid_sets_path);
@@ -213,7 +234,7 @@ namespace {
 void finish_options(HostOptions& o, const std::string& cameras, const std::vector<double>& volume) {
   o.cameras = parse_camera_list(cameras);
   controllers::PipelineOptions& p = o.pipeline;
-  if (!volume.empty()) p.markers.matching.volume = parse_volume(volume);
+  set_capture_volume(volume, p);
   load_rigid_sets(o.files.rigid_sets_path, p.markers);
   if (p.body.enabled && o.calibration.empty())
     throw CLI::ValidationError("--body", "needs --calibration (the cameras' models)");

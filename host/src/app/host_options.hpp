@@ -56,16 +56,23 @@ void add_tracking_options(CLI::App& app, controllers::MarkerOptions& markers,
 // --tolerance-px, --sigma-px, --keep-not-round and the partial spots' --partial-spot-ratio and
 // --partial-spot-min-rays on `app`; syncap-host and syncap markers share them.
 void add_marker_options(CLI::App& app, controllers::MarkerOptions& markers);
-// --hull, --hull-method, --hull-resolution, --hull-every, --hull-max-wait-ms, --hull-iou,
-// --hull-min-iou and --hull-meshes on `app`; syncap-host and syncap markers share them.
+// --hull, --hull-method, --hull-resolution, --hull-margin, --hull-every, --hull-max-wait-ms,
+// --hull-iou, --hull-min-iou and --hull-meshes on `app`; syncap-host, syncap markers and syncap
+// fit share them.
 void add_hull_options(CLI::App& app, controllers::HullOptions& hull);
-// --body-points and --body-point-sigma on `app`; syncap-host and syncap fit share them.
+// --body-points, --body-point-sigma-mm and --body-start-retry-frames on `app`; syncap-host and
+// syncap fit share them.
 void add_body_options(CLI::App& app, controllers::BodyOptions& body);
 // Reads `path`, if given, into markers.rigid_sets; CLI::ValidationError naming --rigid-sets with
 // the file's "path:line: problem" when it cannot be used.
 void load_rigid_sets(const std::string& path, controllers::MarkerOptions& markers);
 // XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [mm] as a box, min < max; CLI::ValidationError naming --volume.
 Eigen::AlignedBox3d parse_volume(const std::vector<double>& values);
+// --volume XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX on `app` (syncap-host, syncap markers, syncap fit);
+// after the parse, set_capture_volume puts it where it acts: no marker outside it, every hull
+// clipped to it (its bottom, z = ZMIN, the floor).
+void add_volume_option(CLI::App& app, std::vector<double>& volume);
+void set_capture_volume(const std::vector<double>& volume, controllers::PipelineOptions& pipeline);
 
 // Parses argv[1..]. Returns the options, or an exit status when the run is over: 0 after
 // --help (printed on `out`), 2 after a usage error (named on `err`, with the usage).

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -24,9 +25,6 @@ struct HullView {
   sensor::CameraModel camera;
   Silhouette silhouette;
   cv::Mat mask;  // optional (8-bit, the camera's image size): the voxel method samples it
-  // An OpenCV camera with lens distortion: `camera` is its ideal camera and `mask` was resampled
-  // into ideal pixels; the lens tells a user of the images (surface matching) how to do the same.
-  std::optional<sensor::OpenCvCamera> lens;
 };
 
 // Bad input: what() names the view (camera and file) and what is wrong with it.
@@ -52,6 +50,9 @@ struct WorkingVolume {
 struct HullOptions {
   std::optional<WorkingVolume> volume;  // default: estimate_working_volume()
   double volume_margin = 1.5;           // the estimate's radius, times this
+  // The capture volume (capture_volume.hpp: mm, its bottom the floor): every method's hull is
+  // clipped to it. None: not clipped.
+  std::optional<Eigen::AlignedBox3d> capture_volume;
 };
 
 // The ball around the point closest (least squares) to every view's ray through its

@@ -27,7 +27,9 @@ namespace {
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
 
 std::size_t count_components(const Mesh& mesh) {
-  std::vector<std::size_t> ids(mesh.number_of_faces());
+  // Indexed by face index: num_faces() counts removed faces too, which keep their index until
+  // the mesh's garbage is collected.
+  std::vector<std::size_t> ids(mesh.num_faces());
   auto face_ids = CGAL::make_property_map(ids);
   return PMP::connected_components(mesh, face_ids);
 }
@@ -37,7 +39,7 @@ std::size_t count_components(const Mesh& mesh) {
 std::string MeshReport::summary() const {
   return util::printf_string(
       "closed %s, non-manifold vertices %zu, self-intersecting %s, outward %s, %zu vertices, "
-      "%zu faces, %zu component(s), Euler characteristic %d, volume %.6g, area %.6g",
+      "%zu faces, %zu component(s), Euler characteristic %d, volume %.6g mm^3, area %.6g mm^2",
       yes_no(closed), non_manifold_vertices, yes_no(self_intersecting), yes_no(outward_oriented),
       vertices, faces, components, euler_characteristic, volume, area);
 }

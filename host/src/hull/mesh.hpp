@@ -36,7 +36,8 @@ struct MeshReport {
     return triangle_mesh && closed && non_manifold_vertices == 0 && !self_intersecting &&
            outward_oriented && faces > 0;
   }
-  // One line: "closed yes, manifold yes, self-intersecting no, ... volume V, area A".
+  // One line: "closed yes, manifold yes, self-intersecting no, ... volume V mm^3, area A mm^2"
+  // (the cameras' object units, mm).
   std::string summary() const;
 };
 

@@ -9,6 +9,7 @@
 
 #include <chrono>
 
+#include "hull/capture_volume.hpp"
 #include "hull/polyhedral/assembly.hpp"
 #include "hull/polyhedral/face.hpp"
 #include "hull/polyhedral/face_triangulation.hpp"
@@ -87,7 +88,7 @@ Mesh polyhedral_visual_hull(const std::vector<HullView>& views, const HullOption
   if (views.size() < 2) throw HullError("the polyhedral hull needs at least two views");
   for (unsigned attempt = 0;; ++attempt) {
     try {
-      Mesh mesh = assemble(views, s.volume, attempt, s);
+      Mesh mesh = finished(assemble(views, s.volume, attempt, s), options);
       s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return mesh;
     } catch (const Degenerate& d) {

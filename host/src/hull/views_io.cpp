@@ -1,6 +1,5 @@
 #include "hull/views_io.hpp"
 
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -13,7 +12,6 @@
 
 #include "sensor/camera_file.hpp"
 #include "sensor/opencv_camera.hpp"
-#include "sensor/opencv_camera_file.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::hull {
@@ -66,44 +64,19 @@ struct Cameras {
   std::vector<sensor::CameraModel> models;
   std::vector<std::string> sources;  // the file each camera came from
   bool sized_by_mask = false;        // .pa cameras take the mask's size
-  // OpenCV cameras with lens distortion: `models` are their ideal (distortion-free) cameras, and
-  // each mask's contour vertices are corrected into ideal pixels by OpenCV's own model.
-  std::vector<std::optional<sensor::OpenCvCamera>> lenses;
 };
 
-// An OpenCV-style camera file (sensor/opencv_camera_file.hpp; docs/design/visual-hull.md): each
-// camera's ideal camera, and its lens where it has distortion.
-Cameras read_opencv_cameras(const fs::path& path) {
-  std::vector<sensor::OpenCvCameraEntry> entries;
-  try {
-    entries = sensor::read_opencv_camera_file(path);
-  } catch (const sensor::CameraFileError& e) {
-    throw HullError(e.what());
-  }
-  Cameras c;
-  for (std::size_t index = 0; index < entries.size(); ++index) {
-    const sensor::OpenCvCamera& lens = entries[index].camera;
-    sensor::OpenCvCamera ideal = lens;
-    ideal.distortion = cv::Vec<double, 5>::all(0.0);
-    c.models.push_back(
-        sensor::camera_from_opencv(ideal, kPaPixelMm, kPaPixelMm, entries[index].id));
-    c.sources.push_back(util::printf_string("%s camera %zu", path.string().c_str(), index));
-    c.lenses.push_back(cv::norm(lens.distortion) > 0 ? std::optional(lens) : std::nullopt);
-  }
-  return c;
-}
 Cameras read_cameras(const fs::path& path) {
   Cameras c;
   if (!fs::is_directory(path)) {
-    // OpenCV cameras keep their lens: the masks are corrected into ideal pixels.
-    if (sensor::is_opencv_camera_file(path)) return read_opencv_cameras(path);
+    // OpenCV cameras keep their lens (CameraModel::opencv_lens): every method back-projects the
+    // contours through it.
     try {
       c.models = sensor::read_cameras(path);
     } catch (const sensor::CameraFileError& e) {
       throw HullError(e.what());
     }
     c.sources.assign(c.models.size(), path.string());
-    c.lenses.assign(c.models.size(), std::nullopt);
     return c;
   }
   int id = 0;
@@ -114,7 +87,6 @@ Cameras read_cameras(const fs::path& path) {
   }
   if (c.models.empty()) throw HullError(path.string() + ": no cameras (*.pa files)");
   c.sized_by_mask = true;
-  c.lenses.assign(c.models.size(), std::nullopt);
   return c;
 }
 
@@ -123,25 +95,6 @@ Cameras read_cameras(const fs::path& path) {
 sensor::CameraModel sized(const fs::path& pa_file, cv::Size size, int id) {
   return sensor::camera_from_projection_matrix(read_projection_matrix(pa_file), size, kPaPixelMm,
                                                kPaPixelMm, id);
-}
-
-// An OpenCV camera's view in ideal pixels: the contour vertices corrected by OpenCV's own
-// undistortion (iterated to 1e-12), the mask resampled (nearest) for the voxel method and the
-// reprojection IoU.
-void to_ideal_pixels(const sensor::OpenCvCamera& lens, HullView& view) {
-  const cv::Matx33d& k = lens.camera_matrix;
-  const cv::TermCriteria precise(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-12);
-  for (Contour& contour : view.silhouette.contours) {
-    std::vector<cv::Point2d> distorted, ideal;
-    for (const Eigen::Vector2d& p : contour.points) distorted.emplace_back(p.x(), p.y());
-    cv::undistortPoints(distorted, ideal, k, lens.distortion, cv::noArray(), k, precise);
-    for (std::size_t i = 0; i < ideal.size(); ++i) contour.points[i] = {ideal[i].x, ideal[i].y};
-  }
-  cv::Mat map_x, map_y, ideal_mask;
-  cv::initUndistortRectifyMap(k, lens.distortion, cv::noArray(), k, view.mask.size(), CV_32FC1,
-                              map_x, map_y);
-  cv::remap(view.mask, ideal_mask, map_x, map_y, cv::INTER_NEAREST);
-  view.mask = ideal_mask;
 }
 
 }  // namespace
@@ -182,7 +135,6 @@ std::vector<HullView> camera_views(const fs::path& cameras, const fs::path& fold
     }
     v.name = util::printf_string("camera %d (%s, %s)", v.camera.id, c.sources[i].c_str(),
                                  files[i].string().c_str());
-    v.lens = c.lenses[i];
     views.push_back(std::move(v));
   }
   return views;
@@ -204,7 +156,6 @@ std::vector<HullView> read_views(const fs::path& cameras, const fs::path& masks,
     }
     v.silhouette = silhouette_from_mask(v.mask, options.simplify_px);
     if (v.silhouette.empty()) throw HullError(v.name + ": empty mask (no foreground)");
-    if (v.lens) to_ideal_pixels(*v.lens, v);
   }
   return views;
 }

@@ -26,16 +26,16 @@ std::vector<std::filesystem::path> mask_files(const std::filesystem::path& folde
 cv::Matx34d read_projection_matrix(const std::filesystem::path& file);
 
 // The views of `cameras` (cameras.json: its cameras in file order; an OpenCV-style file, .yaml,
-// .yml or .json with K: its `cameras` in order, each view in ideal pixels: contour vertices
-// undistorted by OpenCV's model, the mask resampled; a folder: its *.pa files in name order,
-// cameras without distortion of the masks' size) with the masks of `masks` in name order, one
-// per camera. Throws HullError naming the file: unreadable, a count that differs, a
-// mask of the wrong size, an empty mask.
+// .yml or .json with K: its `cameras` in order, each with its OpenCV lens kept exactly
+// (CameraModel::opencv_lens); any file sensor::read_cameras reads; a folder: its *.pa files in name
+// order, cameras without distortion of the masks' size) with the masks of `masks` in name order,
+// one per camera. Throws HullError naming the file: unreadable, a count that differs, a mask of the
+// wrong size, an empty mask.
 std::vector<HullView> read_views(const std::filesystem::path& cameras,
                                  const std::filesystem::path& masks, const ViewFiles& options);
 
 // The cameras of `cameras` as read_views reads them, without masks: one per image of `images`
-// (name order), which sizes the cameras of a *.pa folder; names and lenses as read_views gives
+// (name order), which sizes the cameras of a *.pa folder; names as read_views gives
 // them, silhouettes and masks empty (for a hull read from a file). Throws HullError naming the
 // file: unreadable, a count that differs.
 std::vector<HullView> read_camera_views(const std::filesystem::path& cameras,

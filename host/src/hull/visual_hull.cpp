@@ -12,6 +12,7 @@
 #include <chrono>
 #include <numeric>
 
+#include "hull/capture_volume.hpp"
 #include "hull/viewing_cone.hpp"
 #include "util/printf_string.hpp"
 
@@ -84,7 +85,7 @@ Mesh exact_visual_hull(const std::vector<HullView>& views, const HullOptions& op
   s.volume = checked_working_volume(views, options);
   for (unsigned attempt = 0;; ++attempt) {
     try {
-      return intersect_cones(views, attempt, s);
+      return finished(intersect_cones(views, attempt, s), options);
     } catch (const CGAL::Failure_exception& e) {
       s.failed_attempts = attempt + 1;
       if (attempt + 1 == kPerturbationAttempts) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "hull/capture_volume.hpp"
 #include "sensor/opencv_camera.hpp"
 
 namespace syncap::hull {
@@ -387,7 +388,7 @@ Mesh voxel_visual_hull(const std::vector<HullView>& views, const VoxelOptions& v
         "masks agree?)");
   }
   const Clock::time_point mesh_start = Clock::now();
-  Mesh mesh = Mesher(grid, samplers).run();
+  Mesh mesh = finished(Mesher(grid, samplers).run(), options);
   s.mesh_seconds = seconds_since(mesh_start);
   return mesh;
 }

@@ -67,11 +67,21 @@ void BodyFitStage::fit(int64_t frame_number, std::span<const fitting::SurfacePoi
 
 void BodyFitStage::start(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
                          pipeline::BodyFitSummary& body) {
+  if (frame_number < next_start_frame_ &&
+      frame_number >= next_start_frame_ - options_.start_retry_frames) {
+    body.flags |= body_frame_t::FLAG_NO_START;
+    ++stats_.start_waits;
+    return;
+  }
   const fitting::BodyStart start = fitting::start_body(parameters_, points, options_.start);
   if (!start.found) {
     body.flags |= body_frame_t::FLAG_NO_START;
     ++stats_.no_start;
-    stats_.last_problem = "frame " + std::to_string(frame_number) + ": no start: " + start.why_not;
+    next_start_frame_ = frame_number + options_.start_retry_frames;
+    stats_.last_problem =
+        util::printf_string("frame %lld: no start: %s; next attempt at frame %lld",
+                            static_cast<long long>(frame_number), start.why_not.c_str(),
+                            static_cast<long long>(next_start_frame_));
     return;
   }
   tracker_.start(start.fit.x);
@@ -108,6 +118,11 @@ std::string BodyFitStage::summary() const {
       s.frames, s.no_hull, s.starts, s.no_start, s.tracked, s.lost,
       pipeline::quantile(s.fit_us.values(), 0.5) * 1e-3,
       pipeline::quantile(s.fit_us.values(), 0.99) * 1e-3);
+  if (s.start_waits > 0)
+    line += util::printf_string(
+        "host body: %ld frames waited for the next start (one attempt every %d frames after a "
+        "start found no body)\n",
+        s.start_waits, options_.start_retry_frames);
   if (!s.last_problem.empty()) line += "host body: last problem: " + s.last_problem + "\n";
   return line;
 }

@@ -10,11 +10,14 @@
 
 #include <string>
 
+#include <cstdint>
+#include <limits>
 #include "body/skeleton.hpp"
 #include "fitting/body_start.hpp"
 #include "fitting/body_tracker.hpp"
 #include "pipeline/frame_work.hpp"
 #include "pipeline/recent_values.hpp"
+
 #include "reconstruction/hull_stage.hpp"
 
 namespace syncap::reconstruction {
@@ -32,15 +35,21 @@ struct BodyFitStageOptions {
   // the body automatically: measures the automatic start all through a recording (syncap fit
   // --restart-every); 0: never.
   int restart_every = 0;
+  // After a start that found no body, the next start is tried this many frames later; the frames
+  // between are flagged FLAG_NO_START at no cost. A start costs a few fits (0.1-5 s on a hull
+  // that is no standing person), so a recording without a person to start costs its share of one
+  // attempt a frame (syncap fit --body-start-retry-frames). 1: every frame.
+  int start_retry_frames = 10;
 };
 
 struct BodyFitStageStats {
-  long frames = 0;    // groups with a hull (or a failed one)
-  long no_hull = 0;   // of them, no hull or too few points to fit
-  long starts = 0;    // automatic starts that found the body
-  long no_start = 0;  // automatic starts that did not
-  long tracked = 0;   // frames fitted by the tracker
-  long lost = 0;      // of them, the track lost (and started again on the same frame)
+  long frames = 0;       // groups with a hull (or a failed one)
+  long no_hull = 0;      // of them, no hull or too few points to fit
+  long starts = 0;       // automatic starts that found the body
+  long no_start = 0;     // automatic starts that did not
+  long start_waits = 0;  // frames not tried after a start that found no body (start_retry_frames)
+  long tracked = 0;      // frames fitted by the tracker
+  long lost = 0;         // of them, the track lost (and started again on the same frame)
   std::string last_problem;
   pipeline::RecentValues fit_us;  // per frame: a start or a tracked fit
 };
@@ -58,6 +67,8 @@ class BodyFitStage : public pipeline::Stage {
   const char* name() const override { return "body fit"; }
   void process(pipeline::FrameWork& work) override;
   const BodyFitStageStats& stats() const { return stats_; }
+  // The frame before which no start is tried (after one that found no body).
+  int64_t next_start_frame() const { return next_start_frame_; }
   const fitting::PoseParameters& parameters() const { return parameters_; }
   // "host body: ..." lines: frames, starts, tracked, lost, time p50/p99, the last problem.
   std::string summary() const;
@@ -75,6 +86,7 @@ class BodyFitStage : public pipeline::Stage {
   BodyFitStageOptions options_;
   fitting::BodyTracker tracker_;
   BodyFitStageStats stats_;
+  int64_t next_start_frame_ = std::numeric_limits<int64_t>::min();
 };
 
 }  // namespace syncap::reconstruction

@@ -102,7 +102,7 @@ std::vector<hull::HullView> HullStage::views_of(const grouping::FrameGroup& grou
       ++stats_.cameras_missing;
       continue;
     }
-    views.push_back({"camera " + std::to_string(camera.id), camera, std::move(silhouette), {}, {}});
+    views.push_back({"camera " + std::to_string(camera.id), camera, std::move(silhouette), {}});
   }
   return views;
 }
@@ -140,6 +140,8 @@ hull::Mesh HullStage::hull_of(const std::vector<hull::HullView>& views,
                               pipeline::HullSummary& summary) {
   hull::HullOptions hull_options;
   hull_options.volume = options_.volume;
+  hull_options.volume_margin = options_.margin;
+  hull_options.capture_volume = options_.capture_volume;
   if (options_.method == HullMethod::kExact) return hull::exact_visual_hull(views, hull_options);
   if (options_.method == HullMethod::kPolyhedral) {
     // An empty intersection is the input's fault: the voxel hull would be empty too. Bad views

@@ -1,9 +1,9 @@
 #include "sensor/camera_file.hpp"
 
-#include <cstdio>
-
 #include <cmath>
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "sensor/opencv_camera_file.hpp"
+#include "sensor/toml_camera_file.hpp"
 
 namespace syncap::sensor {
 namespace {
@@ -43,7 +44,7 @@ constexpr ExteriorField kExteriorFields[] = {
 constexpr int kMaxCameraId = 99;  // channel names carry the id as two digits
 
 std::set<std::string> camera_field_names() {
-  std::set<std::string> names{"id", "image_size", "pixel_size", "std"};
+  std::set<std::string> names{"id", "image_size", "pixel_size", "std", "opencv_lens"};
   for (const auto& f : kInteriorFields) names.insert(f.name);
   for (const auto& f : kExteriorFields) names.insert(f.name);
   return names;
@@ -72,6 +73,7 @@ class CameraReader {
       fail("fields \"sc\" and \"sh\" must satisfy 1 - sc - sh^2 > 0 (an invertible affinity)");
     }
     if (object.contains("std")) camera.std_devs = read_std_devs(object.at("std"));
+    if (object.contains("opencv_lens")) camera.opencv_lens = read_lens(object.at("opencv_lens"));
     return camera;
   }
 
@@ -128,6 +130,39 @@ class CameraReader {
       fail_field("pixel_size", "must be [width, height] in mm, two positive numbers");
     }
     return {size[0].get<int>(), size[1].get<int>(), pixel[0].get<double>(), pixel[1].get<double>()};
+  }
+
+  // {"camera_matrix": [fx, s, cx, 0, fy, cy, 0, 0, 1], "distortion": [k1, k2, p1, p2, k3]}
+  OpenCvLens read_lens(const json& object) {
+    if (!object.is_object()) fail_field("opencv_lens", "must be an object");
+    reject_unknown_fields(object, {"camera_matrix", "distortion"}, "opencv_lens.");
+    OpenCvLens lens;
+    const std::vector<double> k = numbers(object, "camera_matrix", 9);
+    lens.camera_matrix = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(k.data());
+    const Eigen::Matrix3d& m = lens.camera_matrix;
+    if (!(m(0, 0) > 0.0 && m(1, 1) > 0.0) || m(1, 0) != 0.0 || m(2, 0) != 0.0 || m(2, 1) != 0.0 ||
+        m(2, 2) != 1.0) {
+      fail_field("opencv_lens.camera_matrix",
+                 "must be [fx, s, cx, 0, fy, cy, 0, 0, 1], fx, fy > 0");
+    }
+    const std::vector<double> d = numbers(object, "distortion", 5);
+    std::copy(d.begin(), d.end(), lens.distortion.begin());
+    return lens;
+  }
+
+  std::vector<double> numbers(const json& object, const std::string& name, std::size_t count) {
+    const json& value = field(object, name, "opencv_lens.");
+    std::vector<double> out;
+    if (value.is_array() && value.size() == count) {
+      for (const json& v : value) {
+        if (v.is_number()) out.push_back(v.get<double>());
+      }
+    }
+    if (out.size() != count) {
+      fail_field("opencv_lens." + name,
+                 "must be an array of " + std::to_string(count) + " numbers");
+    }
+    return out;
   }
 
   CameraStdDevs read_std_devs(const json& object) {
@@ -296,6 +331,13 @@ std::string format_camera_set(const CameraSet& set) {
     if (camera.std_devs) {
       j["std"] = parameters_json(camera.std_devs->interior, camera.std_devs->exterior);
     }
+    if (camera.opencv_lens) {
+      const Eigen::Matrix3d& k = camera.opencv_lens->camera_matrix;
+      j["opencv_lens"] = {
+          {"camera_matrix",
+           {k(0, 0), k(0, 1), k(0, 2), k(1, 0), k(1, 1), k(1, 2), k(2, 0), k(2, 1), k(2, 2)}},
+          {"distortion", camera.opencv_lens->distortion}};
+    }
     list.push_back(std::move(j));
   }
   ordered_json document;
@@ -322,23 +364,13 @@ namespace {
 // The nominal pixel size of cameras read from OpenCV files, which carry none: any reproduces the
 // same pixels (camera_from_opencv).
 constexpr double kOpenCvPixelMm = 0.01;
-// A lens our model cannot follow this closely is refused, not silently approximated.
-constexpr double kMaxOpenCvConversionPx = 0.5;
 
-std::vector<CameraModel> read_opencv_cameras(const std::filesystem::path& file) {
+// OpenCV cameras exactly: the lens is kept as OpenCV defines it (no refit into eq 4.10).
+std::vector<CameraModel> keeping_lenses(const std::vector<OpenCvCameraEntry>& entries) {
   std::vector<CameraModel> cameras;
-  for (const OpenCvCameraEntry& entry : read_opencv_camera_file(file)) {
-    ConversionResidual residual;
+  for (const OpenCvCameraEntry& entry : entries) {
     cameras.push_back(
-        camera_from_opencv(entry.camera, kOpenCvPixelMm, kOpenCvPixelMm, entry.id, &residual));
-    if (residual.max_px > kMaxOpenCvConversionPx) {
-      char text[64];
-      std::snprintf(text, sizeof text, "%.2f", residual.max_px);
-      throw CameraFileError(file.string() + ": camera " + std::to_string(entry.id) +
-                            ": its OpenCV lens does not convert into the thesis model within " +
-                            "0.5 px (up to " + text + " px in the image): use a cameras.json " +
-                            "calibrated by syncap, or syncap hull / match, which keep the lens");
-    }
+        camera_keeping_opencv_lens(entry.camera, kOpenCvPixelMm, kOpenCvPixelMm, entry.id));
   }
   return cameras;
 }
@@ -346,7 +378,8 @@ std::vector<CameraModel> read_opencv_cameras(const std::filesystem::path& file) 
 }  // namespace
 
 std::vector<CameraModel> read_cameras(const std::filesystem::path& file) {
-  if (is_opencv_camera_file(file)) return read_opencv_cameras(file);
+  if (is_toml_camera_file(file)) return keeping_lenses(read_toml_camera_file(file).cameras);
+  if (is_opencv_camera_file(file)) return keeping_lenses(read_opencv_camera_file(file));
   return read_camera_set(file).cameras;
 }
 

@@ -55,7 +55,10 @@ struct CameraSet {
   std::optional<CalibrationQuality> quality;
 };
 
-// Reading the cameras alone ignores (but still checks) a quality block.
+// Any camera file a lab has, told by its name and content: cameras.json (a quality block is
+// checked and ignored), an OpenCV-style .yaml/.yml/.json (opencv_camera_file.hpp) or an anipose /
+// Pose2Sim .toml (toml_camera_file.hpp). OpenCV and TOML cameras keep their lens exactly
+// (CameraModel::opencv_lens).
 std::vector<CameraModel> read_cameras(const std::filesystem::path& file);
 void write_cameras(const std::filesystem::path& file, const std::vector<CameraModel>& cameras);
 

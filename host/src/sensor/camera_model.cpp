@@ -46,7 +46,14 @@ Eigen::Vector3d CameraModel::projection_centre() const {
   return {exterior.X0, exterior.Y0, exterior.Z0};
 }
 
-Projection CameraModel::project(const Eigen::Vector3d& object_point_mm) const {
+bool CameraModel::has_distortion() const {
+  const InteriorOrientation& i = interior;
+  const bool thesis = i.k1 != 0.0 || i.k2 != 0.0 || i.k3 != 0.0 || i.p1 != 0.0 || i.p2 != 0.0;
+  return thesis || (opencv_lens && !opencv_lens->is_identity());
+}
+
+// The thesis' model alone (no OpenCV lens): the pixel and the Jacobians the lens is applied to.
+Projection CameraModel::project_thesis(const Eigen::Vector3d& object_point_mm) const {
   const auto in = interior_block(interior);
   const auto ex = exterior_block(exterior);
   Projection p;
@@ -56,7 +63,18 @@ Projection CameraModel::project(const Eigen::Vector3d& object_point_mm) const {
   return p;
 }
 
-Ray CameraModel::back_project(const Eigen::Vector2d& pixel) const {
+Projection CameraModel::project(const Eigen::Vector3d& object_point_mm) const {
+  Projection p = project_thesis(object_point_mm);
+  if (!p.ok() || !opencv_lens) return p;
+  if (!opencv_lens->is_one_to_one_up_to(p.pixel))
+    return {ProjectionStatus::kDistortionNotInvertible};
+  p.pixel = opencv_lens->distort(p.pixel);
+  return p;
+}
+
+Ray CameraModel::back_project(const Eigen::Vector2d& measured_pixel) const {
+  Eigen::Vector2d pixel = measured_pixel;
+  if (opencv_lens) pixel = opencv_lens->undistort_or_fold(measured_pixel);
   const auto in = interior_block(interior);
   const Eigen::Vector2d image = image_from_pixel(pixel);
   double xu = 0.0, yu = 0.0;
@@ -84,8 +102,23 @@ bool CameraModel::contains(const Eigen::Vector2d& pixel) const {
 
 ProjectionJacobians CameraModel::project_with_jacobians(
     const Eigen::Vector3d& object_point_mm) const {
+  ProjectionJacobians result = thesis_jacobians(object_point_mm);
+  if (!result.projection.ok() || !opencv_lens) return result;
+  const Eigen::Vector2d ideal = result.projection.pixel;
+  if (!opencv_lens->is_one_to_one_up_to(ideal))
+    return {{ProjectionStatus::kDistortionNotInvertible}};
+  // The lens acts on the pixel alone: every derivative goes through its 2x2 Jacobian.
+  const Eigen::Matrix2d lens = opencv_lens->jacobian(ideal);
+  result.projection.pixel = opencv_lens->distort(ideal);
+  result.d_point = lens * result.d_point;
+  result.d_interior = lens * result.d_interior;
+  result.d_exterior = lens * result.d_exterior;
+  return result;
+}
+
+ProjectionJacobians CameraModel::thesis_jacobians(const Eigen::Vector3d& object_point_mm) const {
   ProjectionJacobians result;
-  result.projection = project(object_point_mm);
+  result.projection = project_thesis(object_point_mm);
   if (!result.projection.ok()) return result;
 
   // Forward quantities: sensor coordinates q, undistorted (xu, yu), measured (xb, yb).

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "sensor/camera_parameters.hpp"
+#include "sensor/opencv_lens.hpp"
 #include "sensor/projection.hpp"
 
 namespace syncap::sensor {
@@ -53,18 +54,28 @@ struct CameraModel {
   InteriorOrientation interior;
   ExteriorOrientation exterior;
   std::optional<CameraStdDevs> std_devs;  // when the calibration estimated them
+  // A lens kept as OpenCV defines it, applied to the pixels of the thesis' model (opencv_lens.hpp):
+  // cameras from OpenCV files have one, with interior k1..p2 = 0. Cameras syncap calibrates have
+  // none.
+  std::optional<OpenCvLens> opencv_lens;
+
+  // Whether the image is distorted: the thesis' correction (k1..p2) or an OpenCV lens.
+  bool has_distortion() const;
 
   // R = R_kappa R_phi R_omega; columns are the sensor axes in object coordinates.
   Eigen::Matrix3d rotation() const;
   Eigen::Vector3d projection_centre() const;
 
   // The pixel of an object point [mm], with the distortion as the thesis models it (eq 4.10
-  // inverted to the tolerance kDistortionTolerance_mm). Check status: a point behind the camera
-  // or far outside the image, where eq 4.10 folds, has no pixel.
+  // inverted to the tolerance kDistortionTolerance_mm), then the OpenCV lens if there is one.
+  // Check status: a point behind the camera or far outside the image, where eq 4.10 or the lens
+  // folds, has no pixel.
   Projection project(const Eigen::Vector3d& object_point_mm) const;
 
   // The ray of object points a pixel sees: the correction of eqs 4.10-4.11 is explicit in the
-  // measured coordinates, so this is closed form and exact.
+  // measured coordinates, so this is closed form and exact; an OpenCV lens is first undone by
+  // Newton's method (to 1e-9 px; a pixel beyond the lens' fold, which no ray reaches, gets the
+  // ray at the fold: OpenCvLens::undistort_or_fold).
   Ray back_project(const Eigen::Vector2d& pixel) const;
 
   // Metric focal-plane coordinates (x' right, y' up, origin at the sensor centre) [mm] of a
@@ -77,6 +88,10 @@ struct CameraModel {
 
   // project() with the analytic Jacobians of the pixel.
   ProjectionJacobians project_with_jacobians(const Eigen::Vector3d& object_point_mm) const;
+
+ private:
+  Projection project_thesis(const Eigen::Vector3d& object_point_mm) const;
+  ProjectionJacobians thesis_jacobians(const Eigen::Vector3d& object_point_mm) const;
 };
 
 }  // namespace syncap::sensor

@@ -65,12 +65,10 @@ cv::Matx33d matx_from_eigen(const Eigen::Matrix3d& e) {
   return m;
 }
 
-// OpenCV's distortion of ideal normalised coordinates (cv::projectPoints, 5 coefficients).
+// OpenCV's distortion of ideal normalised coordinates (cv::projectPoints, 5 coefficients): the
+// lens with K = I.
 Eigen::Vector2d opencv_distort(const cv::Vec<double, 5>& d, const Eigen::Vector2d& n) {
-  const double x = n.x(), y = n.y(), r2 = x * x + y * y;
-  const double radial = 1.0 + r2 * (d[0] + r2 * (d[1] + r2 * d[4]));
-  return {x * radial + 2.0 * d[2] * x * y + d[3] * (r2 + 2.0 * x * x),
-          y * radial + d[2] * (r2 + 2.0 * y * y) + 2.0 * d[3] * x * y};
+  return OpenCvLens{Eigen::Matrix3d::Identity(), {d[0], d[1], d[2], d[3], d[4]}}.distort(n);
 }
 
 Eigen::Vector2d pixel_from_normalised(const Eigen::Matrix3d& k, const Eigen::Vector2d& n) {
@@ -90,10 +88,6 @@ Eigen::VectorXd solve_least_squares(Eigen::MatrixXd a, const Eigen::VectorXd& b)
     a.col(j) *= scale[j];
   }
   return a.colPivHouseholderQr().solve(b).cwiseProduct(scale);
-}
-
-bool has_lens_distortion(const InteriorOrientation& i) {
-  return i.k1 != 0.0 || i.k2 != 0.0 || i.k3 != 0.0 || i.p1 != 0.0 || i.p2 != 0.0;
 }
 
 // The linear part of the thesis' image formation, normalised OpenCV-frame coordinates (x/z, y/z)
@@ -179,7 +173,30 @@ void fit_thesis_distortion(const std::vector<Eigen::Vector2d>& measured,
   in.p2 = d[4];
 }
 
+// Whether the camera's distortion is an OpenCV lens alone, defined through the camera's own K:
+// then OpenCV's model holds it exactly and no fit is needed. (A lens whose K was edited apart
+// from the camera's is fitted like any other distortion.)
+bool lens_is_exact(const CameraModel& camera, const Eigen::Matrix3d& k) {
+  const InteriorOrientation& i = camera.interior;
+  const bool thesis = i.k1 != 0.0 || i.k2 != 0.0 || i.k3 != 0.0 || i.p1 != 0.0 || i.p2 != 0.0;
+  if (thesis || !camera.opencv_lens) return false;
+  return (camera.opencv_lens->camera_matrix - k).norm() <= 1e-9 * k.norm();
+}
+
 }  // namespace
+
+CameraModel camera_keeping_opencv_lens(const OpenCvCamera& opencv, double pixel_width_mm,
+                                       double pixel_height_mm, int id) {
+  OpenCvCamera ideal = opencv;
+  ideal.distortion = cv::Vec<double, 5>::all(0.0);
+  CameraModel camera = camera_from_opencv(ideal, pixel_width_mm, pixel_height_mm, id);
+  if (cv::norm(opencv.distortion) != 0.0) {
+    const cv::Vec<double, 5>& d = opencv.distortion;
+    camera.opencv_lens =
+        OpenCvLens{eigen_from_matx(opencv.camera_matrix), {d[0], d[1], d[2], d[3], d[4]}};
+  }
+  return camera;
+}
 
 cv::Point2d project_opencv(const OpenCvCamera& opencv, const cv::Point3d& object_point_mm) {
   cv::Matx33d r;
@@ -214,7 +231,15 @@ OpenCvCamera opencv_from_camera(const CameraModel& camera, ConversionResidual* r
     ideal.push_back(ray.head<2>() / ray.z());
     pixels.push_back(pixel);
   }
-  if (has_lens_distortion(camera.interior)) {
+  if (lens_is_exact(camera, linear.camera_matrix)) {
+    // The same K and coefficients: exact by construction (the samples would only measure the
+    // pixels beyond the lens' fold, which no ray reaches in either model).
+    const auto& d = camera.opencv_lens->distortion;
+    opencv.distortion = {d[0], d[1], d[2], d[3], d[4]};
+    if (residual != nullptr) *residual = {0.0, 0.0, static_cast<int>(pixels.size())};
+    return opencv;
+  }
+  if (camera.has_distortion()) {
     opencv.distortion = fit_opencv_distortion(ideal, pixels, linear.camera_matrix);
   }
   if (residual != nullptr) {

@@ -38,8 +38,8 @@ struct ConversionResidual {
 };
 
 // The OpenCV camera closest to `camera`. Exact when k1 = k2 = k3 = p1 = p2 = 0 (with the skew of
-// K when sh != 0); otherwise the OpenCV distortion is fitted, and `residual` (when given) says by
-// how much it misses.
+// K when sh != 0), with or without an OpenCV lens kept on the camera; otherwise the OpenCV
+// distortion is fitted, and `residual` (when given) says by how much it misses.
 OpenCvCamera opencv_from_camera(const CameraModel& camera, ConversionResidual* residual = nullptr);
 
 // The thesis camera closest to an OpenCV camera whose pixels are `pixel_width_mm` x
@@ -49,6 +49,12 @@ OpenCvCamera opencv_from_camera(const CameraModel& camera, ConversionResidual* r
 CameraModel camera_from_opencv(const OpenCvCamera& opencv, double pixel_width_mm,
                                double pixel_height_mm, int id = 0,
                                ConversionResidual* residual = nullptr);
+
+// The camera an OpenCV camera is, exactly: its ideal camera (camera_from_opencv without the
+// distortion, exact) with OpenCV's lens kept as it is (CameraModel::opencv_lens). How every
+// program reads OpenCV camera files; opencv_from_camera gives the same OpenCV camera back.
+CameraModel camera_keeping_opencv_lens(const OpenCvCamera& opencv, double pixel_width_mm,
+                                       double pixel_height_mm, int id = 0);
 
 // The camera without distortion that a 3x4 projection matrix P (pixels, x_pixel ~ P (X, 1), in
 // the project's pixel convention) describes, through cv::decomposeProjectionMatrix. P may carry

@@ -113,6 +113,41 @@ TEST_F(BodyFitStageTest, AFrameWithoutPointsIsFlaggedAndNothingIsFitted) {
       << stage.summary();
 }
 
+// A start that found no body is tried again start_retry_frames later; the frames between cost
+// nothing and are flagged; a person who appears meanwhile is started at the next attempt.
+TEST_F(BodyFitStageTest, AFailedStartIsRetriedAtTheStatedInterval) {
+  BodyFitStageOptions options;
+  options.start_retry_frames = 3;
+  BodyFitStage stage(body::hanim_skeleton(), options);
+  for (int64_t f = 20; f < 27; ++f) {
+    pipeline::FrameWork work = frame(f, standing(0.3));
+    if (f < 24) {
+      for (Eigen::Vector3d& p : work.hull->surface_mm) p.z() *= 0.1;  // no standing person yet
+    }
+    stage.process(work);
+    ASSERT_TRUE(work.body) << f;
+    const bool attempt = f == 20 || f == 23 || f == 26;
+    if (f < 26) {
+      EXPECT_EQ(work.body->flags, body_frame_t::FLAG_NO_START) << f;
+      if (!attempt) {
+        EXPECT_LT(work.body->fit_us, 1000.0) << f;  // no fit at all
+      }
+    } else {
+      EXPECT_EQ(work.body->flags, body_frame_t::FLAG_STARTED) << f;
+    }
+  }
+  EXPECT_EQ(stage.stats().no_start, 2);     // frames 20, 23
+  EXPECT_EQ(stage.stats().start_waits, 4);  // 21, 22, 24, 25
+  EXPECT_EQ(stage.stats().starts, 1);       // 26
+  EXPECT_NE(stage.summary().find("frame 23: no start: "), std::string::npos) << stage.summary();
+  EXPECT_NE(stage.summary().find("; next attempt at frame 26"), std::string::npos)
+      << stage.summary();
+  EXPECT_NE(stage.summary().find("4 frames waited for the next start (one attempt every 3 "
+                                 "frames"),
+            std::string::npos)
+      << stage.summary();
+}
+
 TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
   BodyFitStage stage(body::hanim_skeleton());
   pipeline::FrameWork work = frame(42, standing(-0.4));

@@ -107,7 +107,9 @@ std::optional<Face> make_face(const Assembly& as, int i, int k) {
     for (const Vec2& c : kCorners) {
       if ((f.g[j] * homogeneous(c)).z() <= 0.0) {
         throw HullError(util::printf_string(
-            "the working volume reaches behind camera %zu: give a smaller HullOptions::volume", j));
+            "the working volume reaches behind camera %zu (the working volume is the ball around "
+            "the silhouettes' rays, its radius times --hull-margin): give a smaller --hull-margin",
+            j));
       }
     }
   }
@@ -118,8 +120,9 @@ namespace {
 
 [[noreturn]] void throw_cut_by_volume() {
   throw HullError(
-      "the working volume cuts the hull (the hull reaches its near or far bound): give a larger "
-      "HullOptions::volume or volume_margin");
+      "the working volume cuts the hull (the hull reaches its near or far bound; the working "
+      "volume is the ball around the silhouettes' rays, its radius times --hull-margin): give a "
+      "larger --hull-margin");
 }
 
 // Whether a domain point projects inside every other view's silhouette. A point inside them all
