@@ -19,6 +19,7 @@ PROGRAMS=(
   "syncap-host|workstation: the host"
   "syncap calibrate|workstation: calibration"
   "syncap bundle|workstation: calibration"
+  "syncap calibrate --board|workstation: calibration"
   "syncap cameras convert|workstation: calibration"
   "syncap record|workstation: recording"
   "syncap log|workstation: recording"

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "app/host_options.hpp"
+#include "board_calibrate_command.hpp"
 #include "calibration/calibrate.hpp"
 #include "calibration/observations.hpp"
 #include "calibration/outputs.hpp"
@@ -144,6 +145,9 @@ constexpr const char* kDescription =
     "Calibrates the cameras from wand (or LED) observations and writes the calibration folder "
     "(docs/design/calibration.md).\n"
     "usage: syncap calibrate --input SOURCE (--wand-length-mm MM | --led) --out-dir DIR [options]\n"
+    "       syncap calibrate --board COLSxROWSxMM --clip FILE|DIR... --intrinsics FILE... "
+    "--out-dir DIR\n"
+    "                        (from a checkerboard in the scene: syncap calibrate --board --help)\n"
     "SOURCE:\n"
     "  lcm:URL        blob frames live (udpm://239.255.76.67:7667?ttl=0); needs --camera-ids; "
     "stops\n"
@@ -449,6 +453,7 @@ void print_summary(const calibration::CalibrationResult& r, std::ostream& out) {
 }  // namespace
 
 int calibrate_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+  if (is_board_calibration(args)) return board_calibrate_command(args, out, err);
   CalibrateArgs a;
   if (const auto status = parse_args(args, a, out, err)) return *status;
   // Checked before the input is read: a calibration can take minutes.

@@ -53,13 +53,6 @@ cv::Mat largest_component(const cv::Mat& mask) {
   return best == 0 ? cv::Mat::zeros(mask.size(), CV_8UC1) : cv::Mat(labels == best);
 }
 
-cv::Mat read_mask(const fs::path& file, const ViewFiles& options) {
-  const cv::Mat grey = cv::imread(file.string(), cv::IMREAD_GRAYSCALE);
-  if (grey.empty()) throw HullError(file.string() + ": cannot read the image");
-  cv::Mat mask = grey > options.threshold.value_or(0);
-  return options.largest_only ? largest_component(mask) : mask;
-}
-
 struct Cameras {
   std::vector<sensor::CameraModel> models;
   std::vector<std::string> sources;  // the file each camera came from
@@ -98,6 +91,13 @@ sensor::CameraModel sized(const fs::path& pa_file, cv::Size size, int id) {
 }
 
 }  // namespace
+
+cv::Mat read_mask(const fs::path& file, const ViewFiles& options) {
+  const cv::Mat grey = cv::imread(file.string(), cv::IMREAD_GRAYSCALE);
+  if (grey.empty()) throw HullError(file.string() + ": cannot read the image");
+  cv::Mat mask = grey > options.threshold.value_or(0);
+  return options.largest_only ? largest_component(mask) : mask;
+}
 
 std::vector<fs::path> mask_files(const fs::path& folder) {
   return files_with(folder, {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".bmp", ".tif", ".tiff"});

@@ -19,6 +19,10 @@ struct ViewFiles {
   bool largest_only = false;
 };
 
+// One mask image as a binary mask (255 foreground) by the options' threshold and largest-only;
+// throws HullError naming the file when it cannot be read.
+cv::Mat read_mask(const std::filesystem::path& file, const ViewFiles& options);
+
 // The image files of a folder (png, jpg, jpeg, pgm, ppm, bmp, tif, tiff) in name order.
 std::vector<std::filesystem::path> mask_files(const std::filesystem::path& folder);
 

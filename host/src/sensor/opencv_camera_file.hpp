@@ -21,6 +21,13 @@ struct OpenCvCameraEntry {
 // rotation, skew with distortion.
 std::vector<OpenCvCameraEntry> read_opencv_camera_file(const std::filesystem::path& path);
 
+// The intrinsics of an OpenCV calibration: a file as above (poses ignored), or one camera's
+// (OpenCV's calibration sample and many labs' tools: top-level `camera_matrix` or `CameraMatrix`
+// or `K`, `distortion_coefficients` or `DistortionCoeffs` or `distortion`, optional
+// `image_width` and `image_height`), YAML, JSON or XML. rvec = tvec = 0; image_size 0 x 0 where
+// the file has none. Throws CameraFileError naming the file and the field.
+std::vector<OpenCvCameraEntry> read_opencv_intrinsics(const std::filesystem::path& path);
+
 // Whether `path` is an OpenCV-style camera file: a .yaml or .yml, or a JSON file whose first
 // camera has K or camera_matrix.
 bool is_opencv_camera_file(const std::filesystem::path& path);
