@@ -15,6 +15,7 @@
 
 #include "app/mask_options.hpp"
 #include "segmentation/medi_picture.hpp"
+#include "segmentation/model_alignment.hpp"
 #include "sensor/background_clip.hpp"
 #include "sensor/replay_source.hpp"
 #include "syncap/cli/options.hpp"
@@ -116,8 +117,18 @@ int main(int argc, char** argv) {
   if (const auto status = cli::parse_main(app, argc, argv)) return *status;
   try {
     const std::vector<cv::Mat> clip = edge::read_background_clip(a.background, a.train_frames);
-    edge::MediPicture masking(edge::train_medi_picture(clip, a.options), a.options);
+    edge::MediPictureModel model = edge::train_medi_picture(clip, a.options);
     edge::ReplayClip in = edge::open_replay_clip(a.input, 0);
+    // As the edge does with a clip of another time: the model moved onto the first frame where
+    // the camera stands shifted against the clip (segmentation/model_alignment.hpp).
+    if (const std::optional<edge::Frame> first = in.source->grab(std::max(in.first, a.first_frame));
+        first && first->image.size() == model.median.size()) {
+      const edge::ModelAlignment shift = edge::align_model(model, first->image);
+      std::printf("syncap-mask: background clip %s by (%.2f, %.2f) px (peak %.2f)\n",
+                  shift.applied ? "aligned" : "not moved", shift.shift_px.x, shift.shift_px.y,
+                  shift.response);
+    }
+    edge::MediPicture masking(model, a.options);
     std::filesystem::create_directories(a.out_dir);
     const Tally t = mask_all(a, in, masking);
     if (t.masks == 0) {

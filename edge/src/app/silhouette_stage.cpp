@@ -1,6 +1,9 @@
 #include "app/silhouette_stage.hpp"
 
+#include "segmentation/model_alignment.hpp"
+
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 #include "segmentation/silhouette_contours.hpp"
@@ -37,6 +40,7 @@ void SilhouetteStage::train_on(std::span<const cv::Mat> frames) {
   training_wanted_ = 0;
   training_.clear();
   adopt(train_medi_picture(frames, options_));
+  align_pending_ = true;  // a clip of another time: the capture's first frame may stand shifted
 }
 
 bool SilhouetteStage::in_training_range(int64_t frame_number) const {
@@ -71,6 +75,7 @@ void SilhouetteStage::collect_trained_model() {
 
 void SilhouetteStage::adopt(const MediPictureModel& trained) {
   model_.emplace(trained, options_);
+  align_pending_ = false;
   paused_.clear();
   for (RegionState& r : regions_) r.applied.clear();  // a new model has none
 }
@@ -103,6 +108,7 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
     return {};
   }
   paused_.clear();
+  if (align_pending_) align_clip_model(image);
   apply_regions(origin, sensor_size.empty() ? image.size() : sensor_size, frame_number);
   const cv::Mat mask = model_->apply(image);
   last_mask_ = mask;
@@ -146,6 +152,17 @@ void SilhouetteStage::apply_regions(cv::Point origin, cv::Size sensor_size, int6
   }
 }
 
+void SilhouetteStage::align_clip_model(const cv::Mat& frame) {
+  MediPictureModel moved = model_->model();
+  const ModelAlignment a = align_model(moved, frame);
+  if (a.applied) adopt(moved);
+  align_pending_ = false;
+  char text[160];
+  std::snprintf(text, sizeof text, "background clip %s by (%.2f, %.2f) px (peak %.2f)",
+                a.applied ? "aligned" : "not moved", a.shift_px.x, a.shift_px.y, a.response);
+  alignment_ = text;
+}
+
 std::string SilhouetteStage::state() const {
   if (training_result_.valid()) return "computing the background model";
   if (training_wanted_ > 0) {
@@ -158,6 +175,7 @@ std::string SilhouetteStage::state() const {
   if (!paused_.empty()) return paused_;
   if (!model_) return "no background model";
   std::string state = "masking";
+  if (!alignment_.empty()) state += " (" + alignment_ + ")";
   for (const RegionState& r : regions_) {
     if (!r.note.empty()) return state + "; " + r.note;
   }

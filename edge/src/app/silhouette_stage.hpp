@@ -71,6 +71,9 @@ class SilhouetteStage {
   void collect_trained_model();
   // Masks with `trained` from now on: the pause lifted, the regions handed to it anew.
   void adopt(const MediPictureModel& trained);
+  // The model of a separate clip (train_on) moved onto the capture's first frame where the camera
+  // stands shifted against the clip (segmentation/model_alignment.hpp).
+  void align_clip_model(const cv::Mat& frame);
   // Hands the regions to the model, shifted into the frame's window, when they changed (a new
   // region, a new model or window, a search region starting or expiring).
   void apply_regions(cv::Point origin, cv::Size sensor_size, int64_t frame_number);
@@ -95,6 +98,8 @@ class SilhouetteStage {
   std::string paused_;                             // why the last frame was not masked
   std::array<RegionState, 3> regions_;             // by Region
   cv::Mat last_mask_;
+  bool align_pending_ = false;  // a clip's model not yet aligned to the capture
+  std::string alignment_;       // what the alignment found, for state()
 };
 
 }  // namespace syncap::edge
