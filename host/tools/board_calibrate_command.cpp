@@ -197,8 +197,8 @@ void write_outputs(const fs::path& dir, const sensor::CameraSet& set, std::ostre
   out << "wrote " << (dir / "cameras.json").string() << ", cameras.opencv.yaml, calibration.toml\n";
 }
 
-int run(const BoardArgs& a, std::ostream& out, std::ostream& err) {
-  const std::vector<int> ids = camera_ids(a);
+std::vector<board::BoardView> observe_boards(const BoardArgs& a, const std::vector<int>& ids,
+                                             std::ostream& out) {
   std::vector<board::BoardView> views;
   for (std::size_t i = 0; i < a.clips.size(); ++i) {
     views.push_back(board::observe_board(a.clips[i], a.board, a.frames));
@@ -206,6 +206,12 @@ int run(const BoardArgs& a, std::ostream& out, std::ostream& err) {
                                ids[i], views.back().frames_found, views.back().frames_read,
                                views.back().spread_px);
   }
+  return views;
+}
+
+// Per camera its pose from the corners in the detector's order and reversed (the half turn).
+std::vector<std::array<board::BoardPose, 2>> board_poses(
+    const BoardArgs& a, const std::vector<int>& ids, const std::vector<board::BoardView>& views) {
   const std::vector<sensor::OpenCvCamera> intrinsics = read_intrinsics(a, views);
   const bool z_up = board::cameras_below_board(intrinsics[0], views[0].corners, a.board);
   std::vector<std::array<board::BoardPose, 2>> poses;
@@ -214,35 +220,47 @@ int run(const BoardArgs& a, std::ostream& out, std::ostream& err) {
         {board::pose_on_board(intrinsics[i], views[i].corners, a.board, ids[i], false, z_up),
          board::pose_on_board(intrinsics[i], views[i].corners, a.board, ids[i], true, z_up)});
   }
-  Verdict verdict;
-  std::vector<bool> reversed(views.size(), false);
-  if (board::has_half_turn_symmetry(a.board) && views.size() > 1) {
-    if (a.masks.empty()) {
-      verdict.weak(
-          "the board looks the same after a half turn and no --masks tell the cameras' "
-          "turns apart: each camera may be turned half about the board's centre");
-    } else {
-      const board::HalfTurn turn = board::resolve_half_turn(poses, read_masks(a));
-      reversed = turn.reversed;
-      out << util::printf_string(
-          "half turn: %d hulls tried; the chosen turns' hull reprojects at a mean IoU of %.3f, "
-          "the best other turns' at %.3f; each camera against the others' hull, the share of "
-          "its projection inside the camera's mask ahead of the other turn's by",
-          turn.hulls_built, turn.min_iou, turn.runner_up_iou);
-      for (const double m : turn.camera_margins) out << util::printf_string(" %.3f", m);
-      out << '\n';
-      if (turn.margin < kHalfTurnMargin)
-        verdict.weak(util::printf_string(
-            "the masks barely tell the board's half turns apart (a camera's turn ahead of the "
-            "other by %.3f of the others' hull inside its mask, %.2f wanted): check the masks "
-            "(one person, the same instant) and each camera's turn",
-            turn.margin, kHalfTurnMargin));
-    }
+  return poses;
+}
+
+// Which cameras' corners to take reversed: a symmetric board's half turn from the masks.
+std::vector<bool> chosen_turns(const BoardArgs& a,
+                               const std::vector<std::array<board::BoardPose, 2>>& poses,
+                               Verdict& verdict, std::ostream& out) {
+  if (!board::has_half_turn_symmetry(a.board) || poses.size() < 2)
+    return std::vector<bool>(poses.size(), false);
+  if (a.masks.empty()) {
+    verdict.weak(
+        "the board looks the same after a half turn and no --masks tell the cameras' "
+        "turns apart: each camera may be turned half about the board's centre");
+    return std::vector<bool>(poses.size(), false);
   }
+  const board::HalfTurn turn = board::resolve_half_turn(poses, read_masks(a));
+  out << util::printf_string(
+      "half turn: %d hulls tried; the chosen turns' hull reprojects at a mean IoU of %.3f, "
+      "the best other turns' at %.3f; each camera against the others' hull, the share of "
+      "its projection inside the camera's mask ahead of the other turn's by",
+      turn.hulls_built, turn.min_iou, turn.runner_up_iou);
+  for (const double m : turn.camera_margins) out << util::printf_string(" %.3f", m);
+  out << '\n';
+  if (turn.margin < kHalfTurnMargin)
+    verdict.weak(util::printf_string(
+        "the masks barely tell the board's half turns apart (a camera's turn ahead of the "
+        "other by %.3f of the others' hull inside its mask, %.2f wanted): check the masks "
+        "(one person, the same instant) and each camera's turn",
+        turn.margin, kHalfTurnMargin));
+  return turn.reversed;
+}
+
+// The chosen poses as a camera set with its quality block, each camera's RMS judged.
+sensor::CameraSet camera_set(const BoardArgs& a, const std::vector<int>& ids,
+                             const std::vector<std::array<board::BoardPose, 2>>& poses,
+                             const std::vector<bool>& reversed, Verdict& verdict,
+                             std::ostream& out) {
   sensor::CameraSet set;
   set.quality.emplace();
   double sum_squares = 0.0;
-  for (std::size_t i = 0; i < views.size(); ++i) {
+  for (std::size_t i = 0; i < poses.size(); ++i) {
     const board::BoardPose& p = poses[i][reversed[i] ? 1 : 0];
     set.cameras.push_back(p.camera);
     set.quality->per_camera_rms_px[ids[i]] = p.rms_px;
@@ -261,11 +279,21 @@ int run(const BoardArgs& a, std::ostream& out, std::ostream& err) {
                                        p.rms_px, kGoodRmsPx));
     }
   }
-  set.quality->rms_px = std::sqrt(sum_squares / static_cast<double>(views.size()));
+  set.quality->rms_px = std::sqrt(sum_squares / static_cast<double>(poses.size()));
   set.quality->sigma0_px = set.quality->rms_px;
-  set.quality->observations = static_cast<long>(views.size() * board::board_points(a.board).size());
+  set.quality->observations = static_cast<long>(poses.size() * board::board_points(a.board).size());
   set.quality->verdict = verdict.word;
   set.quality->verdict_reasons = verdict.reasons;
+  return set;
+}
+
+int run(const BoardArgs& a, std::ostream& out, std::ostream& err) {
+  const std::vector<int> ids = camera_ids(a);
+  const std::vector<board::BoardView> views = observe_boards(a, ids, out);
+  const std::vector<std::array<board::BoardPose, 2>> poses = board_poses(a, ids, views);
+  Verdict verdict;
+  const std::vector<bool> reversed = chosen_turns(a, poses, verdict, out);
+  const sensor::CameraSet set = camera_set(a, ids, poses, reversed, verdict, out);
   write_outputs(a.out, set, out);
   out << "verdict: " << verdict.word << '\n';
   for (const std::string& r : verdict.reasons) out << "  " << r << '\n';
