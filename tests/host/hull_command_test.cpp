@@ -218,6 +218,21 @@ TEST_F(OpenCvHullCommand, YamlAndJsonCamerasWithTheirLensGiveTheIdealCamerasHull
   EXPECT_LT(printed_volume(no_lens.out), 0.99 * printed_volume(ideal.out)) << no_lens.out;
 }
 
+// The voxel method samples the masks through the same lens: its hull of the lens' masks is the
+// hull of the ideal masks.
+TEST_F(OpenCvHullCommand, TheVoxelMethodTakesTheLensToo) {
+  std::vector<std::string> ideal_args = args("voxel");
+  const HullRun ideal = run(ideal_args);
+  ASSERT_EQ(ideal.status, kExitOk) << ideal.err;
+  write_yaml(dir_ / "cameras.yaml", true);
+  std::vector<std::string> lens = lens_args(dir_ / "cameras.yaml");
+  lens.back() = "voxel";
+  const HullRun voxel = run(lens);
+  ASSERT_EQ(voxel.status, kExitOk) << voxel.err;
+  EXPECT_NEAR(printed_volume(voxel.out), printed_volume(ideal.out),
+              0.01 * printed_volume(ideal.out));
+}
+
 TEST_F(OpenCvHullCommand, ABrokenCameraFileNamesCameraAndField) {
   write_yaml(dir_ / "cameras.yaml", true);
   std::string text;

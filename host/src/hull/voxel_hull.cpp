@@ -43,11 +43,6 @@ Eigen::Matrix<double, 3, 4> linear_projection(const sensor::CameraModel& camera)
          rt;
 }
 
-bool has_distortion(const sensor::CameraModel& camera) {
-  const sensor::InteriorOrientation& in = camera.interior;
-  return in.k1 != 0 || in.k2 != 0 || in.k3 != 0 || in.p1 != 0 || in.p2 != 0;
-}
-
 // One view's mask in ideal (distortion-free) pixels with its integral image, so that every
 // sample projects through a 3x4 matrix. A camera with distortion gets its silhouette's vertices
 // corrected into ideal pixels (the explicit direction of the camera model: back_project) and
@@ -58,7 +53,7 @@ class ViewSampler {
  public:
   explicit ViewSampler(const HullView& view) : rt_(linear_projection(view.camera)) {
     const cv::Size image(view.camera.sensor.width_px, view.camera.sensor.height_px);
-    if (!has_distortion(view.camera)) {
+    if (!view.camera.has_distortion()) {
       mask_ = view.mask.empty() ? rasterize(view.silhouette, image) : view.mask;
     } else {
       offset_ = std::max(image.width, image.height) / 8;

@@ -47,9 +47,7 @@ Eigen::Vector3d CameraModel::projection_centre() const {
 }
 
 bool CameraModel::has_distortion() const {
-  const InteriorOrientation& i = interior;
-  const bool thesis = i.k1 != 0.0 || i.k2 != 0.0 || i.k3 != 0.0 || i.p1 != 0.0 || i.p2 != 0.0;
-  return thesis || (opencv_lens && !opencv_lens->is_identity());
+  return has_lens_correction(interior) || (opencv_lens && !opencv_lens->is_identity());
 }
 
 // The thesis' model alone (no OpenCV lens): the pixel and the Jacobians the lens is applied to.

@@ -74,6 +74,11 @@ struct ExteriorBlock {
   static constexpr const char* kNames[kSize] = {"X0", "Y0", "Z0", "omega", "phi", "kappa"};
 };
 
+// Whether the thesis' lens correction (eq 4.10's k1, k2, k3, p1, p2) is anything but zero.
+inline bool has_lens_correction(const InteriorOrientation& i) {
+  return i.k1 != 0.0 || i.k2 != 0.0 || i.k3 != 0.0 || i.p1 != 0.0 || i.p2 != 0.0;
+}
+
 inline std::array<double, InteriorBlock::kSize> interior_block(const InteriorOrientation& i) {
   return {i.c, i.xp, i.yp, i.k1, i.k2, i.k3, i.p1, i.p2, i.sc, i.sh};
 }

@@ -177,9 +177,7 @@ void fit_thesis_distortion(const std::vector<Eigen::Vector2d>& measured,
 // then OpenCV's model holds it exactly and no fit is needed. (A lens whose K was edited apart
 // from the camera's is fitted like any other distortion.)
 bool lens_is_exact(const CameraModel& camera, const Eigen::Matrix3d& k) {
-  const InteriorOrientation& i = camera.interior;
-  const bool thesis = i.k1 != 0.0 || i.k2 != 0.0 || i.k3 != 0.0 || i.p1 != 0.0 || i.p2 != 0.0;
-  if (thesis || !camera.opencv_lens) return false;
+  if (has_lens_correction(camera.interior) || !camera.opencv_lens) return false;
   return (camera.opencv_lens->camera_matrix - k).norm() <= 1e-9 * k.norm();
 }
 
