@@ -123,10 +123,7 @@ int main(int argc, char** argv) {
     // the camera stands shifted against the clip (segmentation/model_alignment.hpp).
     if (const std::optional<edge::Frame> first = in.source->grab(std::max(in.first, a.first_frame));
         first && first->image.size() == model.median.size()) {
-      const edge::ModelAlignment shift = edge::align_model(model, first->image);
-      std::printf("syncap-mask: background clip %s by (%.2f, %.2f) px (peak %.2f)\n",
-                  shift.applied ? "aligned" : "not moved", shift.shift_px.x, shift.shift_px.y,
-                  shift.response);
+      std::printf("syncap-mask: %s\n", edge::align_model(model, first->image).text().c_str());
     }
     edge::MediPicture masking(model, a.options);
     std::filesystem::create_directories(a.out_dir);

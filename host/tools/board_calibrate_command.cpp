@@ -240,7 +240,7 @@ std::vector<bool> chosen_turns(const BoardArgs& a,
       "half turn: %d hulls tried; the chosen turns' hull reprojects at a mean IoU of %.3f, "
       "the best other turns' at %.3f; each camera against the others' hull, the share of "
       "its projection inside the camera's mask ahead of the other turn's by",
-      turn.hulls_built, turn.min_iou, turn.runner_up_iou);
+      turn.hulls_built, turn.mean_iou, turn.runner_up_iou);
   for (const double m : turn.camera_margins) out << util::printf_string(" %.3f", m);
   out << '\n';
   if (turn.margin < kHalfTurnMargin)

@@ -14,6 +14,7 @@
 #include "sensor/toml_camera_file.hpp"
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
+#include "util/file_extension.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::tools {
@@ -39,12 +40,6 @@ constexpr const char* kDescription =
 
 constexpr const char* kFooter = "Exit status: 0 done, 2 usage error or an unreadable IN (named).";
 
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 std::optional<int> parse_convert_args(std::span<const std::string> args, ConvertArgs& a,
                                       std::ostream& out, std::ostream& err) {
   cli::App app("syncap cameras convert", kDescription, kFooter);
@@ -56,7 +51,7 @@ std::optional<int> parse_convert_args(std::span<const std::string> args, Convert
          "the rig's size (cameras within 100 units of the origin: metres)")
       ->check(cli::number_in(1e-6, 1e6));
   return cli::parse(app, args, out, err, [&a] {
-    const std::string ext = lower_extension(a.out);
+    const std::string ext = util::lower_extension(a.out);
     if (ext != ".json" && ext != ".yaml" && ext != ".yml" && ext != ".toml")
       throw CLI::ValidationError("OUT", "'" + a.out +
                                             "': the extension must be .json, .yaml, "
@@ -64,23 +59,16 @@ std::optional<int> parse_convert_args(std::span<const std::string> args, Convert
   });
 }
 
+// A TOML file read once, with the unit given or the one told from it said.
 std::vector<sensor::CameraModel> read_input(const ConvertArgs& a, std::ostream& out) {
-  if (!sensor::is_toml_camera_file(a.in) || !a.toml_unit_mm) {
-    if (sensor::is_toml_camera_file(a.in)) {
-      const sensor::TomlCameraFile toml = sensor::read_toml_camera_file(a.in);
-      out << util::printf_string(
-          "%s: translations taken in %s (told from the rig's size; "
-          "--toml-unit-mm to say otherwise)\n",
-          a.in.c_str(), toml.length_unit_mm == 1.0 ? "mm" : "metres");
-    }
-    return sensor::read_cameras(a.in);
-  }
-  std::vector<sensor::CameraModel> cameras;
-  for (const sensor::OpenCvCameraEntry& e :
-       sensor::read_toml_camera_file(a.in, a.toml_unit_mm).cameras) {
-    cameras.push_back(sensor::camera_keeping_opencv_lens(e.camera, 0.01, 0.01, e.id));
-  }
-  return cameras;
+  if (!sensor::is_toml_camera_file(a.in)) return sensor::read_cameras(a.in);
+  const sensor::TomlCameraFile toml = sensor::read_toml_camera_file(a.in, a.toml_unit_mm);
+  if (toml.unit_inferred)
+    out << util::printf_string(
+        "%s: translations taken in %s (told from the rig's size; --toml-unit-mm to say "
+        "otherwise)\n",
+        a.in.c_str(), toml.length_unit_mm == 1.0 ? "mm" : "metres");
+  return sensor::cameras_keeping_lenses(toml.cameras);
 }
 
 // Per camera, how closely OpenCV's model holds it (0 for a lens carried exactly).
@@ -105,7 +93,7 @@ int convert(std::span<const std::string> args, std::ostream& out, std::ostream& 
   if (const auto status = parse_convert_args(args, a, out, err)) return *status;
   try {
     const std::vector<sensor::CameraModel> cameras = read_input(a, out);
-    const std::string ext = lower_extension(a.out);
+    const std::string ext = util::lower_extension(a.out);
     std::string text;
     if (ext == ".json") {
       text = sensor::format_cameras(cameras);

@@ -140,11 +140,11 @@ void print_ious(const std::vector<hull::HullView>& views, const hull::Mesh& mesh
 
 // The hull's box and size in the cameras' units (mm for cameras.json and OpenCV files in mm), and
 // where it stands against the floor of --volume.
-void print_extent(const hull::Mesh& mesh, const HullArgs& a, std::ostream& out) {
+void print_extent(const hull::Mesh& mesh, const hull::MeshReport& r, const HullArgs& a,
+                  std::ostream& out) {
   Eigen::AlignedBox3d box;
   for (const hull::Point3& p : mesh.points()) box.extend(Eigen::Vector3d(p.x(), p.y(), p.z()));
   if (box.isEmpty()) return;
-  const hull::MeshReport r = hull::check_mesh(mesh, false);
   out << util::printf_string(
       "extent: x %.1f..%.1f, y %.1f..%.1f, z %.1f..%.1f mm (%.1f x %.1f x %.1f mm); volume %.4g "
       "L, area %.4g m^2\n",
@@ -177,7 +177,7 @@ int hull_command(std::span<const std::string> args, std::ostream& out, std::ostr
     print_ious(views, mesh, out);
     const hull::MeshReport report = hull::check_mesh(mesh);
     out << "mesh: " << report.summary() << '\n';
-    print_extent(mesh, a, out);
+    print_extent(mesh, report, a, out);
     out << util::printf_string("time: %.3f s for %zu views (%s)\n", seconds, views.size(),
                                a.method.c_str());
     if (!report.good()) {

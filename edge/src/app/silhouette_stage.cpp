@@ -3,7 +3,6 @@
 #include "segmentation/model_alignment.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <stdexcept>
 
 #include "segmentation/silhouette_contours.hpp"
@@ -157,10 +156,7 @@ void SilhouetteStage::align_clip_model(const cv::Mat& frame) {
   const ModelAlignment a = align_model(moved, frame);
   if (a.applied) adopt(moved);
   align_pending_ = false;
-  char text[160];
-  std::snprintf(text, sizeof text, "background clip %s by (%.2f, %.2f) px (peak %.2f)",
-                a.applied ? "aligned" : "not moved", a.shift_px.x, a.shift_px.y, a.response);
-  alignment_ = text;
+  alignment_ = a.text();
 }
 
 std::string SilhouetteStage::state() const {

@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 namespace syncap::edge {
 namespace {
@@ -16,6 +17,13 @@ void translate(cv::Mat& image, cv::Point2d shift) {
 }
 
 }  // namespace
+
+std::string ModelAlignment::text() const {
+  char text[160];
+  std::snprintf(text, sizeof text, "background clip %s by (%.2f, %.2f) px (peak %.2f)",
+                applied ? "aligned" : "not moved", shift_px.x, shift_px.y, response);
+  return text;
+}
 
 ModelAlignment align_model(MediPictureModel& model, const cv::Mat& frame) {
   ModelAlignment a;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "segmentation/medi_picture.hpp"
 
@@ -17,6 +18,9 @@ struct ModelAlignment {
   cv::Point2d shift_px;   // the frame's content relative to the model's
   double response = 0.0;  // the correlation peak's strength, 0..1
   bool applied = false;   // the model was moved (the shift large and clear enough)
+  // "background clip aligned by (dx, dy) px (peak p)", or "not moved by ...": what the edge's
+  // state and syncap mask say.
+  std::string text() const;
 };
 
 // Shifts below this are left alone (sub-pixel noise of the measurement, and the thresholds

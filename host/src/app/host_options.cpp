@@ -86,10 +86,11 @@ void add_hull_options(CLI::App& app, controllers::HullOptions& args) {
                  "voxel method: grid cells along the hull's longest side (default " +
                      std::to_string(stage.voxel_resolution) + ")")
       ->check(cli::whole_in<int>(8, 1024));
-  app.add_option("--hull-margin", stage.margin,
+  app.add_option("--hull-margin", stage.hull.volume_margin,
                  "the working ball the cones are cut to: the ball around the silhouettes' rays, "
                  "its radius times F (default " +
-                     cli::number_text(stage.margin) + "); larger when the hull reaches it")
+                     cli::number_text(stage.hull.volume_margin) +
+                     "); larger when the hull reaches it")
       ->check(cli::number_in(1, 100));
   app.add_option("--hull-every", stage.every,
                  "a hull every N frames (frame number divisible by N; default 1)")
@@ -154,7 +155,7 @@ void set_capture_volume(const std::vector<double>& volume, controllers::Pipeline
   if (volume.empty()) return;
   const Eigen::AlignedBox3d box = parse_volume(volume);
   p.markers.matching.volume = box;
-  p.hull.stage.capture_volume = box;
+  p.hull.stage.hull.capture_volume = box;
 }
 
 namespace {

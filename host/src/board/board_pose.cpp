@@ -8,10 +8,6 @@
 namespace syncap::board {
 namespace {
 
-// The nominal pixel size of the cameras made here: OpenCV's cameras carry none (any reproduces
-// the same pixels, sensor/opencv_camera.hpp).
-constexpr double kPixelMm = 0.01;
-
 std::vector<cv::Point3d> object_points(const BoardSpec& board, bool z_up) {
   std::vector<cv::Point3d> points = board_points(board);
   if (z_up) {
@@ -37,7 +33,8 @@ BoardPose pose_on_board(const sensor::OpenCvCamera& intrinsics,
   sensor::OpenCvCamera posed = intrinsics;
   solve(intrinsics, object, image, posed.rvec, posed.tvec);
   BoardPose pose;
-  pose.camera = sensor::camera_keeping_opencv_lens(posed, kPixelMm, kPixelMm, id);
+  pose.camera =
+      sensor::camera_keeping_opencv_lens(posed, sensor::kOpenCvPixelMm, sensor::kOpenCvPixelMm, id);
   double sum_squares = 0.0;
   for (std::size_t i = 0; i < object.size(); ++i) {
     const double e = cv::norm(sensor::project_opencv(posed, object[i]) - image[i]);

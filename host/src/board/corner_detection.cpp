@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <string>
 
+#include "hull/views_io.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::board {
@@ -40,16 +40,13 @@ std::vector<cv::Point2d> in_order_of(const std::vector<cv::Point2d>& reference,
 // The frames of a clip: a video file, or the images of a folder in name order.
 class FrameReader {
  public:
-  explicit FrameReader(const fs::path& clip) : clip_(clip) {
+  explicit FrameReader(const fs::path& clip) {
     if (fs::is_directory(clip)) {
-      static const std::set<std::string> kImages{".png", ".jpg", ".jpeg", ".bmp",
-                                                 ".pgm", ".ppm", ".tif",  ".tiff"};
-      for (const fs::directory_entry& e : fs::directory_iterator(clip)) {
-        std::string ext = e.path().extension().string();
-        std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (e.is_regular_file() && kImages.contains(ext)) files_.push_back(e.path());
+      try {
+        files_ = hull::mask_files(clip);  // the images of the folder in name order
+      } catch (const hull::HullError& e) {
+        throw BoardError(e.what());
       }
-      std::ranges::sort(files_);
     } else if (!video_.open(clip.string())) {
       throw BoardError(clip.string() +
                        ": cannot open the board clip (a video file or an image "
@@ -72,7 +69,6 @@ class FrameReader {
   }
 
  private:
-  fs::path clip_;
   cv::VideoCapture video_;
   std::vector<fs::path> files_;
   std::size_t index_ = 0;

@@ -12,7 +12,7 @@ namespace syncap::board {
 namespace {
 
 struct Score {
-  double min_iou = -1.0;  // -1: no hull (an empty intersection or one that failed)
+  double mean_iou = -1.0;  // -1: no hull (an empty intersection or one that failed)
   std::vector<double> ious;
 };
 
@@ -33,10 +33,10 @@ Score score(const std::vector<std::array<BoardPose, 2>>& poses, const std::vecto
   Score s;
   try {
     const hull::Mesh mesh = hull::polyhedral_visual_hull(views);
-    s.min_iou = 0.0;
+    s.mean_iou = 0.0;
     for (const hull::HullView& v : views) {
       s.ious.push_back(hull::mask_iou(hull::render_mask(mesh, v.camera), v.mask));
-      s.min_iou += s.ious.back() / static_cast<double>(views.size());
+      s.mean_iou += s.ious.back() / static_cast<double>(views.size());
     }
   } catch (const hull::HullError&) {  // empty, or cut by the working ball: this order is wrong
   }
@@ -84,12 +84,12 @@ HalfTurn resolve_half_turn(const std::vector<std::array<BoardPose, 2>>& poses,
     for (std::size_t i = 1; i < exhaustive; ++i) trial[i] = (bits >> (i - 1)) & 1u;
     const Score s = score(poses, masks, trial);
     ++h.hulls_built;
-    if (s.min_iou > best.min_iou) {
-      h.runner_up_iou = best.min_iou;
+    if (s.mean_iou > best.mean_iou) {
+      h.runner_up_iou = best.mean_iou;
       best = s;
       h.reversed = trial;
     } else {
-      h.runner_up_iou = std::max(h.runner_up_iou, s.min_iou);
+      h.runner_up_iou = std::max(h.runner_up_iou, s.mean_iou);
     }
   }
   // The cameras after those, one at a time against the hull of the chosen ones.
@@ -98,17 +98,17 @@ HalfTurn resolve_half_turn(const std::vector<std::array<BoardPose, 2>>& poses,
     trial[i] = true;
     const Score s = score(poses, masks, trial);
     ++h.hulls_built;
-    if (s.min_iou > best.min_iou) {
+    if (s.mean_iou > best.mean_iou) {
       best = s;
       h.reversed = trial;
     }
   }
-  if (best.min_iou < 0.0) {
+  if (best.mean_iou < 0.0) {
     throw hull::HullError(
         "the board's half turn: no order of the cameras' corners gives a hull of the masks (do "
         "they show one person at the same instant?)");
   }
-  h.min_iou = best.min_iou;
+  h.mean_iou = best.mean_iou;
   h.view_ious = best.ious;
   // Each camera checked alone against the others' hull: turned where the other turn fits it
   // better, then the margin by which the chosen one wins.

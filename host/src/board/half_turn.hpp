@@ -19,7 +19,7 @@ inline constexpr std::size_t kExhaustiveCameras = 7;
 
 struct HalfTurn {
   std::vector<bool> reversed;   // per camera: the other order of the corners
-  double min_iou = 0.0;         // the chosen hull's mean reprojection IoU over the views
+  double mean_iou = 0.0;        // the chosen hull's mean reprojection IoU over the views
   double runner_up_iou = -1.0;  // the best other combination's (-1: none gave a hull)
   // Each camera but the first against the hull of the others: the share of that hull's
   // projection inside its mask with its chosen turn minus with the other (per camera, and the

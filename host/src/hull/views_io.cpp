@@ -12,6 +12,7 @@
 
 #include "sensor/camera_file.hpp"
 #include "sensor/opencv_camera.hpp"
+#include "util/file_extension.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::hull {
@@ -23,18 +24,11 @@ namespace {
 // A .pa matrix gives pixels only; any pixel pitch reproduces them (c scales with it).
 constexpr double kPaPixelMm = 0.01;
 
-// ".PNG" -> ".png".
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 std::vector<fs::path> files_with(const fs::path& folder, const std::set<std::string>& extensions) {
   std::vector<fs::path> files;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
-    if (e.is_regular_file() && extensions.contains(lower_extension(e.path())))
+    if (e.is_regular_file() && extensions.contains(util::lower_extension(e.path())))
       files.push_back(e.path());
   }
   if (ec) throw HullError(folder.string() + ": cannot read the folder: " + ec.message());

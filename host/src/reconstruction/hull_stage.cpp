@@ -138,10 +138,7 @@ void HullStage::build(int64_t frame_number, const std::vector<hull::HullView>& v
 
 hull::Mesh HullStage::hull_of(const std::vector<hull::HullView>& views,
                               pipeline::HullSummary& summary) {
-  hull::HullOptions hull_options;
-  hull_options.volume = options_.volume;
-  hull_options.volume_margin = options_.margin;
-  hull_options.capture_volume = options_.capture_volume;
+  const hull::HullOptions& hull_options = options_.hull;
   if (options_.method == HullMethod::kExact) return hull::exact_visual_hull(views, hull_options);
   if (options_.method == HullMethod::kPolyhedral) {
     // An empty intersection is the input's fault: the voxel hull would be empty too. Bad views

@@ -37,12 +37,10 @@ const char* hull_method_name(HullMethod method);
 struct HullStageOptions {
   HullMethod method = HullMethod::kPolyhedral;
   int voxel_resolution = 128;  // cells along the hull's longest side (kVoxel)
-  // Where the working volume is; default: estimated per frame from the silhouettes, its radius
-  // times `margin`.
-  std::optional<hull::WorkingVolume> volume;
-  double margin = 1.5;
-  // The capture volume (mm, its bottom the floor): every hull is clipped to it. None: not clipped.
-  std::optional<Eigen::AlignedBox3d> capture_volume;
+  // Where the working volume is (default: estimated per frame from the silhouettes, its radius
+  // times volume_margin) and the capture volume every hull is clipped to (none: not clipped):
+  // what every hull method takes.
+  hull::HullOptions hull;
   // A hull every `every` frames (frame_number % every == 0): the others pass untouched.
   int every = 1;
   // A group that waited longer than this in the host [ms] gets no hull (counted): the hull, far

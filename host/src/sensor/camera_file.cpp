@@ -359,14 +359,7 @@ CameraSet read_camera_set(const std::filesystem::path& file) {
   return parse_camera_set(text.str(), file.string());
 }
 
-namespace {
-
-// The nominal pixel size of cameras read from OpenCV files, which carry none: any reproduces the
-// same pixels (camera_from_opencv).
-constexpr double kOpenCvPixelMm = 0.01;
-
-// OpenCV cameras exactly: the lens is kept as OpenCV defines it (no refit into eq 4.10).
-std::vector<CameraModel> keeping_lenses(const std::vector<OpenCvCameraEntry>& entries) {
+std::vector<CameraModel> cameras_keeping_lenses(const std::vector<OpenCvCameraEntry>& entries) {
   std::vector<CameraModel> cameras;
   for (const OpenCvCameraEntry& entry : entries) {
     cameras.push_back(
@@ -375,11 +368,9 @@ std::vector<CameraModel> keeping_lenses(const std::vector<OpenCvCameraEntry>& en
   return cameras;
 }
 
-}  // namespace
-
 std::vector<CameraModel> read_cameras(const std::filesystem::path& file) {
-  if (is_toml_camera_file(file)) return keeping_lenses(read_toml_camera_file(file).cameras);
-  if (is_opencv_camera_file(file)) return keeping_lenses(read_opencv_camera_file(file));
+  if (is_toml_camera_file(file)) return cameras_keeping_lenses(read_toml_camera_file(file).cameras);
+  if (is_opencv_camera_file(file)) return cameras_keeping_lenses(read_opencv_camera_file(file));
   return read_camera_set(file).cameras;
 }
 

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "sensor/camera_model.hpp"
+#include "sensor/opencv_camera_file.hpp"
 
 namespace syncap::sensor {
 
@@ -60,6 +61,10 @@ struct CameraSet {
 // Pose2Sim .toml (toml_camera_file.hpp). OpenCV and TOML cameras keep their lens exactly
 // (CameraModel::opencv_lens).
 std::vector<CameraModel> read_cameras(const std::filesystem::path& file);
+
+// OpenCV cameras (of a YAML, JSON or TOML file) as the cameras they are exactly: the ideal camera
+// with the lens kept as OpenCV defines it (camera_keeping_opencv_lens, kOpenCvPixelMm pixels).
+std::vector<CameraModel> cameras_keeping_lenses(const std::vector<OpenCvCameraEntry>& entries);
 void write_cameras(const std::filesystem::path& file, const std::vector<CameraModel>& cameras);
 
 // The same on text; `source` names the text in error messages (usually the file name).

@@ -50,6 +50,10 @@ CameraModel camera_from_opencv(const OpenCvCamera& opencv, double pixel_width_mm
                                double pixel_height_mm, int id = 0,
                                ConversionResidual* residual = nullptr);
 
+// The nominal pixel size [mm] given to cameras read from OpenCV's model, which carries none: any
+// reproduces the same pixels (camera_from_opencv), with c, xp, yp in the matching mm.
+inline constexpr double kOpenCvPixelMm = 0.01;
+
 // The camera an OpenCV camera is, exactly: its ideal camera (camera_from_opencv without the
 // distortion, exact) with OpenCV's lens kept as it is (CameraModel::opencv_lens). How every
 // program reads OpenCV camera files; opencv_from_camera gives the same OpenCV camera back.

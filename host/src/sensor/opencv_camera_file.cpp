@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sensor/camera_file.hpp"
+#include "util/file_extension.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::sensor {
@@ -96,12 +97,6 @@ sensor::OpenCvCamera opencv_camera_of(const cv::FileNode& node, const std::strin
   return c;
 }
 
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 }  // namespace
 
 std::vector<OpenCvCameraEntry> read_opencv_camera_file(const std::filesystem::path& path) {
@@ -154,7 +149,7 @@ std::vector<OpenCvCameraEntry> read_opencv_intrinsics(const std::filesystem::pat
 }
 
 bool is_opencv_camera_file(const std::filesystem::path& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = util::lower_extension(path);
   if (ext == ".yaml" || ext == ".yml") return true;
   if (ext != ".json") return false;
   try {

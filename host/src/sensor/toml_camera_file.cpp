@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sensor/camera_file.hpp"
+#include "util/file_extension.hpp"
 #include "util/printf_string.hpp"
 
 namespace syncap::sensor {
@@ -112,9 +113,7 @@ double inferred_unit_mm(const std::vector<OpenCvCameraEntry>& cameras) {
 }  // namespace
 
 bool is_toml_camera_file(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".toml";
+  return util::lower_extension(path) == ".toml";
 }
 
 TomlCameraFile read_toml_camera_file(const std::filesystem::path& path,

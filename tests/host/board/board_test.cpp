@@ -122,8 +122,8 @@ TEST(HalfTurn, ThePersonsMasksTellTheCamerasTurns) {
   }
   const HalfTurn turn = resolve_half_turn(poses, masks);
   EXPECT_EQ(turn.reversed, truly_reversed);
-  EXPECT_GT(turn.min_iou, 0.95);
-  EXPECT_LT(turn.runner_up_iou, turn.min_iou - 0.1);
+  EXPECT_GT(turn.mean_iou, 0.95);
+  EXPECT_LT(turn.runner_up_iou, turn.mean_iou - 0.1);
   ASSERT_EQ(turn.camera_margins.size(), 3u);
   EXPECT_GT(turn.margin, 0.3);
   EXPECT_EQ(turn.hulls_built, 8);

@@ -132,7 +132,7 @@ TEST(HullStage, ThePolyhedralHullIsTheDefaultAndReprojectsOntoEverySilhouette) {
 TEST(HullStage, WhereThePolyhedralMethodFailsTheVoxelHullStandsInFlagged) {
   HullStageOptions o = fast_options();
   o.method = HullMethod::kPolyhedral;
-  o.volume = hull::WorkingVolume{{0, 0, 900}, 400};
+  o.hull.volume = hull::WorkingVolume{{0, 0, 900}, 400};
   HullStage stage(scene().cameras, o);
   pipeline::FrameWork w = scene().work(9);
   stage.process(w);
