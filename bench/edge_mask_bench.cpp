@@ -14,8 +14,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/background_segm.hpp>
 
-#include "segmentation/medi_picture.hpp"
 #include "syncap/proto/image_patch.hpp"
+#include "syncap/segmentation/medi_picture.hpp"
 
 namespace {
 
@@ -46,9 +46,10 @@ cv::Mat frame_with_person() {
 
 void BM_MediPicture(benchmark::State& state) {
   const std::vector<cv::Mat> training = empty_scene(20);
-  syncap::edge::MediPictureOptions options = syncap::edge::thesis_masking_options();
+  syncap::segmentation::MediPictureOptions options = syncap::segmentation::thesis_masking_options();
   options.remove_shadows = state.range(0) != 0;
-  syncap::edge::MediPicture medi(syncap::edge::train_medi_picture(training), options);
+  syncap::segmentation::MediPicture medi(syncap::segmentation::train_medi_picture(training),
+                                         options);
   const cv::Mat frame = frame_with_person();
   for (auto _ : state) benchmark::DoNotOptimize(medi.apply(frame).data);
 }
@@ -62,9 +63,10 @@ BENCHMARK(BM_MediPicture)
 // The defaults; range(0) = 0 turns their illumination correction off.
 void BM_DefaultMask(benchmark::State& state) {
   const std::vector<cv::Mat> training = empty_scene(20);
-  syncap::edge::MediPictureOptions options;
+  syncap::segmentation::MediPictureOptions options;
   options.correct_illumination = state.range(0) != 0;
-  syncap::edge::MediPicture medi(syncap::edge::train_medi_picture(training, options), options);
+  syncap::segmentation::MediPicture medi(
+      syncap::segmentation::train_medi_picture(training, options), options);
   const cv::Mat frame = frame_with_person();
   for (auto _ : state) benchmark::DoNotOptimize(medi.apply(frame).data);
 }
@@ -83,13 +85,14 @@ BENCHMARK(BM_DefaultMask)
 // the shadow's factor every tenth frame (the whole frame then) included, as the edge runs it.
 void BM_SearchRegion(benchmark::State& state) {
   const std::vector<cv::Mat> training = empty_scene(20);
-  syncap::edge::MediPictureOptions options;
+  syncap::segmentation::MediPictureOptions options;
   if (state.range(0) != 0) {
     const cv::Rect person(640 - 120 - 40, 500 - 380 - 40, 2 * 160, 2 * 420);
     options.search_polygon = {
         person.tl(), {person.br().x, person.y}, person.br(), {person.x, person.br().y}};
   }
-  syncap::edge::MediPicture medi(syncap::edge::train_medi_picture(training, options), options);
+  syncap::segmentation::MediPicture medi(
+      syncap::segmentation::train_medi_picture(training, options), options);
   const cv::Mat frame = frame_with_person();
   for (auto _ : state) benchmark::DoNotOptimize(medi.apply(frame).data);
 }
@@ -116,7 +119,7 @@ std::vector<cv::Mat> training_frames() {
 void BM_Training(benchmark::State& state) {
   const std::vector<cv::Mat> frames = training_frames();
   for (auto _ : state) {
-    benchmark::DoNotOptimize(syncap::edge::train_medi_picture(frames).median.data);
+    benchmark::DoNotOptimize(syncap::segmentation::train_medi_picture(frames).median.data);
   }
 }
 BENCHMARK(BM_Training)->Name("train-vs-nth-element/ours")->Unit(benchmark::kMillisecond);
@@ -127,7 +130,7 @@ void BM_TrainingPerPixel(benchmark::State& state) {
   const std::size_t n = frames.size();
   std::vector<uchar> samples(n);
   for (auto _ : state) {
-    syncap::edge::MediPictureModel model;
+    syncap::segmentation::MediPictureModel model;
     for (cv::Mat* image :
          {&model.median, &model.sigma, &model.minimum, &model.maximum, &model.max_difference}) {
       image->create(frames[0].size(), CV_32FC1);
@@ -195,8 +198,9 @@ BENCHMARK(BM_Mog2)->Name("default-mask-vs-mog2/baseline")->Unit(benchmark::kMill
 // to that frame's work on the board.
 void BM_ImagePatch(benchmark::State& state) {
   const std::vector<cv::Mat> training = empty_scene(20);
-  const syncap::edge::MediPictureOptions options;
-  syncap::edge::MediPicture medi(syncap::edge::train_medi_picture(training, options), options);
+  const syncap::segmentation::MediPictureOptions options;
+  syncap::segmentation::MediPicture medi(
+      syncap::segmentation::train_medi_picture(training, options), options);
   const cv::Mat mask = medi.apply(frame_with_person()).clone();
   // Clothes with texture: uniform noise of 0..40 DN over the person (PNG's worst case).
   cv::Mat frame = frame_with_person(), texture(frame.size(), CV_8UC1);

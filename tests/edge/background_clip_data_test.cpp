@@ -11,10 +11,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/video/background_segm.hpp>
 
-#include "segmentation/medi_picture.hpp"
-#include "segmentation/model_alignment.hpp"
-#include "sensor/background_clip.hpp"
 #include "sensor/replay_source.hpp"
+#include "syncap/segmentation/background_clip.hpp"
+#include "syncap/segmentation/medi_picture.hpp"
+#include "syncap/segmentation/model_alignment.hpp"
 #include "syncap_test_data.hpp"
 
 namespace syncap::edge {
@@ -45,9 +45,10 @@ Agreement agreement(const std::vector<cv::Mat>& ours, const std::vector<cv::Mat>
 // first frame with `align`, as syncap-edge --background and syncap mask do).
 std::vector<cv::Mat> our_masks(const std::vector<cv::Mat>& training, VideoReplaySource& video,
                                bool align = false) {
-  MediPictureModel model = train_medi_picture(training, MediPictureOptions{});
-  if (align) align_model(model, video.grab(0)->image);
-  MediPicture masking(model, MediPictureOptions{});
+  segmentation::MediPictureModel model =
+      segmentation::train_medi_picture(training, segmentation::MediPictureOptions{});
+  if (align) segmentation::align_model(model, video.grab(0)->image);
+  segmentation::MediPicture masking(model, segmentation::MediPictureOptions{});
   std::vector<cv::Mat> masks;
   for (const int k : kScoredFrames) masks.push_back(masking.apply(video.grab(k)->image).clone());
   return masks;
@@ -57,7 +58,8 @@ TEST(BackgroundClipData, TheClipFindsThePersonTheCapturesOwnFramesLose) {
   SYNCAP_REQUIRE_DATA(dir, "multiview/uu-infomcv-4cam-person");
   for (int cam = 1; cam <= 4; ++cam) {
     const std::filesystem::path folder = dir / ("cam" + std::to_string(cam));
-    const std::vector<cv::Mat> clip = read_background_clip(folder / "background.avi", 50);
+    const std::vector<cv::Mat> clip =
+        segmentation::read_background_clip(folder / "background.avi", 50);
     VideoReplaySource video(folder / "video.avi", cam);
     // The reference: KNN with its defaults, learning the whole clip, then frozen.
     cv::Ptr<cv::BackgroundSubtractorKNN> knn = cv::createBackgroundSubtractorKNN();

@@ -25,12 +25,6 @@ class ReplaySourceTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-TEST(FrameNumberFromName, TakesTheLastRunOfDigits) {
-  EXPECT_EQ(frame_number_from_name("frame_000042.pgm"), 42);
-  EXPECT_EQ(frame_number_from_name("cam3_in000017.png"), 17);
-  EXPECT_EQ(frame_number_from_name("background.png"), std::nullopt);
-}
-
 TEST_F(ReplaySourceTest, GrabsTheFileOfTheFrameNumber) {
   write_image("frame_000003.pgm", 30);
   write_image("frame_000004.pgm", 40);

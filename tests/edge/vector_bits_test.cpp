@@ -18,7 +18,7 @@
 
 #include "detection/blob_detector.hpp"
 #include "detection/blob_tracker.hpp"
-#include "segmentation/medi_picture.hpp"
+#include "syncap/segmentation/medi_picture.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -162,13 +162,15 @@ TEST(VectorBits, MediPictureModelAndMasksAreTheRecordedBits) {
   for (int i = 0; i < 16; ++i) training.push_back(background(rng));
   Fnv1a hash;
   for (const bool thesis : {true, false}) {
-    const MediPictureOptions options = thesis ? thesis_masking_options() : MediPictureOptions{};
-    const MediPictureModel model = train_medi_picture(training, options);
+    const segmentation::MediPictureOptions options =
+        thesis ? segmentation::thesis_masking_options() : segmentation::MediPictureOptions{};
+    const segmentation::MediPictureModel model =
+        segmentation::train_medi_picture(training, options);
     for (const cv::Mat* image :
          {&model.median, &model.sigma, &model.minimum, &model.maximum, &model.max_difference}) {
       hash.add(*image);
     }
-    MediPicture masking(model, options);
+    segmentation::MediPicture masking(model, options);
     for (int f = 0; f < 4; ++f) {
       const cv::Mat mask = masking.apply(person_frame(rng, f * 20, f == 3));
       EXPECT_GT(cv::countNonZero(mask), 10000) << "frame " << f;

@@ -9,10 +9,11 @@
 #include <iostream>
 
 #include "detection/blob_detector.hpp"
-#include "sensor/background_clip.hpp"
 #include "syncap/proto/blob_parts.hpp"
 #include "syncap/proto/clock.hpp"
 #include "syncap/proto/image_patch.hpp"
+#include "syncap/segmentation/background_clip.hpp"
+#include "syncap/segmentation/image_sequence.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -100,8 +101,14 @@ EdgeNode::EdgeNode(const EdgeOptions& options, FrameSource& source, EdgePublishe
     silhouettes_.emplace(options_.contour_tolerance_px, options_.masking,
                          options_.train_in_background);
     if (!options_.background.empty()) {
-      const int frames = options_.train_frames > 0 ? options_.train_frames : kBackgroundClipFrames;
-      silhouettes_->train_on(read_background_clip(options_.background, frames, options_.roi));
+      const int frames =
+          options_.train_frames > 0 ? options_.train_frames : segmentation::kBackgroundClipFrames;
+      try {
+        silhouettes_->train_on(
+            segmentation::read_background_clip(options_.background, frames, options_.roi));
+      } catch (const segmentation::ImageSequenceError& e) {  // as the edge's sources name theirs
+        throw FrameSourceError(e.what());
+      }
     } else if (options_.train_frames > 0) {
       silhouettes_->start_training(options_.train_frames, options_.train_from_frame);
     }

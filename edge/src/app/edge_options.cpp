@@ -5,12 +5,12 @@
 #include <charconv>
 #include <optional>
 
-#include "app/mask_options.hpp"
-#include "segmentation/masking_options.hpp"
-#include "sensor/background_clip.hpp"
 #include "syncap/cli/config_file.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/proto/channels.hpp"
+#include "syncap/segmentation/background_clip.hpp"
+#include "syncap/segmentation/mask_options.hpp"
+#include "syncap/segmentation/masking_options.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -188,7 +188,7 @@ void Parser::add_mask_options() {
                    "mask: a recording of the empty scene, a video file or a folder of\n"
                    "numbered images: the model trains on --train-frames N of its frames\n"
                    "(default " +
-                       std::to_string(kBackgroundClipFrames) +
+                       std::to_string(segmentation::kBackgroundClipFrames) +
                        ", spread over it) before the first frame, for a capture\n"
                        "that starts with the person in view")
       ->option_text("FILE|DIR");
@@ -201,7 +201,7 @@ void Parser::add_mask_options() {
   app_->deprecated_name("--contour-tolerance", "--contour-tolerance-px");
   // --mask-NAME: the medi-picture option NAME, from the defaults (docs/design/segmentation.md),
   // checked by apply_masking_option as segment-eval's are.
-  syncap::edge::add_mask_options(*app_, o.masking, "mask: ");
+  syncap::segmentation::add_mask_options(*app_, o.masking, "mask: ");
   cli::add_checked(*app_, "--patch-every", o.patch_every, "N", cli::whole_in<int>(0, 100000),
                    "mask: send the person's grey values (image_patch_t) every Nth frame\n"
                    "(frame_number % N == 0) for the host's surface matching; 0: never" +

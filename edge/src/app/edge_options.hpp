@@ -9,7 +9,7 @@
 
 #include "app/detection_stage.hpp"
 #include "detection/blob_detector.hpp"
-#include "segmentation/medi_picture.hpp"
+#include "syncap/segmentation/medi_picture.hpp"
 
 namespace syncap::edge {
 
@@ -33,7 +33,7 @@ struct EdgeOptions {
   bool train_in_background = true;
   double contour_tolerance_px = 0.5;  // 1 px costs ~1 % IoU on a 300 px tall person
   // mask: the medi-picture classification (--mask-* options change its defaults).
-  MediPictureOptions masking;
+  segmentation::MediPictureOptions masking;
   // mask: the grey values where the person is (image_patch_t) every Nth frame, for the host's
   // surface matching; 0: none (the host's SET_PATCH_EVERY command changes it).
   int patch_every = 0;

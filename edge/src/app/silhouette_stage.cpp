@@ -1,12 +1,12 @@
 #include "app/silhouette_stage.hpp"
 
-#include "segmentation/model_alignment.hpp"
+#include "syncap/segmentation/model_alignment.hpp"
 
 #include <chrono>
 #include <stdexcept>
 
-#include "segmentation/silhouette_contours.hpp"
 #include "syncap/proto/contour_codec.hpp"
+#include "syncap/segmentation/silhouette_contours.hpp"
 
 namespace syncap::edge {
 namespace {
@@ -17,8 +17,8 @@ std::string size_text(cv::Size size) {
 
 }  // namespace
 
-SilhouetteStage::SilhouetteStage(double contour_tolerance_px, MediPictureOptions options,
-                                 bool train_in_background)
+SilhouetteStage::SilhouetteStage(double contour_tolerance_px,
+                                 segmentation::MediPictureOptions options, bool train_in_background)
     : tolerance_px_(contour_tolerance_px),
       options_(options),
       train_in_background_(train_in_background) {}
@@ -38,7 +38,7 @@ void SilhouetteStage::train_on(std::span<const cv::Mat> frames) {
   training_result_ = {};
   training_wanted_ = 0;
   training_.clear();
-  adopt(train_medi_picture(frames, options_));
+  adopt(segmentation::train_medi_picture(frames, options_));
   align_pending_ = true;  // a clip of another time: the capture's first frame may stand shifted
 }
 
@@ -51,10 +51,10 @@ void SilhouetteStage::finish_training() {
   if (training_.size() >= 2 && train_in_background_) {
     training_result_ =
         std::async(std::launch::async, [frames = std::move(training_), options = options_] {
-          return train_medi_picture(frames, options);
+          return segmentation::train_medi_picture(frames, options);
         });
   } else if (training_.size() >= 2) {
-    adopt(train_medi_picture(training_, options_));
+    adopt(segmentation::train_medi_picture(training_, options_));
   } else {
     paused_ = "training failed: " + std::to_string(training_.size()) + " frame(s) of " +
               std::to_string(training_from_) + ".." +
@@ -72,7 +72,7 @@ void SilhouetteStage::collect_trained_model() {
   adopt(training_result_.get());
 }
 
-void SilhouetteStage::adopt(const MediPictureModel& trained) {
+void SilhouetteStage::adopt(const segmentation::MediPictureModel& trained) {
   model_.emplace(trained, options_);
   align_pending_ = false;
   paused_.clear();
@@ -111,12 +111,8 @@ std::vector<silhouette_part_t> SilhouetteStage::process(const cv::Mat& image, in
   apply_regions(origin, sensor_size.empty() ? image.size() : sensor_size, frame_number);
   const cv::Mat mask = model_->apply(image);
   last_mask_ = mask;
-  auto contours = silhouette_contours(mask, tolerance_px_);
-  for (proto::Contour& contour : contours) {
-    for (proto::ContourPoint& p : contour.points) p.x += origin.x, p.y += origin.y;
-  }
-  const cv::Size size = sensor_size.empty() ? image.size() : sensor_size;
-  return proto::encode_silhouette(camera_id, frame_number, size.width, size.height, contours);
+  return segmentation::silhouette_parts(mask, camera_id, frame_number, tolerance_px_, origin,
+                                        sensor_size);
 }
 
 void SilhouetteStage::set_region(Region kind, std::vector<cv::Point> sensor_polygon,
@@ -152,8 +148,8 @@ void SilhouetteStage::apply_regions(cv::Point origin, cv::Size sensor_size, int6
 }
 
 void SilhouetteStage::align_clip_model(const cv::Mat& frame) {
-  MediPictureModel moved = model_->model();
-  const ModelAlignment a = align_model(moved, frame);
+  segmentation::MediPictureModel moved = model_->model();
+  const segmentation::ModelAlignment a = segmentation::align_model(moved, frame);
   if (a.applied) adopt(moved);
   align_pending_ = false;
   alignment_ = a.text();

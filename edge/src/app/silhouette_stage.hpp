@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "segmentation/medi_picture.hpp"
+#include "syncap/segmentation/medi_picture.hpp"
 #include "syncap/silhouette_part_t.hpp"
 
 namespace syncap::edge {
@@ -25,7 +25,7 @@ class SilhouetteStage {
   // 0.6 s, longer than a camera's stream buffers last). Without a previous model the next frame
   // waits for the rest of the computation, so that it is masked. Without `train_in_background`
   // finish_training computes the model at once.
-  SilhouetteStage(double contour_tolerance_px, MediPictureOptions options,
+  SilhouetteStage(double contour_tolerance_px, segmentation::MediPictureOptions options,
                   bool train_in_background = true);
   ~SilhouetteStage();
   SilhouetteStage(const SilhouetteStage&) = delete;
@@ -70,7 +70,7 @@ class SilhouetteStage {
   // when there is no model to mask with meanwhile.
   void collect_trained_model();
   // Masks with `trained` from now on: the pause lifted, the regions handed to it anew.
-  void adopt(const MediPictureModel& trained);
+  void adopt(const segmentation::MediPictureModel& trained);
   // The model of a separate clip (train_on) moved onto the capture's first frame where the camera
   // stands shifted against the clip (segmentation/model_alignment.hpp).
   void align_clip_model(const cv::Mat& frame);
@@ -88,15 +88,15 @@ class SilhouetteStage {
   };
 
   double tolerance_px_;
-  MediPictureOptions options_;
+  segmentation::MediPictureOptions options_;
   int training_wanted_ = 0;
   int64_t training_from_ = -1;
   std::vector<cv::Mat> training_;
-  std::optional<MediPicture> model_;
+  std::optional<segmentation::MediPicture> model_;
   bool train_in_background_;
-  std::future<MediPictureModel> training_result_;  // valid while the thread computes
-  std::string paused_;                             // why the last frame was not masked
-  std::array<RegionState, 3> regions_;             // by Region
+  std::future<segmentation::MediPictureModel> training_result_;  // valid while the thread computes
+  std::string paused_;                  // why the last frame was not masked
+  std::array<RegionState, 3> regions_;  // by Region
   cv::Mat last_mask_;
   bool align_pending_ = false;  // a clip's model not yet aligned to the capture
   std::string alignment_;       // what the alignment found, for state()

@@ -76,22 +76,22 @@ TEST_F(EdgeConfigTest, CommandLineOverridesTheFile) {
 TEST_F(EdgeConfigTest, MaskOptionsChangeTheDefaults) {
   write("camera-id: 1\nsource: replay:/tmp/a\nmode: mask\nmask-fill-holes-px: 0\n");
   const EdgeOptions preset = parse_edge_options({"--camera-id", "1", "--source", "replay:/x"});
-  EXPECT_EQ(preset.masking.k, MediPictureOptions{}.k);
-  EXPECT_EQ(preset.masking.shadow_test, ShadowTest::kCommonRatio);
+  EXPECT_EQ(preset.masking.k, segmentation::MediPictureOptions{}.k);
+  EXPECT_EQ(preset.masking.shadow_test, segmentation::ShadowTest::kCommonRatio);
   EXPECT_TRUE(preset.masking.correct_illumination);
   const EdgeOptions o = parse_edge_options(
       {"--config", file_.string(), "--mask-k", "2.5", "--mask-shadow-test", "correlation",
        "--mask-ncc", "0.95", "--mask-no-shadows", "--mask-closing-px", "9", "--mask-update-rate",
        "0.01", "--mask-illumination", "off"});
   EXPECT_FLOAT_EQ(o.masking.k, 2.5f);
-  EXPECT_EQ(o.masking.shadow_test, ShadowTest::kCorrelation);
+  EXPECT_EQ(o.masking.shadow_test, segmentation::ShadowTest::kCorrelation);
   EXPECT_FLOAT_EQ(o.masking.ncc_threshold, 0.95f);
   EXPECT_FALSE(o.masking.remove_shadows);
   EXPECT_EQ(o.masking.closing_diameter, 9);
   EXPECT_EQ(o.masking.max_hole_area, 0);  // from the file
   EXPECT_FLOAT_EQ(o.masking.update_rate, 0.01f);
   EXPECT_FALSE(o.masking.correct_illumination);
-  EXPECT_EQ(o.masking.min_component_area, MediPictureOptions{}.min_component_area);
+  EXPECT_EQ(o.masking.min_component_area, segmentation::MediPictureOptions{}.min_component_area);
   write("camera-id: 1\nsource: replay:/x\nmask-shadow-test: ratio\n");
   EXPECT_NE(error_of().find(":3:1: key 'mask-shadow-test': 'ratio': expected correlation or "
                             "common-ratio"),

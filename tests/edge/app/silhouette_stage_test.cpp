@@ -43,7 +43,7 @@ std::size_t contours_of(const std::vector<silhouette_part_t>& parts) {
 }
 
 TEST(SilhouetteStageClip, ACameraThatMovedAPixelIsAlignedOnTheFirstFrame) {
-  SilhouetteStage stage(0.5, MediPictureOptions{}, false);
+  SilhouetteStage stage(0.5, segmentation::MediPictureOptions{}, false);
   stage.train_on(clip());
   const auto parts = stage.process(room({-0.3, -1.0}, 99), 2, 0);
   EXPECT_NE(stage.state().find("background clip aligned by (-0.3"), std::string::npos)
@@ -52,7 +52,7 @@ TEST(SilhouetteStageClip, ACameraThatMovedAPixelIsAlignedOnTheFirstFrame) {
 }
 
 TEST(SilhouetteStageClip, ACameraThatStayedIsLeft) {
-  SilhouetteStage stage(0.5, MediPictureOptions{}, false);
+  SilhouetteStage stage(0.5, segmentation::MediPictureOptions{}, false);
   stage.train_on(clip());
   const auto parts = stage.process(room({0.0, 0.0}, 98), 2, 0);
   EXPECT_NE(stage.state().find("background clip not moved"), std::string::npos) << stage.state();
