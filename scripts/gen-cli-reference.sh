@@ -24,6 +24,7 @@ PROGRAMS=(
   "syncap record|workstation: recording"
   "syncap log|workstation: recording"
   "syncap markers|workstation: offline reconstruction"
+  "syncap reconstruct|workstation: offline reconstruction"
   "syncap fit|workstation: offline reconstruction"
   "syncap mask|workstation: offline reconstruction"
   "syncap hull|workstation: offline reconstruction"

@@ -8,13 +8,9 @@
 #include "app/host_options.hpp"
 #include "app/host_report.hpp"
 #include "controllers/stage_chain.hpp"
-#include "fitting/motion_export.hpp"
-#include "io/bvh_writer.hpp"
-#include "io/c3d_writer.hpp"
-#include "io/export_error.hpp"
 #include "io/lcm_log_reader.hpp"
-#include "io/trc_writer.hpp"
 #include "log_feed.hpp"
+#include "motion_files.hpp"
 #include "offline_options.hpp"
 #include "pipeline/host_node.hpp"
 #include "sensor/camera_file.hpp"
@@ -70,43 +66,6 @@ std::optional<int> parse_args(std::span<const std::string> args, FitArgs& a, std
   });
 }
 
-// DIR/body.bvh, DIR/joints.c3d and DIR/joints.trc from the first to the last frame with a
-// hull; false (named on err) when a file cannot be written.
-// The motion's files in `dir` (body.bvh, joints.c3d, joints.trc): the names of those written,
-// none when no frame has a fitted body (said on err). `failed` when an export refused the motion
-// (named on err).
-std::vector<std::string> export_motion(const fitting::PoseParameters& parameters,
-                                       const outputs::PoseRecord& record,
-                                       const std::filesystem::path& dir, std::ostream& err,
-                                       bool& failed) {
-  const auto& poses = record.poses;
-  const auto has_pose = [](const auto& entry) { return entry.second.has_value(); };
-  if (std::none_of(poses.begin(), poses.end(), has_pose)) {
-    err << kName << ": no frame has a fitted body: no BVH, C3D or TRC written\n";
-    return {};
-  }
-  const int64_t first = poses.begin()->first, last = poses.rbegin()->first;
-  std::vector<std::optional<fitting::PoseVector>> frames(
-      static_cast<std::size_t>(last - first + 1));
-  for (const auto& [frame, pose] : poses) frames[static_cast<std::size_t>(frame - first)] = pose;
-  const double rate = record.rate_hz > 0 ? record.rate_hz : 30.0;
-  std::vector<std::string> written;
-  try {
-    io::write_bvh((dir / "body.bvh").string(), fitting::bvh_motion(parameters, frames, rate));
-    written.push_back("body.bvh");
-    const tracking::MarkerTrajectories joints =
-        fitting::joint_trajectories(parameters, frames, rate, first);
-    io::write_c3d((dir / "joints.c3d").string(), joints);
-    written.push_back("joints.c3d");
-    io::write_trc((dir / "joints.trc").string(), joints);
-    written.push_back("joints.trc");
-  } catch (const io::ExportError& e) {
-    err << kName << ": " << e.what() << '\n';
-    failed = true;
-  }
-  return written;
-}
-
 }  // namespace
 
 int fit_command(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
@@ -127,14 +86,12 @@ int fit_command(std::span<const std::string> args, std::ostream& out, std::ostre
                                            std::move(chain.stages), true, kName, err, a.gap);
   auto [rejected, damaged] = run.outcome;
   const std::vector<std::string> written =
-      export_motion(body.parameters(), record, dir, err, damaged);
+      export_motion(body.parameters(), record, dir, kName, err, damaged);
   const auto s = run.node->stats();
   out << kName << ": " << s.groups << " frame groups (" << s.complete << " complete), " << rejected
       << " messages rejected; " << (dir / "body.jsonl").string();
   // Only the files written: a run without a fitted body names none of the motion's.
-  for (std::size_t i = 0; i < written.size(); ++i)
-    out << (i == 0 ? " (and " : ", ") << written[i] << (i + 1 == written.size() ? ")" : "");
-  out << '\n';
+  out << written_list(written) << '\n';
   out << kName << ": " << host_app::host_time_line(s);
   out << chain.hull->summary() << body.summary();
   return damaged || rejected > 0 ? kExitReportedErrors : kExitOk;

@@ -24,6 +24,7 @@
 #include "log_command.hpp"
 #include "markers_command.hpp"
 #include "match_command.hpp"
+#include "reconstruct_command.hpp"
 #include "record_command.hpp"
 #include "regions_command.hpp"
 #include "subcommand.hpp"
@@ -63,6 +64,10 @@ constexpr std::array kSubcommands{
     Subcommand{"fit",
                "fit and track the body on the visual hulls of a recorded LCM log (BVH, C3D, TRC)",
                &syncap::tools::fit_command},
+    Subcommand{"reconstruct",
+               "a recording (a video per camera and its empty scene) to masks, hulls, body and "
+               "a report",
+               &syncap::tools::reconstruct_command},
     Subcommand{"hull", "the visual hull of one mask per calibrated camera (PLY, OBJ, IoU per view)",
                &syncap::tools::hull_command},
     Subcommand{"match",

@@ -17,6 +17,7 @@ TABLE=(
   "syncap log|"
   "syncap markers|--max-lag"
   "syncap fit|--max-lag"
+  "syncap reconstruct|--every"
   "syncap hull|--resolution"
   "syncap match|--spacing"
   "syncap cameras convert|--toml-unit-mm"

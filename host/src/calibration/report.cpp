@@ -1,4 +1,5 @@
 #include "calibration/report.hpp"
+#include "util/html_escape.hpp"
 #include "util/printf_string.hpp"
 
 #include <algorithm>
@@ -10,29 +11,6 @@ namespace syncap::calibration {
 namespace {
 
 using util::printf_string;
-
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 struct MeanSd {
   double mean = 0, sd = 0;
@@ -124,12 +102,14 @@ const char* kStyle =
     ".failed{color:#b00}";
 
 std::string html_summary(const CalibrationReport& r) {
-  std::string out = "<h1>" + escaped(r.title) + "</h1>";
+  std::string out = "<h1>" + util::html_escaped(r.title) + "</h1>";
   if (!r.verdict.empty()) {
-    out += "<p class='verdict " + escaped(r.verdict) + "'>verdict: " + escaped(r.verdict) + "</p>";
+    out += "<p class='verdict " + util::html_escaped(r.verdict) +
+           "'>verdict: " + util::html_escaped(r.verdict) + "</p>";
     if (!r.verdict_reasons.empty()) {
       out += "<ul>";
-      for (const std::string& reason : r.verdict_reasons) out += "<li>" + escaped(reason) + "</li>";
+      for (const std::string& reason : r.verdict_reasons)
+        out += "<li>" + util::html_escaped(reason) + "</li>";
       out += "</ul>";
     }
   }
@@ -137,7 +117,7 @@ std::string html_summary(const CalibrationReport& r) {
   auto row = [&](const std::string& k, const std::string& v) {
     out += "<tr><th>" + k + "</th><td>" + v + "</td></tr>";
   };
-  if (!r.input.empty()) row("input", escaped(r.input));
+  if (!r.input.empty()) row("input", util::html_escaped(r.input));
   row("observations / unknowns / redundancy",
       printf_string("%ld / %ld / %ld", r.observations, r.unknowns, r.redundancy));
   row("sigma0 (a posteriori)", printf_string("%.4f", r.sigma0));
@@ -149,11 +129,11 @@ std::string html_summary(const CalibrationReport& r) {
     row("wand length mean / sd",
         printf_string("%.4f mm / %.4f mm (nominal %.3f mm)", w.mean, w.sd, r.wand_length_mm));
   }
-  if (!r.check_points.empty()) row("check points", escaped(r.check_points));
-  if (!r.halves.empty()) row("two halves", escaped(r.halves));
-  for (const std::string& line : r.model_selection) row("model", escaped(line));
-  for (const std::string& line : r.start_search) row("start search", escaped(line));
-  for (const std::string& m : r.messages) row("note", escaped(m));
+  if (!r.check_points.empty()) row("check points", util::html_escaped(r.check_points));
+  if (!r.halves.empty()) row("two halves", util::html_escaped(r.halves));
+  for (const std::string& line : r.model_selection) row("model", util::html_escaped(line));
+  for (const std::string& line : r.start_search) row("start search", util::html_escaped(line));
+  for (const std::string& m : r.messages) row("note", util::html_escaped(m));
   return out + "</table>";
 }
 
@@ -287,10 +267,10 @@ std::string html_tests(const CalibrationReport& r) {
       "<table><tr><th>test</th><th>outcome</th><th>statistic</th><th>accepted "
       "interval</th><th>detail</th></tr>";
   for (const ReportTest& t : r.tests) {
-    out += "<tr><td>" + escaped(t.name) + "</td><td class='" + (t.passed ? "pass" : "fail") + "'>" +
-           (t.passed ? "pass" : "FAIL") + "</td>" +
+    out += "<tr><td>" + util::html_escaped(t.name) + "</td><td class='" +
+           (t.passed ? "pass" : "fail") + "'>" + (t.passed ? "pass" : "FAIL") + "</td>" +
            printf_string("<td>%.4f</td><td>[%.4f, %.4f]</td>", t.statistic, t.lower, t.upper) +
-           "<td>" + escaped(t.detail) + "</td></tr>";
+           "<td>" + util::html_escaped(t.detail) + "</td></tr>";
   }
   return out + "</table>";
 }
@@ -318,7 +298,8 @@ std::string format_report_text(const CalibrationReport& report) {
 
 std::string format_report_html(const CalibrationReport& report) {
   std::string out = "<!DOCTYPE html><html><head><meta charset='utf-8'><title>" +
-                    escaped(report.title) + "</title><style>" + kStyle + "</style></head><body>";
+                    util::html_escaped(report.title) + "</title><style>" + kStyle +
+                    "</style></head><body>";
   out += html_summary(report);
   out += "<h2>Tests</h2>" + html_tests(report);
   out += "<h2>Parameters</h2>";

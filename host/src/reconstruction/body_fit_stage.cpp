@@ -1,6 +1,8 @@
 #include "reconstruction/body_fit_stage.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "syncap/body_frame_t.hpp"
@@ -65,19 +67,29 @@ void BodyFitStage::fit(int64_t frame_number, std::span<const fitting::SurfacePoi
   }
 }
 
+int BodyFitStage::retry_frames(double start_ms) const {
+  int frames = options_.start_retry_frames;
+  if (options_.start_budget_ms > 0)
+    frames = std::max(frames, static_cast<int>(std::ceil(start_ms / options_.start_budget_ms)));
+  return frames;
+}
+
 void BodyFitStage::start(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
                          pipeline::BodyFitSummary& body) {
-  if (frame_number < next_start_frame_ &&
-      frame_number >= next_start_frame_ - options_.start_retry_frames) {
+  if (frame_number > failed_start_frame_ && frame_number < next_start_frame_) {
     body.flags |= body_frame_t::FLAG_NO_START;
     ++stats_.start_waits;
     return;
   }
+  const auto begin = std::chrono::steady_clock::now();
   const fitting::BodyStart start = fitting::start_body(parameters_, points, options_.start);
   if (!start.found) {
     body.flags |= body_frame_t::FLAG_NO_START;
     ++stats_.no_start;
-    next_start_frame_ = frame_number + options_.start_retry_frames;
+    failed_start_frame_ = frame_number;
+    next_start_frame_ = frame_number + retry_frames(std::chrono::duration<double, std::milli>(
+                                                        std::chrono::steady_clock::now() - begin)
+                                                        .count());
     stats_.last_problem =
         util::printf_string("frame %lld: no start: %s; next attempt at frame %lld",
                             static_cast<long long>(frame_number), start.why_not.c_str(),
@@ -120,9 +132,9 @@ std::string BodyFitStage::summary() const {
       pipeline::quantile(s.fit_us.values(), 0.99) * 1e-3);
   if (s.start_waits > 0)
     line += util::printf_string(
-        "host body: %ld frames waited for the next start (one attempt every %d frames after a "
-        "start found no body)\n",
-        s.start_waits, options_.start_retry_frames);
+        "host body: %ld frames waited for the next start (after a start that found no body, "
+        "the next %d frames or more, so that starts cost at most %.0f ms a frame)\n",
+        s.start_waits, options_.start_retry_frames, options_.start_budget_ms);
   if (!s.last_problem.empty()) line += "host body: last problem: " + s.last_problem + "\n";
   return line;
 }

@@ -40,6 +40,10 @@ struct BodyFitStageOptions {
   // that is no standing person), so a recording without a person to start costs its share of one
   // attempt a frame (syncap fit --body-start-retry-frames). 1: every frame.
   int start_retry_frames = 10;
+  // ... or more, so that failed starts cost at most this much a frame on average: a start that
+  // took T ms is retried after T / start_budget_ms frames when that is longer (a seated person's
+  // hull cost 6 s an attempt on a real studio recording: every 30th frame). 0: no budget.
+  double start_budget_ms = 200.0;
 };
 
 struct BodyFitStageStats {
@@ -77,6 +81,8 @@ class BodyFitStage : public pipeline::Stage {
   void fit(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
            pipeline::BodyFitSummary& body);
   // The automatic start on this frame's points; the tracker goes on from it when it found the body.
+  // Frames to wait after a start that failed in `start_ms` (start_retry_frames, start_budget_ms).
+  int retry_frames(double start_ms) const;
   void start(int64_t frame_number, std::span<const fitting::SurfacePoint> points,
              pipeline::BodyFitSummary& body);
   void describe(const fitting::SurfaceFit& fit, pipeline::BodyFitSummary& body) const;
@@ -87,6 +93,7 @@ class BodyFitStage : public pipeline::Stage {
   fitting::BodyTracker tracker_;
   BodyFitStageStats stats_;
   int64_t next_start_frame_ = std::numeric_limits<int64_t>::min();
+  int64_t failed_start_frame_ = std::numeric_limits<int64_t>::max();  // the last start that failed
 };
 
 }  // namespace syncap::reconstruction

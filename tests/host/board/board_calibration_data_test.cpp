@@ -10,7 +10,6 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include <filesystem>
 #include <sstream>
@@ -20,6 +19,7 @@
 #include "hull/reprojection.hpp"
 #include "hull/views_io.hpp"
 #include "sensor/camera_file.hpp"
+#include "studio_reference_mask.hpp"
 #include "subcommand.hpp"
 #include "syncap_test_data.hpp"
 
@@ -27,44 +27,6 @@ namespace syncap::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr int kFrame = 200;  // the person seated, every view
-
-// The person in frame kFrame of cam<c>/video.avi: colour distance to the median of
-// background.avi above 40 (of 441), opened 5x5, the largest region.
-cv::Mat reference_mask(const fs::path& camera_dir) {
-  cv::VideoCapture background((camera_dir / "background.avi").string());
-  std::vector<cv::Mat> frames;
-  for (cv::Mat f; background.read(f);) frames.push_back(f.clone());
-  cv::Mat median(frames[0].size(), CV_8UC3);
-  std::vector<unsigned char> values(frames.size());
-  for (int y = 0; y < median.rows; ++y) {
-    for (int x = 0; x < median.cols; ++x) {
-      for (int ch = 0; ch < 3; ++ch) {
-        for (std::size_t i = 0; i < frames.size(); ++i)
-          values[i] = frames[i].at<cv::Vec3b>(y, x)[ch];
-        std::ranges::nth_element(values, values.begin() + static_cast<long>(values.size() / 2));
-        median.at<cv::Vec3b>(y, x)[ch] = values[values.size() / 2];
-      }
-    }
-  }
-  cv::VideoCapture video((camera_dir / "video.avi").string());
-  cv::Mat frame;
-  for (int i = 0; i <= kFrame; ++i) video.read(frame);
-  cv::Mat difference;
-  cv::absdiff(frame, median, difference);
-  std::vector<cv::Mat> channels;
-  cv::split(difference, channels);
-  cv::Mat distance = cv::max(cv::max(channels[0], channels[1]), channels[2]);
-  cv::Mat mask = distance > 40;
-  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::Mat::ones(5, 5, CV_8U));
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids);
-  int best = 1;
-  for (int i = 2; i < n; ++i)
-    if (stats.at<int>(i, cv::CC_STAT_AREA) > stats.at<int>(best, cv::CC_STAT_AREA)) best = i;
-  return labels == best;
-}
 
 TEST(BoardCalibrationData, TheStudioIsPosedOnItsBoardAndItsPersonStandsOnTheFloor) {
   SYNCAP_REQUIRE_DATA(data, "multiview/uu-infomcv-4cam-person");
@@ -76,7 +38,7 @@ TEST(BoardCalibrationData, TheStudioIsPosedOnItsBoardAndItsPersonStandsOnTheFloo
     const fs::path camera = data / ("cam" + std::to_string(c));
     fs::create_directories(dir / ("masks" + std::to_string(c)));
     fs::create_directories(dir / "frame");
-    const cv::Mat mask = reference_mask(camera);
+    const cv::Mat mask = test::studio_reference_mask(camera, test::kStudioFrame);
     cv::imwrite((dir / ("masks" + std::to_string(c)) / "frame.png").string(), mask);
     cv::imwrite((dir / "frame" / ("cam" + std::to_string(c) + ".png")).string(), mask);
     args.insert(args.end(), {"--clip", (camera / "checkerboard.avi").string(), "--intrinsics",

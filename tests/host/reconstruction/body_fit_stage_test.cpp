@@ -118,6 +118,7 @@ TEST_F(BodyFitStageTest, AFrameWithoutPointsIsFlaggedAndNothingIsFitted) {
 TEST_F(BodyFitStageTest, AFailedStartIsRetriedAtTheStatedInterval) {
   BodyFitStageOptions options;
   options.start_retry_frames = 3;
+  options.start_budget_ms = 0;  // the interval alone, whatever a start costs on this machine
   BodyFitStage stage(body::hanim_skeleton(), options);
   for (int64_t f = 20; f < 27; ++f) {
     pipeline::FrameWork work = frame(f, standing(0.3));
@@ -142,10 +143,30 @@ TEST_F(BodyFitStageTest, AFailedStartIsRetriedAtTheStatedInterval) {
   EXPECT_NE(stage.summary().find("frame 23: no start: "), std::string::npos) << stage.summary();
   EXPECT_NE(stage.summary().find("; next attempt at frame 26"), std::string::npos)
       << stage.summary();
-  EXPECT_NE(stage.summary().find("4 frames waited for the next start (one attempt every 3 "
-                                 "frames"),
+  EXPECT_NE(stage.summary().find("4 frames waited for the next start (after a start that found "
+                                 "no body, the next 3 frames or more"),
             std::string::npos)
       << stage.summary();
+}
+
+// Failed starts that cost more than the budget a frame wait longer: with a budget of 1 us a
+// frame, a start that took a millisecond waits a thousand frames.
+TEST_F(BodyFitStageTest, ExpensiveFailedStartsWaitLongerThanTheInterval) {
+  BodyFitStageOptions options;
+  options.start_retry_frames = 3;
+  options.start_budget_ms = 1e-3;
+  BodyFitStage stage(body::hanim_skeleton(), options);
+  for (int64_t f = 20; f < 30; ++f) {
+    pipeline::FrameWork work = frame(f, standing(0.3));
+    if (f == 20) {
+      for (Eigen::Vector3d& p : work.hull->surface_mm) p.z() *= 0.1;  // no standing person
+    }
+    stage.process(work);
+    EXPECT_EQ(work.body->flags, body_frame_t::FLAG_NO_START) << f;  // the person waits too
+  }
+  EXPECT_EQ(stage.stats().no_start, 1);
+  EXPECT_EQ(stage.stats().start_waits, 9);
+  EXPECT_GT(stage.next_start_frame(), 30);
 }
 
 TEST_F(BodyFitStageTest, TheMessageAndTheJsonLineCarryThePose) {
