@@ -51,7 +51,8 @@ struct CalibrateArgs {
   int64_t last_frame = std::numeric_limits<int64_t>::max();
   bool in_range(int64_t frame) const { return frame >= first_frame && frame <= last_frame; }
   double idle_timeout_s = 5.0;
-  bool progress = false;
+  bool progress = false;  // --progress, kept for old scripts: the default now
+  bool quiet = false;
   std::optional<calibration::ImageSize> image_size;  // for sources without one (CSV)
   calibration::CalibrationOptions options;
 };
@@ -187,8 +188,11 @@ void add_source_options(CLI::App& app, CalibrateArgs& a) {
                    "lcm: stop after N frame groups (default 0: no limit)");
   cli::add_checked(app, "--idle-timeout-s", a.idle_timeout_s, "S", cli::finite(),
                    "lcm: stop S seconds after the last blob frame (default 5)");
-  app.add_flag("--progress", a.progress,
-               "print progress on stderr (default: only when stderr is a terminal)");
+  // Progress goes to stderr by default, on a terminal or not (a 20-camera rig takes minutes).
+  app.add_flag("--quiet", a.quiet,
+               "no progress on stderr (default: every step, and a line a "
+               "second while an adjustment runs long)");
+  app.add_flag("--progress", a.progress, "progress on stderr (the default)")->group("");
 }
 
 void add_wand_options(CLI::App& app, CalibrateArgs& a) {
@@ -461,7 +465,7 @@ int calibrate_command(std::span<const std::string> args, std::ostream& out, std:
     err << kPrefix << "--out-dir " << a.out << ": " << problem << '\n';
     return kExitUsage;
   }
-  const bool progress = a.progress || (&err == &std::cerr && ::isatty(STDERR_FILENO));
+  const bool progress = !a.quiet;
   if (progress)
     a.options.progress = [&err](const std::string& line) { err << kPrefix << line << '\n'; };
   calibration::Observations observations;

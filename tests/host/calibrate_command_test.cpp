@@ -64,6 +64,16 @@ TEST(CalibrateCommand, CsvWandRecordingGivesTheCalibrationFolder) {
             kExitOk)
       << err;
   EXPECT_NE(out.find("calibrated 3 cameras"), std::string::npos) << out;
+  // Issue 37: progress on stderr by default, also when it is no terminal (a string here).
+  EXPECT_NE(err.find("syncap calibrate: observations: 60 frames"), std::string::npos) << err;
+  EXPECT_NE(err.find("syncap calibrate: verdict: "), std::string::npos) << err;
+  std::string quiet_err;
+  EXPECT_EQ(run({"--input", "csv:" + (dir / "wand.csv").string(), "--wand-length-mm", "1000",
+                 "--image-size", "1280x1024", "--pixel-size", "0.0067", "--sigma-px", "0.2",
+                 "--out", (dir / "out").string(), "--quiet"},
+                out, quiet_err),
+            kExitOk);
+  EXPECT_EQ(quiet_err.find("observations:"), std::string::npos) << quiet_err;
   for (const char* file : {"cameras.json", "report.txt", "report.html", "residuals.csv",
                            "points.csv", "cameras.opencv.yaml", "calibration.toml"}) {
     EXPECT_TRUE(fs::exists(dir / "out" / file)) << file;
@@ -212,7 +222,7 @@ TEST(CalibrateCommand, HelpIsComplete) {
                                            "--frames N",
                                            "--idle-timeout-s S",
                                            "(default 5)",
-                                           "--progress",
+                                           "--quiet",
                                            "Exit status: 0 calibrated"});
 }
 

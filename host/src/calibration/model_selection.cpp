@@ -70,7 +70,8 @@ GroupTest test_group(const scene::Network& clean, estimators::BundleAdjustmentRe
   prepare_stage(network, extended, {true, false, true});
   estimators::BundleAdjustmentResult r;
   try {
-    r = estimators::adjust(network, {});
+    r = estimators::adjust(network,
+                           adjustment_options(options, "model test " + interior_names(group)));
   } catch (const estimators::NetworkError& e) {
     test.text = interior_names(group) + ": not tested (" + e.what() + ")";
     return test;

@@ -1,5 +1,8 @@
 #include "calibration/stages.hpp"
 
+#include <chrono>
+#include <memory>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
@@ -8,6 +11,8 @@
 #include "calibration/model_selection.hpp"
 #include "estimators/bootstrap.hpp"
 #include "sensor/rotation.hpp"
+
+#include "util/printf_string.hpp"
 
 namespace syncap::calibration {
 namespace {
@@ -159,10 +164,34 @@ void prepare_stage(scene::Network& network, const CalibrationOptions& options, S
   network.residual_test.snoop_with_a_posteriori_sigma0 = options.snoop_with_a_posteriori_sigma0;
 }
 
+estimators::BundleOptions adjustment_options(const CalibrationOptions& options,
+                                             const std::string& what) {
+  estimators::BundleOptions bundle;
+  if (!options.progress) return bundle;
+  using Clock = std::chrono::steady_clock;
+  struct Told {
+    Clock::time_point start = Clock::now(), last = start;
+  };
+  auto told = std::make_shared<Told>();
+  bundle.progress = [told, what, say = options.progress](const estimators::AdjustmentProgress& p) {
+    const Clock::time_point now = Clock::now();
+    if (now - told->start < std::chrono::seconds(1) || now - told->last < std::chrono::seconds(1))
+      return;
+    told->last = now;
+    say(util::printf_string("%s: solve %d, iteration %d, cost %.6g, %ld measurements, %.0f s",
+                            what.c_str(), p.solve, p.iteration, p.cost, p.measurements_kept,
+                            std::chrono::duration<double>(now - told->start).count()));
+  };
+  return bundle;
+}
+
 estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
                                                 const CalibrationOptions& options, Stage stage) {
   prepare_stage(network, options, stage);
-  return estimators::adjust(network, {});
+  return estimators::adjust(network,
+                            adjustment_options(options, stage.snoop   ? "adjustment (data snooping)"
+                                                        : stage.clean ? "adjustment (clean)"
+                                                                      : "adjustment"));
 }
 
 SecondStageStart second_stage_start(scene::Network network, const CalibrationOptions& options) {

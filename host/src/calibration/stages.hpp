@@ -32,6 +32,12 @@ void prepare_stage(scene::Network& network, const CalibrationOptions& options, S
 estimators::BundleAdjustmentResult adjust_stage(scene::Network& network,
                                                 const CalibrationOptions& options, Stage stage);
 
+// The adjustment's options with its progress told on options.progress while it runs long: a line
+// ("<what>: solve 2, iteration 14, cost 1234.5, 45120 measurements, 3 s") once a second after
+// its first second; nothing for an adjustment done within a second.
+estimators::BundleOptions adjustment_options(const CalibrationOptions& options,
+                                             const std::string& what);
+
 // The second stage's approximate values from a network's observations alone: the start
 // (relative orientations, resection, scale), the first stage (c, xp, yp and the exterior, on the
 // points the start triangulated), and the levelled frame. The models' interiors are the start's.

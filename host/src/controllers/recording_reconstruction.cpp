@@ -145,16 +145,20 @@ Reconstruction reconstruct_recording(const std::vector<sensor::CameraModel>& cam
   if (callbacks.started && total > 0) callbacks.started(first, last);
   for (int64_t k = first; k <= last; k += options.every) {
     run.node->on_trigger(trigger_of(k, options.rate_hz));
+    bool any = false;
     for (std::size_t i = 0; i < maskers.size(); ++i) {
       const int id = options.recordings[i].camera_id;
       const std::optional<RecordingMasker::Masked> m = maskers[i].mask(k);
       if (!m) continue;  // a folder's gap: the group goes without this camera (flagged)
+      any = true;
       if (!options.mask_dir.empty()) write_mask(options.mask_dir, id, k, m->mask);
       if (callbacks.masked) callbacks.masked(k, id, *m);
       send_silhouette(*run.node, id, k, m->mask, options.masking.contour_tolerance_px);
     }
     run.node->poll();
-    ++run.frames_fed;
+    // A frame no capture holds (a video whose stream ends before its container says) is no
+    // frame of the recording.
+    if (any) ++run.frames_fed;
     if (callbacks.progress) callbacks.progress(run.node->stats().processed, run.frames_fed, total);
   }
   // The stages are behind: said while they catch up (all but the groups the grouper still holds

@@ -93,7 +93,7 @@ struct ReconstructionCallbacks {
 struct Reconstruction {
   std::unique_ptr<pipeline::HostNode> node;
   StageChain chain;
-  int64_t frames_fed = 0;
+  int64_t frames_fed = 0;               // frames at least one capture holds
   std::vector<std::string> alignments;  // per recording, "camera N: ..."
   std::vector<std::string> notes;       // a video cut short, frames missing
   double mask_ms_per_frame = 0;         // per camera and frame, mean

@@ -10,6 +10,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -24,6 +25,23 @@
 
 namespace syncap::estimators {
 namespace {
+
+// Hands BundleOptions::progress each of Ceres' iterations.
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  ProgressCallback(const std::function<void(const AdjustmentProgress&)>& progress, int solve,
+                   long measurements_kept)
+      : progress_(progress), solve_(solve), kept_(measurements_kept) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    progress_({solve_, summary.iteration, summary.cost, kept_});
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::function<void(const AdjustmentProgress&)>& progress_;
+  int solve_;
+  long kept_;
+};
 
 class Adjuster {
  public:
@@ -45,6 +63,10 @@ class Adjuster {
 
   void adjust_and_snoop();
   bool solve(bool strict);
+  long kept_measurements() const {
+    return static_cast<long>(
+        std::count(status_.begin(), status_.end(), MeasurementStatus::kAccepted));
+  }
   void evaluate_residuals();
   bool compute_cofactors();
   void test_adjustment();
@@ -87,7 +109,10 @@ bool Adjuster::solve(bool strict) {
   terms_ = build_problem(resolved_, options_, datum_, status_, &parameters_, &problem);
   const auto& design = network_.design;
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options(design, options_, strict, &parameters_, problem), &problem, &summary);
+  ceres::Solver::Options solver = solver_options(design, options_, strict, &parameters_, problem);
+  ProgressCallback progress(options_.progress, result_.adjustments + 1, kept_measurements());
+  if (options_.progress) solver.callbacks.push_back(&progress);
+  ceres::Solve(solver, &problem, &summary);
   parameters_.read_points_from_groups();
   unknowns_ = estimated_values(problem);
   ++result_.adjustments;

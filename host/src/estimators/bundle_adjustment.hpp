@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +34,15 @@
 
 namespace syncap::estimators {
 
+// Where an adjustment stands, after each of Ceres' iterations: what a long adjustment tells
+// while it runs (a 20-camera rig's takes minutes).
+struct AdjustmentProgress {
+  int solve = 0;               // 1 for the first solve, then one more per round of data snooping
+  int iteration = 0;           // of this solve, 0 the start
+  double cost = 0;             // Ceres' cost, half the weighted sum of squares
+  long measurements_kept = 0;  // image measurements in this solve (not yet rejected)
+};
+
 // What adjust() needs beyond the network (whose DesignOptions and ResidualTest it follows).
 struct BundleOptions {
   int num_threads = 1;
@@ -40,6 +50,8 @@ struct BundleOptions {
   double exact_distance_sigma_mm = 1e-4;
   // Ceres' progress per iteration on stderr (OUTPUT ITERATIONS also switches it on).
   bool log_iterations = false;
+  // Called after every iteration of every solve (the caller throttles what it prints).
+  std::function<void(const AdjustmentProgress&)> progress;
 };
 
 // Thrown for a network adjust() cannot take: the message names the element (measurement index,

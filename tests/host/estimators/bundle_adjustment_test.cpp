@@ -146,6 +146,40 @@ TEST(BundleAdjustment, DataSnoopingRemovesEveryInjectedBlunder) {
   }
 }
 
+// Issue 37: the progress of every iteration of every solve, what a long calibration tells while it
+// runs: a solve per round of data snooping, each with its measurements still in, costs that end
+// lower than they start.
+TEST(BundleAdjustment, ProgressTellsEveryIterationOfEverySolve) {
+  WandSimulation settings = small_network();
+  settings.blunder_fraction = 0.05;
+  const SimulatedWandNetwork sim = simulate_wand_network(settings);
+  std::vector<AdjustmentProgress> told;
+  BundleOptions options;
+  options.progress = [&told](const AdjustmentProgress& p) { told.push_back(p); };
+  const BundleAdjustmentResult r = adjust(sim.network, options);
+  ASSERT_FALSE(told.empty());
+  EXPECT_EQ(told.front().solve, 1);
+  EXPECT_EQ(told.front().iteration, 0);
+  EXPECT_EQ(told.front().measurements_kept, static_cast<long>(sim.network.measurements.size()));
+  EXPECT_EQ(told.back().solve, r.adjustments);
+  EXPECT_GT(r.adjustments, 1);  // snooping re-adjusted
+  // Later solves have fewer measurements in; within a solve the iterations count up and the
+  // cost of the last is at most the first's.
+  for (std::size_t i = 1; i < told.size(); ++i) {
+    if (told[i].solve == told[i - 1].solve) {
+      EXPECT_EQ(told[i].iteration, told[i - 1].iteration + 1);
+      EXPECT_EQ(told[i].measurements_kept, told[i - 1].measurements_kept);
+    } else {
+      EXPECT_EQ(told[i].solve, told[i - 1].solve + 1);
+      EXPECT_EQ(told[i].iteration, 0);
+      EXPECT_LE(told[i].measurements_kept, told[i - 1].measurements_kept);
+      EXPECT_LE(told[i - 1].cost,
+                told[i - 1 - static_cast<std::size_t>(told[i - 1].iteration)].cost);
+    }
+  }
+  EXPECT_LT(told.back().measurements_kept, told.front().measurements_kept);
+}
+
 TEST(BundleAdjustment, FixedParametersStayFixed) {
   SimulatedWandNetwork sim = simulate_wand_network(small_network());
   scene::Network network = without_snooping(sim.network);
