@@ -11,8 +11,6 @@
 #include <limits>
 #include <optional>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "app/host_options.hpp"
 #include "board_calibrate_command.hpp"
 #include "controllers/recording_reconstruction.hpp"
@@ -22,6 +20,7 @@
 #include "subcommand.hpp"
 #include "syncap/cli/options.hpp"
 #include "syncap/segmentation/background_clip.hpp"
+#include "syncap/segmentation/mask_images.hpp"
 #include "syncap/segmentation/mask_options.hpp"
 #include "util/file_extension.hpp"
 #include "util/printf_string.hpp"
@@ -196,11 +195,7 @@ int calibrate_on_board(const ReconstructArgs& a, const std::vector<int>& ids, st
       throw segmentation::ImageSequenceError(a.captures[i] + ": no frame " +
                                              std::to_string(middle) + " (the board's masks)");
     const fs::path masks = dir / "masks" / ("cam" + std::to_string(ids[i]));
-    fs::create_directories(masks);
-    const fs::path file =
-        masks / util::printf_string("mask_%06lld.png", static_cast<long long>(middle));
-    if (!cv::imwrite(file.string(), masked->mask))
-      throw segmentation::ImageSequenceError("cannot write " + file.string());
+    segmentation::write_mask_image(masks, middle, masked->mask);
     for (const std::string& s :
          {std::string("--clip"), a.board_clips[i], std::string("--masks"), masks.string()})
       args.push_back(s);

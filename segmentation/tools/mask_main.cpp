@@ -11,11 +11,10 @@
 #include <optional>
 #include <string>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "syncap/cli/options.hpp"
 #include "syncap/segmentation/background_clip.hpp"
 #include "syncap/segmentation/image_sequence.hpp"
+#include "syncap/segmentation/mask_images.hpp"
 #include "syncap/segmentation/mask_options.hpp"
 #include "syncap/segmentation/medi_picture.hpp"
 #include "syncap/segmentation/model_alignment.hpp"
@@ -97,10 +96,7 @@ Tally mask_all(const Arguments& a, seg::ImageSequence& in, seg::MediPicture& mas
     const cv::Mat mask = masking.apply(*image);
     t.mask_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-    char name[32];
-    std::snprintf(name, sizeof name, "mask_%06lld.png", static_cast<long long>(k));
-    if (!cv::imwrite((out / name).string(), mask))
-      throw seg::ImageSequenceError("cannot write " + (out / name).string());
+    seg::write_mask_image(out, k, mask);
     t.foreground += static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total());
     ++t.masks;
   }

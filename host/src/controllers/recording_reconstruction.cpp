@@ -6,10 +6,9 @@
 #include <stdexcept>
 #include <thread>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "syncap/proto/channels.hpp"
 #include "syncap/segmentation/background_clip.hpp"
+#include "syncap/segmentation/mask_images.hpp"
 #include "syncap/segmentation/model_alignment.hpp"
 #include "syncap/segmentation/silhouette_contours.hpp"
 
@@ -42,15 +41,6 @@ std::pair<int64_t, int64_t> common_frames(std::vector<RecordingMasker>& maskers)
     last = std::min(last, m.capture().last_frame());
   }
   return {first, last};
-}
-
-void write_mask(const std::filesystem::path& dir, int camera_id, int64_t k, const cv::Mat& mask) {
-  const std::filesystem::path folder = dir / ("cam" + std::to_string(camera_id));
-  std::filesystem::create_directories(folder);
-  char name[32];
-  std::snprintf(name, sizeof name, "mask_%06lld.png", static_cast<long long>(k));
-  if (!cv::imwrite((folder / name).string(), mask))
-    throw segmentation::ImageSequenceError("cannot write " + (folder / name).string());
 }
 
 // What the camera's edge sends for a frame in mask-only mode: the frame's record (no blobs; how
@@ -151,7 +141,8 @@ Reconstruction reconstruct_recording(const std::vector<sensor::CameraModel>& cam
       const std::optional<RecordingMasker::Masked> m = maskers[i].mask(k);
       if (!m) continue;  // a folder's gap: the group goes without this camera (flagged)
       any = true;
-      if (!options.mask_dir.empty()) write_mask(options.mask_dir, id, k, m->mask);
+      if (!options.mask_dir.empty())
+        segmentation::write_mask_image(options.mask_dir / ("cam" + std::to_string(id)), k, m->mask);
       if (callbacks.masked) callbacks.masked(k, id, *m);
       send_silhouette(*run.node, id, k, m->mask, options.masking.contour_tolerance_px);
     }

@@ -4,6 +4,7 @@
 #include "board_calibrate_command.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -38,8 +39,12 @@ BoardRun run(const std::vector<std::string>& args) {
 
 class BoardCalibrateCommand : public ::testing::Test {
  protected:
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
   static void SetUpTestSuite() {
-    dir_ = fs::path(::testing::TempDir()) / "board_calibrate_command";
+    // One folder a process: ctest runs each test of the suite as a process of its own, in
+    // parallel, and one's set-up must not remove the other's clips.
+    dir_ =
+        fs::path(::testing::TempDir()) / ("board_calibrate_command_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     const board::BoardSpec b{{7, 6}, 100.0};
     for (int i = 0; i < 3; ++i) {
