@@ -10,7 +10,7 @@ pkg_check_modules(SODIUM REQUIRED IMPORTED_TARGET libsodium)
 pkg_check_modules(GPIOD REQUIRED IMPORTED_TARGET libgpiod>=1.6)
 # libyaml (C): syncap-trigger reads its YAML config and the rig file
 pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
-find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d video videoio)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d video videoio aruco)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(yaml-cpp REQUIRED)

@@ -21,7 +21,7 @@ PACKAGES=(
   libsodium-dev
   # trigger GPIO, and its YAML config (libyaml)
   libgpiod-dev gpiod libyaml-dev
-  # vision and geometry
+  # vision and geometry (libopencv-dev brings libopencv-contrib-dev: aruco, for ChArUco boards)
   libopencv-dev libeigen3-dev libceres-dev libcgal-dev nlohmann-json3-dev libyaml-cpp-dev
   # anipose / Pose2Sim camera files (TOML: toml++)
   libtomlplusplus-dev

@@ -48,13 +48,15 @@ struct BoardArgs {
 };
 
 constexpr const char* kDescription =
-    "usage: syncap calibrate --board COLSxROWSxMM --clip FILE|DIR... --intrinsics FILE... "
-    "--out-dir DIR [--masks DIR...]\n"
-    "Poses every camera on a checkerboard lying in the scene: per camera (in --clip order) a "
-    "video or image folder of the board, which must not move, and the camera's OpenCV "
-    "intrinsics. The world frame is the board's: origin at its first inner corner, x along its "
-    "COLS corners, z = 0 the board (the floor when it lies on it), z towards the cameras. Boards "
-    "whose corner counts are both even look the same after a half turn: --masks (one folder of "
+    "usage: syncap calibrate --board COLSxROWSxMM|charuco:SXxSYxMMxMM[:DICT] --clip FILE|DIR... "
+    "--intrinsics FILE... --out-dir DIR [--masks DIR...]\n"
+    "Poses every camera on a checkerboard or ChArUco board lying in the scene: per camera (in "
+    "--clip order) a video or image folder of the board, which must not move, and the camera's "
+    "OpenCV intrinsics. A checkerboard must be seen whole; a ChArUco board in part (its markers "
+    "name its corners). The world frame is the board's: origin at its first inner corner, x along "
+    "its COLS corners, z = 0 the board (the floor when it lies on it), z towards the cameras. "
+    "Checkerboards whose corner counts are both even look the same after a half turn: --masks (one "
+    "folder of "
     "the person's masks per camera, the same file names at the same instants, e.g. syncap mask's) "
     "tells the cameras' turns apart by the hull they give. Writes DIR/cameras.json, "
     "DIR/cameras.opencv.yaml and DIR/calibration.toml.\n";
@@ -72,13 +74,13 @@ std::optional<int> parse_board_args(std::span<const std::string> args, BoardArgs
            const auto spec = board::parse_board_spec(t);
            if (!spec)
              throw CLI::ValidationError("--board",
-                                        "'" + t +
-                                            "': expected COLSxROWSxMM, the inner "
-                                            "corners and the square's side, e.g. 8x6x115");
+                                        "'" + t + "': expected " + board::kBoardSpecGrammar);
            a.board = *spec;
          },
-         "the board: inner corners COLS x ROWS and the square's side in mm")
-      ->option_text("COLSxROWSxMM")
+         "the board: a checkerboard's inner corners COLS x ROWS and its square's side in mm, "
+         "or charuco: a ChArUco board's squares, their side, its markers' side in mm and its "
+         "ArUco dictionary (default 4x4_50)")
+      ->option_text("COLSxROWSxMM|charuco:SXxSYxMMxMM[:DICT]")
       ->required();
   app.add_option("--clip", a.clips, "one camera's clip of the board (repeat per camera)")
       ->option_text("FILE|DIR")
@@ -121,23 +123,28 @@ std::vector<int> camera_ids(const BoardArgs& a) {
   return ids;
 }
 
-// Each camera's intrinsics, sized by its clip where the file gives no size.
-std::vector<sensor::OpenCvCamera> read_intrinsics(const BoardArgs& a,
-                                                  const std::vector<board::BoardView>& views) {
+// Each camera's intrinsics, as the files give them.
+std::vector<sensor::OpenCvCamera> read_intrinsics(const BoardArgs& a) {
   std::vector<sensor::OpenCvCamera> cameras;
-  if (a.intrinsics.size() == 1 && views.size() > 1) {
+  if (a.intrinsics.size() == 1 && a.clips.size() > 1) {
     for (const sensor::OpenCvCameraEntry& e : sensor::read_opencv_intrinsics(a.intrinsics[0]))
       cameras.push_back(e.camera);
-    if (cameras.size() != views.size())
+    if (cameras.size() != a.clips.size())
       throw sensor::CameraFileError(util::printf_string("%s: %zu camera(s) for %zu clip(s)",
                                                         a.intrinsics[0].c_str(), cameras.size(),
-                                                        views.size()));
-  } else if (a.intrinsics.size() == views.size()) {
+                                                        a.clips.size()));
+  } else if (a.intrinsics.size() == a.clips.size()) {
     for (const std::string& file : a.intrinsics)
       cameras.push_back(sensor::read_opencv_intrinsics(file).at(0).camera);
   } else {
     throw CLI::ValidationError("--intrinsics", "one file per --clip, or one file for all");
   }
+  return cameras;
+}
+
+// The intrinsics sized by their clips where the files give no size; a size that differs named.
+void check_image_sizes(const BoardArgs& a, const std::vector<board::BoardView>& views,
+                       std::vector<sensor::OpenCvCamera>& cameras) {
   for (std::size_t i = 0; i < cameras.size(); ++i) {
     if (cameras[i].image_size.area() == 0) cameras[i].image_size = views[i].image_size;
     if (cameras[i].image_size != views[i].image_size)
@@ -146,7 +153,6 @@ std::vector<sensor::OpenCvCamera> read_intrinsics(const BoardArgs& a,
           cameras[i].image_size.width, cameras[i].image_size.height, views[i].image_size.width,
           views[i].image_size.height));
   }
-  return cameras;
 }
 
 // One mask per camera at the same instant: the middle file name all folders share.
@@ -198,27 +204,33 @@ void write_outputs(const fs::path& dir, const sensor::CameraSet& set, std::ostre
 }
 
 std::vector<board::BoardView> observe_boards(const BoardArgs& a, const std::vector<int>& ids,
+                                             const std::vector<sensor::OpenCvCamera>& intrinsics,
                                              std::ostream& out) {
   std::vector<board::BoardView> views;
   for (std::size_t i = 0; i < a.clips.size(); ++i) {
-    views.push_back(board::observe_board(a.clips[i], a.board, a.frames));
-    out << util::printf_string("camera %d: board in %d of %d frames read, corner spread %.3f px\n",
-                               ids[i], views.back().frames_found, views.back().frames_read,
-                               views.back().spread_px);
+    views.push_back(board::observe_board(a.clips[i], a.board, a.frames, 5, &intrinsics[i]));
+    out << util::printf_string(
+        "camera %d: board in %d of %d frames read, %zu of %zu corners, corner spread %.3f px\n",
+        ids[i], views.back().frames_found, views.back().frames_read, views.back().corners.size(),
+        board::board_points(a.board).size(), views.back().spread_px);
   }
   return views;
 }
 
 // Per camera its pose from the corners in the detector's order and reversed (the half turn).
 std::vector<std::array<board::BoardPose, 2>> board_poses(
-    const BoardArgs& a, const std::vector<int>& ids, const std::vector<board::BoardView>& views) {
-  const std::vector<sensor::OpenCvCamera> intrinsics = read_intrinsics(a, views);
-  const bool z_up = board::cameras_below_board(intrinsics[0], views[0].corners, a.board);
+    const BoardArgs& a, const std::vector<int>& ids, const std::vector<board::BoardView>& views,
+    const std::vector<sensor::OpenCvCamera>& intrinsics) {
+  const bool z_up =
+      board::cameras_below_board(intrinsics[0], views[0].corners, a.board, views[0].point_ids);
   std::vector<std::array<board::BoardPose, 2>> poses;
   for (std::size_t i = 0; i < views.size(); ++i) {
+    const board::BoardView& v = views[i];
     poses.push_back(
-        {board::pose_on_board(intrinsics[i], views[i].corners, a.board, ids[i], false, z_up),
-         board::pose_on_board(intrinsics[i], views[i].corners, a.board, ids[i], true, z_up)});
+        {board::pose_on_board(intrinsics[i], v.corners, a.board, ids[i], false, z_up, v.point_ids),
+         board::has_half_turn_symmetry(a.board)
+             ? board::pose_on_board(intrinsics[i], v.corners, a.board, ids[i], true, z_up)
+             : board::BoardPose{}});
   }
   return poses;
 }
@@ -253,7 +265,8 @@ std::vector<bool> chosen_turns(const BoardArgs& a,
 }
 
 // The chosen poses as a camera set with its quality block, each camera's RMS judged.
-sensor::CameraSet camera_set(const BoardArgs& a, const std::vector<int>& ids,
+sensor::CameraSet camera_set(const std::vector<int>& ids,
+                             const std::vector<board::BoardView>& views,
                              const std::vector<std::array<board::BoardPose, 2>>& poses,
                              const std::vector<bool>& reversed, Verdict& verdict,
                              std::ostream& out) {
@@ -266,9 +279,15 @@ sensor::CameraSet camera_set(const BoardArgs& a, const std::vector<int>& ids,
     set.quality->per_camera_rms_px[ids[i]] = p.rms_px;
     sum_squares += p.rms_px * p.rms_px;
     const Eigen::Vector3d c = p.camera.projection_centre();
+    const std::string left_out =
+        p.corners_used < p.corners_seen
+            ? util::printf_string(", %d of %d corners left out (far off the pose)",
+                                  p.corners_seen - p.corners_used, p.corners_seen)
+            : "";
     out << util::printf_string(
-        "camera %d: board RMS %.3f px (max %.3f)%s, centre %.0f %.0f %.0f mm\n", ids[i], p.rms_px,
-        p.max_px, reversed[i] ? ", corners turned half" : "", c.x(), c.y(), c.z());
+        "camera %d: board RMS %.3f px (max %.3f)%s%s, centre %.0f %.0f %.0f mm\n", ids[i], p.rms_px,
+        p.max_px, reversed[i] ? ", corners turned half" : "", left_out.c_str(), c.x(), c.y(),
+        c.z());
     if (p.rms_px > kWeakRmsPx) {
       verdict.failed(
           util::printf_string("camera %d misses the board's corners by %.2f px RMS "
@@ -281,7 +300,8 @@ sensor::CameraSet camera_set(const BoardArgs& a, const std::vector<int>& ids,
   }
   set.quality->rms_px = std::sqrt(sum_squares / static_cast<double>(poses.size()));
   set.quality->sigma0_px = set.quality->rms_px;
-  set.quality->observations = static_cast<long>(poses.size() * board::board_points(a.board).size());
+  set.quality->observations = 0;
+  for (const board::BoardView& v : views) set.quality->observations += std::ssize(v.corners);
   set.quality->verdict = verdict.word;
   set.quality->verdict_reasons = verdict.reasons;
   return set;
@@ -289,11 +309,13 @@ sensor::CameraSet camera_set(const BoardArgs& a, const std::vector<int>& ids,
 
 int run(const BoardArgs& a, std::ostream& out, std::ostream& err) {
   const std::vector<int> ids = camera_ids(a);
-  const std::vector<board::BoardView> views = observe_boards(a, ids, out);
-  const std::vector<std::array<board::BoardPose, 2>> poses = board_poses(a, ids, views);
+  std::vector<sensor::OpenCvCamera> intrinsics = read_intrinsics(a);
+  const std::vector<board::BoardView> views = observe_boards(a, ids, intrinsics, out);
+  check_image_sizes(a, views, intrinsics);
+  const std::vector<std::array<board::BoardPose, 2>> poses = board_poses(a, ids, views, intrinsics);
   Verdict verdict;
   const std::vector<bool> reversed = chosen_turns(a, poses, verdict, out);
-  const sensor::CameraSet set = camera_set(a, ids, poses, reversed, verdict, out);
+  const sensor::CameraSet set = camera_set(ids, views, poses, reversed, verdict, out);
   write_outputs(a.out, set, out);
   out << "verdict: " << verdict.word << '\n';
   for (const std::string& r : verdict.reasons) out << "  " << r << '\n';

@@ -46,14 +46,15 @@ struct ReconstructArgs {
 
 constexpr const char* kDescription =
     "usage: syncap reconstruct --capture VIDEO|DIR --background VIDEO|DIR ... "
-    "(--calibration FILE | --board COLSxROWSxMM --board-clip VIDEO|DIR ... --intrinsics FILE ...) "
+    "(--calibration FILE | --board BOARD --board-clip VIDEO|DIR ... --intrinsics FILE ...) "
     "--out-dir DIR [options]\n"
     "Reconstructs a person from synchronised recordings, one --capture and one --background (the "
     "empty scene) per camera, in the same camera order: every frame masked as syncap-edge masks "
     "(trained on the background, aligned to the capture), the hull of every frame, the body "
     "fitted and tracked, as syncap-host does live. The cameras come from --calibration (any "
     "camera file syncap reads, cameras in the captures' order unless --camera-ids) or from a "
-    "checkerboard lying on the floor (--board with a clip and OpenCV intrinsics per camera: as "
+    "checkerboard or ChArUco board lying on the floor (--board with a clip and OpenCV intrinsics "
+    "per camera: as "
     "syncap calibrate --board, into DIR/calibration). Writes DIR/hulls/hull_<frame>.ply, "
     "DIR/frames.jsonl (each frame's hull and pose), DIR/body.bvh, DIR/joints.c3d, "
     "DIR/joints.trc, with --mask-images DIR/masks/camN/mask_NNNNNN.png, and DIR/report.html: "
@@ -80,9 +81,10 @@ void add_input_options(cli::App& app, ReconstructArgs& a) {
       ->option_text("FILE")
       ->check(CLI::ExistingPath);
   app.add_option("--board", a.board,
-                 "calibrate from a checkerboard instead: inner corners COLS x ROWS and the "
-                 "square's side in mm (as syncap calibrate --board)")
-      ->option_text("COLSxROWSxMM");
+                 "calibrate from a board instead: a checkerboard's inner corners and square "
+                 "(COLSxROWSxMM) or a ChArUco board (charuco:SXxSYxMMxMM[:DICT]), as syncap "
+                 "calibrate --board")
+      ->option_text("BOARD");
   app.add_option("--board-clip", a.board_clips, "with --board: one camera's clip of the board")
       ->option_text("VIDEO|DIR")
       ->check(CLI::ExistingPath);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "board/charuco_detection.hpp"
 #include "hull/views_io.hpp"
 #include "util/printf_string.hpp"
 
@@ -126,41 +127,98 @@ std::optional<std::vector<cv::Point2d>> find_board_corners(const cv::Mat& grey,
   return std::nullopt;
 }
 
-BoardView observe_board(const fs::path& clip, const BoardSpec& board, int max_frames, int step) {
+namespace {
+
+// Every detection's corners by board point.
+using Detection = std::vector<std::pair<int, cv::Point2d>>;
+
+std::optional<Detection> detect_board(const cv::Mat& grey, const BoardSpec& board, int* stretch,
+                                      const std::vector<cv::Point2d>* first,
+                                      const sensor::OpenCvCamera* lens) {
+  Detection detection;
+  if (board.kind == BoardKind::kCharuco) {
+    const auto found = find_charuco_corners(grey, board, stretch, lens);
+    if (!found) return std::nullopt;
+    for (std::size_t i = 0; i < found->ids.size(); ++i)
+      detection.emplace_back(found->ids[i], found->pixels[i]);
+    return detection;
+  }
+  auto corners = find_board_corners(grey, board, stretch);
+  if (!corners) return std::nullopt;
+  if (first != nullptr) *corners = in_order_of(*first, std::move(*corners));
+  for (std::size_t i = 0; i < corners->size(); ++i)
+    detection.emplace_back(static_cast<int>(i), (*corners)[i]);
+  return detection;
+}
+
+std::string not_found_message(const fs::path& clip, const BoardSpec& board, int frames) {
+  if (board.kind == BoardKind::kCharuco) {
+    return util::printf_string(
+        "%s: no frame of %d shows %d corners of the %dx%d-square ChArUco board (check --board: "
+        "the squares, not the inner corners; the marker size; the dictionary)",
+        clip.string().c_str(), frames, kMinCharucoCorners, board.inner_corners.width + 1,
+        board.inner_corners.height + 1);
+  }
+  return util::printf_string(
+      "%s: no frame of %d shows the whole %dx%d board (check --board: the inner corners, "
+      "not the squares)",
+      clip.string().c_str(), frames, board.inner_corners.width, board.inner_corners.height);
+}
+
+// Per board point seen in at least half the detections: the median and the squared distances.
+void median_corners(const std::vector<Detection>& detections, std::size_t points, BoardView& view) {
+  std::vector<std::vector<cv::Point2d>> by_point(points);
+  for (const Detection& d : detections) {
+    for (const auto& [id, p] : d) by_point[static_cast<std::size_t>(id)].push_back(p);
+  }
+  double sum_squares = 0.0;
+  std::size_t count = 0;
+  for (std::size_t id = 0; id < points; ++id) {
+    const std::vector<cv::Point2d>& seen = by_point[id];
+    if (seen.empty() || 2 * seen.size() < detections.size()) continue;
+    std::vector<double> xs, ys;
+    for (const cv::Point2d& p : seen) {
+      xs.push_back(p.x);
+      ys.push_back(p.y);
+    }
+    const cv::Point2d m(median(xs), median(ys));
+    view.corners.push_back(m);
+    view.point_ids.push_back(static_cast<int>(id));
+    for (const cv::Point2d& p : seen) sum_squares += std::pow(cv::norm(p - m), 2);
+    count += seen.size();
+  }
+  view.spread_px = count == 0 ? 0.0 : std::sqrt(sum_squares / static_cast<double>(count));
+}
+
+}  // namespace
+
+BoardView observe_board(const fs::path& clip, const BoardSpec& board, int max_frames, int step,
+                        const sensor::OpenCvCamera* lens) {
   FrameReader reader(clip);
   BoardView view;
-  std::vector<std::vector<cv::Point2d>> detections;
+  std::vector<Detection> detections;
+  std::vector<cv::Point2d> first;  // a checkerboard's first detection, in its order
   int stretch = kStretches[0];
   for (cv::Mat grey = reader.next(); !grey.empty() && view.frames_read < max_frames * step;
        grey = reader.next()) {
     view.image_size = grey.size();
     if (view.frames_read++ % step != 0) continue;
-    if (auto corners = find_board_corners(grey, board, &stretch)) {
-      detections.push_back(detections.empty() ? std::move(*corners)
-                                              : in_order_of(detections.front(), *corners));
+    auto d = detect_board(grey, board, &stretch, first.empty() ? nullptr : &first, lens);
+    if (!d) continue;
+    if (first.empty() && board.kind == BoardKind::kCheckerboard) {
+      for (const auto& corner : *d) first.push_back(corner.second);
     }
+    detections.push_back(std::move(*d));
   }
   if (view.frames_read == 0) throw BoardError(clip.string() + ": no frames");
-  if (detections.empty()) {
-    throw BoardError(util::printf_string(
-        "%s: no frame of %d shows the whole %dx%d board (check --board: the inner corners, "
-        "not the squares)",
-        clip.string().c_str(), view.frames_read, board.inner_corners.width,
-        board.inner_corners.height));
-  }
+  if (detections.empty()) throw BoardError(not_found_message(clip, board, view.frames_read));
   view.frames_found = static_cast<int>(detections.size());
-  const std::size_t n = detections.front().size();
-  double sum_squares = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    std::vector<double> xs, ys;
-    for (const auto& d : detections) {
-      xs.push_back(d[i].x);
-      ys.push_back(d[i].y);
-    }
-    view.corners.emplace_back(median(xs), median(ys));
-    for (const auto& d : detections) sum_squares += std::pow(cv::norm(d[i] - view.corners[i]), 2);
-  }
-  view.spread_px = std::sqrt(sum_squares / static_cast<double>(n * detections.size()));
+  median_corners(detections, board_points(board).size(), view);
+  if (static_cast<int>(view.corners.size()) < kMinCharucoCorners)
+    throw BoardError(util::printf_string(
+        "%s: the board's corners move from frame to frame (%zu corners seen in half the %d "
+        "frames with the board; it must not move)",
+        clip.string().c_str(), view.corners.size(), view.frames_found));
   return view;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "board/board_spec.hpp"
+#include "sensor/opencv_camera.hpp"
 
 namespace syncap::board {
 
@@ -31,10 +32,12 @@ std::optional<std::vector<cv::Point2d>> find_board_corners(const cv::Mat& grey,
                                                            int* stretch = nullptr);
 
 // A static board's corners over a clip: the per-corner median of the frames where it was found
-// (each put in the first detection's order), with the spread (RMS distance of the detections to
-// the median) as its noise.
+// (a checkerboard's each put in the first detection's order; a ChArUco board's corners seen in at
+// least half of them), with the spread (RMS distance of the detections to the median) as its
+// noise.
 struct BoardView {
   std::vector<cv::Point2d> corners;
+  std::vector<int> point_ids;  // the board point each corner is (a checkerboard's: 0, 1, ...)
   cv::Size image_size;
   int frames_read = 0;
   int frames_found = 0;
@@ -42,8 +45,11 @@ struct BoardView {
 };
 
 // Reads every `step`-th frame of a video file or of an image folder (name order), at most
-// `max_frames` of them. Throws BoardError naming the clip: unreadable, or the board in no frame.
+// `max_frames` of them; a checkerboard is found by find_board_corners, a ChArUco board by
+// find_charuco_corners (through `lens` where given). Throws BoardError naming the clip:
+// unreadable, or the board in no frame.
 BoardView observe_board(const std::filesystem::path& clip, const BoardSpec& board,
-                        int max_frames = 20, int step = 5);
+                        int max_frames = 20, int step = 5,
+                        const sensor::OpenCvCamera* lens = nullptr);
 
 }  // namespace syncap::board

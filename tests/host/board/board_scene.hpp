@@ -1,11 +1,12 @@
-// A checkerboard lying on the floor (z = 0) rendered through a camera: each pixel's ray meets the
-// floor, 3 x 3 rays a pixel (anti-aliased edges, so that corners are found to hundredths of a
-// pixel). White squares 230, black 20, a white margin of one square around the squares, a green
-// floor (grey 110) elsewhere.
+// A checkerboard or a ChArUco board lying on the floor (z = 0) rendered through a camera: each
+// pixel's ray meets the floor, 3 x 3 rays a pixel (anti-aliased edges, so that corners are found to
+// hundredths of a pixel). White squares 230, black 20, a white margin of one square around the
+// squares, a green floor (grey 110) elsewhere.
 #pragma once
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <opencv2/aruco/charuco.hpp>
 #include <opencv2/core.hpp>
 
 #include "board/board_spec.hpp"
@@ -26,7 +27,9 @@ inline double floor_grey(const BoardSpec& b, double x, double y) {
                                                                                       : 230.0;
 }
 
-inline cv::Mat render_board(const sensor::CameraModel& camera, const BoardSpec& b) {
+// The floor of `grey(x, y)` (in the board frame) seen through `camera`.
+template <class Grey>
+cv::Mat render_floor(const sensor::CameraModel& camera, const Grey& grey) {
   cv::Mat image(camera.sensor.height_px, camera.sensor.width_px, CV_8UC1);
   for (int v = 0; v < image.rows; ++v) {
     for (int u = 0; u < image.cols; ++u) {
@@ -39,13 +42,40 @@ inline cv::Mat render_board(const sensor::CameraModel& camera, const BoardSpec& 
             continue;
           }
           const Eigen::Vector3d p = ray.origin - ray.origin.z() / ray.direction.z() * ray.direction;
-          sum += floor_grey(b, p.x(), -p.y());  // z up: the board frame turned half about x
+          sum += grey(p.x(), -p.y());  // z up: the board frame turned half about x
         }
       }
       image.at<unsigned char>(v, u) = static_cast<unsigned char>(std::lround(sum / 9.0));
     }
   }
   return image;
+}
+
+inline cv::Mat render_board(const sensor::CameraModel& camera, const BoardSpec& b) {
+  return render_floor(camera, [&b](double x, double y) { return floor_grey(b, x, y); });
+}
+
+// A ChArUco board as OpenCV draws it (cv::aruco::CharucoBoard::draw, 64 px a square), black 20,
+// white 230, with a white margin of one square, on the green floor.
+inline cv::Mat render_charuco_board(const sensor::CameraModel& camera, const BoardSpec& b) {
+  constexpr int kPxPerSquare = 64;
+  const int squares_x = b.inner_corners.width + 1, squares_y = b.inner_corners.height + 1;
+  cv::Mat pattern;
+  cv::aruco::CharucoBoard::create(squares_x, squares_y, static_cast<float>(b.square_mm),
+                                  static_cast<float>(b.marker_mm),
+                                  cv::aruco::getPredefinedDictionary(b.dictionary))
+      ->draw({squares_x * kPxPerSquare, squares_y * kPxPerSquare}, pattern);
+  const double px_per_mm = kPxPerSquare / b.square_mm;
+  return render_floor(camera, [&](double x, double y) {
+    // The drawing's corner is one square before the first inner corner.
+    const double u = (x + b.square_mm) * px_per_mm, v = (y + b.square_mm) * px_per_mm;
+    const double margin = kPxPerSquare;
+    if (u < -margin || v < -margin || u > pattern.cols + margin || v > pattern.rows + margin)
+      return 110.0;                                                              // the floor
+    if (u < 0 || v < 0 || u >= pattern.cols || v >= pattern.rows) return 230.0;  // the margin
+    const unsigned char drawn = pattern.at<unsigned char>(static_cast<int>(v), static_cast<int>(u));
+    return drawn > 127 ? 230.0 : 20.0;
+  });
 }
 
 // A 644 x 486 camera (f 490 px, no distortion) at `centre` looking at `target`, image y up.

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <array>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "board/board_pose.hpp"
 #include "board/board_spec.hpp"
+#include "board/charuco_detection.hpp"
 #include "board/corner_detection.hpp"
 #include "board/half_turn.hpp"
 #include "board_scene.hpp"
@@ -49,6 +51,119 @@ TEST(BoardSpec, ParsesCornersAndSquareAndKnowsItsSymmetry) {
   ASSERT_EQ(points.size(), 48u);
   EXPECT_EQ(points[1], cv::Point3d(115, 0, 0));  // along the COLS corners first
   EXPECT_EQ(points[8], cv::Point3d(0, 115, 0));
+}
+
+TEST(BoardSpec, ParsesAChArUcoBoardBySquaresMarkersAndDictionary) {
+  const auto b = parse_board_spec("charuco:7x5x40x30");
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->kind, BoardKind::kCharuco);
+  EXPECT_EQ(b->inner_corners, cv::Size(6, 4));  // squares less one
+  EXPECT_EQ(b->square_mm, 40.0);
+  EXPECT_EQ(b->marker_mm, 30.0);
+  EXPECT_EQ(b->dictionary, cv::aruco::DICT_4X4_50);
+  EXPECT_FALSE(has_half_turn_symmetry(*b));  // its markers tell the turn, even counts or not
+  EXPECT_EQ(parse_board_spec("charuco:10x8x60x45:5x5_100")->dictionary, cv::aruco::DICT_5X5_100);
+  for (const char* bad :
+       {"charuco:7x5x40", "charuco:7x5x40x40", "charuco:7x5x40x30:6x6", "charuco:3x3x40x30",
+        "charuco:7x5x40x30:", "charuco:20x20x40x30:4x4_50", "charuco:7x5x40x30mm"})
+    EXPECT_FALSE(parse_board_spec(bad)) << bad;  // 20x20 needs 200 markers: 4x4_50 has 50
+}
+
+// The true pixels of a ChArUco board's corners `ids` in `camera` (z up, as true_corners).
+std::vector<cv::Point2d> true_corners_of(const sensor::CameraModel& camera, const BoardSpec& b,
+                                         const std::vector<int>& ids) {
+  const std::vector<cv::Point2d> all = true_corners(camera, b);
+  std::vector<cv::Point2d> seen;
+  for (const int id : ids) seen.push_back(all.at(static_cast<std::size_t>(id)));
+  return seen;
+}
+
+TEST(CharucoDetection, FindsEveryCornerWithItsIdOnTheFloor) {
+  const auto b = *parse_board_spec("charuco:7x5x115x86");
+  // 2.3 m away, 1.5 m up: 41 degrees above the board, its squares 25-28 px wide.
+  const sensor::CameraModel camera = test::studio_camera(0, {350, -1700, 1500}, {350, -230, 0});
+  const cv::Mat image = test::render_charuco_board(camera, b);
+  const auto found = find_charuco_corners(image, b);
+  ASSERT_TRUE(found);
+  EXPECT_GE(found->ids.size(), 20u);  // of 6 x 4
+  // The ids name the right corners, to sub-pixel but for a few astray (the pose leaves those out).
+  const std::vector<cv::Point2d> truth = true_corners_of(camera, b, found->ids);
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    errors.push_back(cv::norm(found->pixels[i] - truth[i]));
+  std::ranges::sort(errors);
+  EXPECT_LT(errors[errors.size() / 2], 0.2);
+  EXPECT_LT(errors[errors.size() - 3], 0.5);  // measured: 22 corners, median 0.05 px
+  RecordProperty("median_corner_error_px", std::to_string(errors[errors.size() / 2]));
+  sensor::OpenCvCamera intrinsics = sensor::opencv_from_camera(camera);
+  intrinsics.rvec = intrinsics.tvec = cv::Vec3d::all(0);
+  const BoardPose pose = pose_on_board(intrinsics, found->pixels, b, 0, false, true, found->ids);
+  EXPECT_LT(pose.rms_px, 0.3);
+  EXPECT_LT((pose.camera.projection_centre() - camera.projection_centre()).norm(), 10.0);  // mm
+}
+
+TEST(CharucoDetection, APartlyHiddenBoardGivesTheCornersItShowsAndThePose) {
+  const auto b = *parse_board_spec("charuco:7x5x115x86");
+  const sensor::CameraModel truth = test::studio_camera(2, {350, -1700, 1500}, {350, -230, 0});
+  cv::Mat image = test::render_charuco_board(truth, b);
+  // A person's legs over the board's left half: a checkerboard would be lost.
+  const std::vector<cv::Point2d> all = true_corners(truth, b);
+  const cv::Point2d left = all[0], right = all[23];
+  cv::rectangle(image, cv::Point(0, 0),
+                cv::Point(static_cast<int>(0.5 * (left.x + right.x)), image.rows), cv::Scalar(60),
+                cv::FILLED);
+  EXPECT_FALSE(find_board_corners(image, {{6, 4}, 115.0}));
+  const auto found = find_charuco_corners(image, b);
+  ASSERT_TRUE(found);
+  EXPECT_GE(found->ids.size(), 6u);
+  EXPECT_LT(found->ids.size(), 24u);
+  sensor::OpenCvCamera intrinsics = sensor::opencv_from_camera(truth);
+  intrinsics.rvec = intrinsics.tvec = cv::Vec3d::all(0);
+  const bool z_up = cameras_below_board(intrinsics, found->pixels, b, found->ids);
+  EXPECT_TRUE(z_up);
+  const BoardPose pose = pose_on_board(intrinsics, found->pixels, b, 2, false, z_up, found->ids);
+  EXPECT_LT(pose.rms_px, 0.3);
+  EXPECT_LT((pose.camera.projection_centre() - truth.projection_centre()).norm(), 20.0);  // mm
+}
+
+// A wide lens (k1 -0.35): the homography fitted without it and the corners put back through it,
+// where the distorted image shows them, and the camera posed from them. (On this board near the
+// image's centre the refinement alone would also have caught the bow: measured without the lens
+// median 0.11 px, max 0.24 px, as with it.)
+TEST(CharucoDetection, FindsTheCornersThroughTheCamerasLens) {
+  const auto b = *parse_board_spec("charuco:7x5x115x86");
+  sensor::OpenCvCamera lens =
+      sensor::opencv_from_camera(test::studio_camera(0, {350, -1700, 1500}, {350, -230, 0}));
+  lens.distortion = {-0.35, 0.1, 0.0, 0.0, 0.0};
+  const sensor::CameraModel camera =
+      sensor::camera_keeping_opencv_lens(lens, sensor::kOpenCvPixelMm, sensor::kOpenCvPixelMm, 0);
+  const cv::Mat image = test::render_charuco_board(camera, b);
+  const auto errors_of = [&](const BoardCorners& found) {
+    std::vector<double> e;
+    const std::vector<cv::Point2d> truth = true_corners_of(camera, b, found.ids);
+    for (std::size_t i = 0; i < truth.size(); ++i)
+      e.push_back(cv::norm(found.pixels[i] - truth[i]));
+    std::ranges::sort(e);
+    return e;
+  };
+  const auto with_lens = find_charuco_corners(image, b, nullptr, &lens);
+  ASSERT_TRUE(with_lens);
+  EXPECT_GE(with_lens->ids.size(), 18u);
+  const std::vector<double> e = errors_of(*with_lens);
+  EXPECT_LT(e[e.size() / 2], 0.2);
+  RecordProperty("median_corner_error_px", std::to_string(e[e.size() / 2]));
+  sensor::OpenCvCamera unposed = lens;
+  const BoardPose pose =
+      pose_on_board(unposed, with_lens->pixels, b, 0, false, true, with_lens->ids);
+  EXPECT_LT((pose.camera.projection_centre() - camera.projection_centre()).norm(), 10.0);  // mm
+}
+
+TEST(CharucoDetection, ABlankImageOrAnotherDictionaryHasNoBoard) {
+  const auto b = *parse_board_spec("charuco:7x5x115x86");
+  EXPECT_FALSE(find_charuco_corners(cv::Mat(486, 644, CV_8UC1, cv::Scalar(110)), b));
+  const sensor::CameraModel camera = test::studio_camera(0, {350, -1700, 1500}, {350, -230, 0});
+  EXPECT_FALSE(find_charuco_corners(test::render_charuco_board(camera, b),
+                                    *parse_board_spec("charuco:7x5x115x86:6x6_250")));
 }
 
 TEST(CornerDetection, FindsABoardOnTheFloorAtAGrazingAngle) {
