@@ -75,7 +75,7 @@ start_host() {
 start_fakecam() {
   local cam
   cam=$(printf %02d "$1")
-  "$bin/syncap-fakecam" --address "127.0.0.$(($1 + 2))" --images "$render/camera$cam" \
+  "${hardware_priority[@]}" "$bin/syncap-fakecam" --address "127.0.0.$(($1 + 2))" --images "$render/camera$cam" \
     --trigger "gpiosim:$chip:$1" >> "$out/fakecam$cam.log" 2>&1 &
   fakecam_pids[$1]=$!
   pids+=("$!")
@@ -94,7 +94,7 @@ start_edge() {
 
 # start_trigger COUNT LOG
 start_trigger() {
-  "$bin/syncap-trigger" --config "$out/rig.yaml" --count "$1" > "$2" 2>&1 &
+  "${hardware_priority[@]}" "$bin/syncap-trigger" --config "$out/rig.yaml" --count "$1" > "$2" 2>&1 &
   trigger_pid=$!
   trigger_log=$2
   pids+=("$trigger_pid")

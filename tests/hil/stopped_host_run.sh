@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tests/hil/stopped_host_run.sh BUILD OUT
-# The host stops as a loaded machine stops it (SIGSTOP for 1.5 s: 45 frames of six cameras at
-# 30 Hz, their blobs and silhouettes) in the middle of the short ring-6cam-person run, and still
+# The host stops as a loaded machine stops it (SIGSTOP for 1.5 s: 15 frames of six cameras at
+# 10 Hz, their blobs and silhouettes, paced as hil.run.RingSixCameraPersonShort) in the middle of the short ring-6cam-person run, and still
 # gets every message the edges sent: hil/run's comparison passes (every frame complete) and the
 # host's summary names no camera with records lost between edge and host. Before the receive path
 # was sized (docs/design/architecture.md, "Receiving without loss") this lost 160-210 of the 540 blob
@@ -12,7 +12,7 @@ build=$1 out=$2
 root=$(cd "$(dirname "$0")/../.." && pwd)
 mkdir -p "$out"
 rm -f "$out/run/trigger.log"
-"$root/hil/run" ring-6cam-person --short --build "$build" --out "$out/run" > "$out/run.log" 2>&1 &
+"$root/hil/run" ring-6cam-person --short --rate 10 --build "$build" --out "$out/run" > "$out/run.log" 2>&1 &
 run=$!
 # The trigger's first line comes 500 ms before its first pulse; stop the host 1.5 s into the pulses.
 while ! grep -q "pulses" "$out/run/trigger.log" 2>/dev/null; do

@@ -125,10 +125,12 @@ void add_body_options(CLI::App& app, controllers::BodyOptions& args) {
                  "between are flagged, at no cost; default " +
                      std::to_string(args.stage.start_retry_frames) + ")")
       ->check(cli::whole_in<int>(1, 100000));
-  app.add_option("--body-start-budget-ms", args.stage.start_budget_ms,
-                 "or later, so that starts that find no body cost at most MS a frame on average "
-                 "(0: no budget; default " +
-                     cli::number_text(args.stage.start_budget_ms) + ")")
+  app.add_option(
+         "--body-start-budget-ms", args.stage.start_budget_ms,
+         "or later, so that starts that find no body cost at most MS of CPU time a frame on "
+         "average "
+         "(0: no budget; default " +
+             cli::number_text(args.stage.start_budget_ms) + ")")
       ->check(cli::number_in(0, 1e6));
 }
 

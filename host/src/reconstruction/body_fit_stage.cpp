@@ -1,5 +1,7 @@
 #include "reconstruction/body_fit_stage.hpp"
 
+#include "pipeline/frame_work.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -81,15 +83,15 @@ void BodyFitStage::start(int64_t frame_number, std::span<const fitting::SurfaceP
     ++stats_.start_waits;
     return;
   }
-  const auto begin = std::chrono::steady_clock::now();
+  // The start's cost in this thread's CPU time, not the wall clock's: the interval to the next
+  // attempt, and so which frames are fitted, must not depend on what else the machine runs.
+  const double begin_us = pipeline::thread_cpu_us();
   const fitting::BodyStart start = fitting::start_body(parameters_, points, options_.start);
   if (!start.found) {
     body.flags |= body_frame_t::FLAG_NO_START;
     ++stats_.no_start;
     failed_start_frame_ = frame_number;
-    next_start_frame_ = frame_number + retry_frames(std::chrono::duration<double, std::milli>(
-                                                        std::chrono::steady_clock::now() - begin)
-                                                        .count());
+    next_start_frame_ = frame_number + retry_frames(1e-3 * (pipeline::thread_cpu_us() - begin_us));
     stats_.last_problem =
         util::printf_string("frame %lld: no start: %s; next attempt at frame %lld",
                             static_cast<long long>(frame_number), start.why_not.c_str(),

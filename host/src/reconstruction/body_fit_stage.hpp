@@ -41,7 +41,8 @@ struct BodyFitStageOptions {
   // attempt a frame (syncap fit --body-start-retry-frames). 1: every frame.
   int start_retry_frames = 10;
   // ... or more, so that failed starts cost at most this much a frame on average: a start that
-  // took T ms is retried after T / start_budget_ms frames when that is longer (a seated person's
+  // took T ms of CPU time (the thread's: the same on a loaded machine) is retried after
+  // T / start_budget_ms frames when that is longer (a seated person's
   // hull cost 6 s an attempt on a real studio recording: every 30th frame). 0: no budget.
   double start_budget_ms = 200.0;
 };
