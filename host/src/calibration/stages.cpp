@@ -160,6 +160,7 @@ void prepare_stage(scene::Network& network, const CalibrationOptions& options, S
   network.design.calculate_covariance = stage.snoop || stage.clean;
   network.design.statistical_tests = stage.snoop || stage.clean;
   network.residual_test.iterative_rejection = stage.snoop;
+  network.residual_test.reject_per_point = true;
   network.residual_test.critical_snooping = options.critical_snooping;
   network.residual_test.snoop_with_a_posteriori_sigma0 = options.snoop_with_a_posteriori_sigma0;
 }

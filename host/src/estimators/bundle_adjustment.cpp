@@ -232,7 +232,8 @@ void Adjuster::fill_points() {
   }
 }
 
-// Adjusts, computes the cofactors and rejects one blunder at a time until none is left.
+// Adjusts, computes the cofactors and rejects one blunder at a time (one a point with
+// ResidualTest::reject_per_point) until none is left.
 // Snooping rounds are relaxed; the last adjustment, after the last rejection, is strict.
 void Adjuster::adjust_and_snoop() {
   const auto& design = network_.design;

@@ -44,7 +44,8 @@ class DataSnooping {
                std::vector<MeasurementStatus>* status, std::vector<RejectedMeasurement>* rejected)
       : resolved_(resolved), parameters_(parameters), status_(*status), rejected_(*rejected) {}
 
-  // Removes the most improbable accepted measurement if its |w| is beyond the critical value.
+  // Removes the most improbable accepted measurement if its |w| is beyond the critical value (with
+  // ResidualTest::reject_per_point, that of every point). True when any went.
   bool reject_worst_blunder(const std::vector<double>& log_p);
   // Removes the points whose wrong ray the data cannot tell. True when any went.
   bool reject_ambiguous_points(const std::vector<double>& log_p, double sigma0);

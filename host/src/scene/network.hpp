@@ -121,6 +121,12 @@ struct ResidualTest {
   double critical_snooping = 3.29;  // |w| above this is a blunder (data snooping, eq 4.31)
   bool iterative_rejection = true;  // remove the worst blunder and re-adjust, repeatedly
   int max_rejections = 1000;
+  // Each round removes the worst measurement of every point beyond the critical value, not
+  // only the worst of all: a blunder raises the residuals of its own point's other rays, barely
+  // those of other points, so big networks need as many rounds as a point has blunders, not as
+  // the network has (a simulated 20-camera LED rig with 130 blunders: 130 re-adjustments of 3.5 s
+  // each, against a few).
+  bool reject_per_point = false;
   // Data snooping standardises with the a priori sigma0 = 1 (Baarda's w-test, the default) or
   // with the a posteriori sigma0 (Pope's tau-like variant, robust to a wrong sigma_px).
   bool snoop_with_a_posteriori_sigma0 = false;

@@ -692,19 +692,19 @@ void Parser::constraints() {
 
 // residual_test { alpha_variance = a  alpha_goodness = a  critical_snooping = w
 //                 iterative_rejection = true|false  max_rejections = n
-//                 snoop_with_a_posteriori_sigma0 = true|false }
+//                 snoop_with_a_posteriori_sigma0 = true|false  reject_per_point = true|false }
 void Parser::residual_test() {
   advance();
   scene::ResidualTest& t = network_.residual_test;
   block("the residual_test block", [&] {
     const std::string expected =
         "alpha_variance, alpha_goodness, critical_snooping, iterative_rejection, max_rejections, "
-        "snoop_with_a_posteriori_sigma0 or '}' in the residual_test block";
+        "snoop_with_a_posteriori_sigma0, reject_per_point or '}' in the residual_test block";
     if (current_.kind != TokenKind::kIdentifier) fail_expected(expected);
     const std::string field = current_.text;
     if (field != "alpha_variance" && field != "alpha_goodness" && field != "critical_snooping" &&
         field != "iterative_rejection" && field != "max_rejections" &&
-        field != "snoop_with_a_posteriori_sigma0") {
+        field != "snoop_with_a_posteriori_sigma0" && field != "reject_per_point") {
       fail_expected(expected);
     }
     advance();
@@ -713,6 +713,7 @@ void Parser::residual_test() {
     if (field == "alpha_goodness") t.alpha_goodness = expression();
     if (field == "critical_snooping") t.critical_snooping = expression();
     if (field == "iterative_rejection") t.iterative_rejection = boolean(field);
+    if (field == "reject_per_point") t.reject_per_point = boolean(field);
     if (field == "snoop_with_a_posteriori_sigma0") {
       t.snoop_with_a_posteriori_sigma0 = boolean(field);
     }

@@ -220,6 +220,7 @@ void write_residual_test(const scene::ResidualTest& t, std::string& out) {
   out += "  max_rejections = " + std::to_string(t.max_rejections) + "\n";
   out += std::string("  snoop_with_a_posteriori_sigma0 = ") +
          (t.snoop_with_a_posteriori_sigma0 ? "true" : "false") + "\n";
+  out += std::string("  reject_per_point = ") + (t.reject_per_point ? "true" : "false") + "\n";
   out += "}\n";
 }
 

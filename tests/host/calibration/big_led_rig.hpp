@@ -1,0 +1,134 @@
+// A simulated big LED rig of the kind issue 37 names (a Braid/flydra insect or mocap arena):
+// 20 cameras of 1920x1200 px (5.86 um pixels, c ~ 2600 px, barrel lenses of k1 ~ 0.33 on
+// coordinates normalised by c), two rings of ten round a 1.0 x 1.0 x 0.6 m volume, one LED on a
+// smooth random path through it, each camera seeing it in stretches (hidden for a mean 150
+// frames after a mean 300 seen: the body of the arena, the LED's own angle), frames seen by fewer
+// than 3 cameras left out as a detector would find nothing useful; centroids with noise of
+// 0.1-0.3 px (per camera) plus a systematic bias that grows over the image to 0.15 px, and a
+// few blunders of 5-20 px. The truth comes with it. Used by the calibration's test of the big
+// rig and by bench_calibrate_rig.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "calibration/observations.hpp"
+#include "sensor/camera_model.hpp"
+#include "sensor/rotation.hpp"
+
+namespace syncap::calibration::test {
+
+inline constexpr double kBigRigPixelMm = 0.00586;
+
+struct BigLedRig {
+  Observations observations;
+  std::vector<sensor::CameraModel> truth;
+  long blunders = 0;
+};
+
+inline sensor::ExteriorOrientation big_rig_looking_at(const Eigen::Vector3d& centre,
+                                                      const Eigen::Vector3d& target) {
+  const Eigen::Vector3d z = (centre - target).normalized();
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitZ().cross(z).normalized();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d r;
+  r << x, y, z;
+  const sensor::RotationAngles a = sensor::angles_from_rotation(r);
+  return {centre.x(), centre.y(), centre.z(), a.omega, a.phi, a.kappa};
+}
+
+inline std::vector<sensor::CameraModel> big_rig_cameras(int cameras, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<sensor::CameraModel> out;
+  for (int i = 0; i < cameras; ++i) {
+    const bool upper = i % 2 == 0;
+    const double azimuth = 2.0 * M_PI * i / cameras + 0.05 * unit(rng);
+    const double radius = 1900.0 + 150.0 * unit(rng);
+    const Eigen::Vector3d centre(radius * std::cos(azimuth), radius * std::sin(azimuth),
+                                 upper ? 900.0 : -250.0);
+    sensor::CameraModel c;
+    c.id = i + 1;
+    c.sensor = {1920, 1200, kBigRigPixelMm, kBigRigPixelMm};
+    const double focal_px = 2600.0 + 120.0 * unit(rng);
+    c.interior.c = focal_px * kBigRigPixelMm;
+    c.interior.xp = 8.0 * unit(rng) * kBigRigPixelMm;
+    c.interior.yp = 8.0 * unit(rng) * kBigRigPixelMm;
+    c.interior.k1 = (0.33 + 0.03 * unit(rng)) / std::pow(c.interior.c, 2);
+    c.interior.k2 = 0.04 / std::pow(c.interior.c, 4);
+    c.exterior = big_rig_looking_at(centre, {60.0 * unit(rng), 60.0 * unit(rng), 250.0});
+    out.push_back(c);
+  }
+  return out;
+}
+
+// The LED's path: a damped random walk kept inside the volume, ~0.5 m/s at 100 Hz.
+inline std::vector<Eigen::Vector3d> big_rig_path(int frames, std::mt19937& rng) {
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const Eigen::Vector3d lo(-500, -500, 0), hi(500, 500, 600);
+  Eigen::Vector3d p(0, 0, 300), v(0, 0, 0);
+  std::vector<Eigen::Vector3d> path;
+  for (int f = 0; f < frames; ++f) {
+    v = 0.95 * v + Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+    p += v;
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < lo[k] || p[k] > hi[k]) {
+        p[k] = std::clamp(p[k], lo[k], hi[k]);
+        v[k] = -v[k];
+      }
+    }
+    path.push_back(p);
+  }
+  return path;
+}
+
+inline BigLedRig big_led_rig(int cameras = 20, int frames = 5000, uint32_t seed = 37) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  BigLedRig rig;
+  rig.truth = big_rig_cameras(cameras, rng);
+  const std::vector<Eigen::Vector3d> path = big_rig_path(frames, rng);
+  std::vector<double> noise_px, bias_sign;
+  std::vector<bool> visible;
+  for (const sensor::CameraModel& c : rig.truth) {
+    rig.observations.image_sizes[c.id] = {c.sensor.width_px, c.sensor.height_px};
+    noise_px.push_back(0.1 + 0.2 * unit(rng));
+    bias_sign.push_back(unit(rng) < 0.5 ? -1.0 : 1.0);
+    visible.push_back(unit(rng) < 0.67);
+  }
+  for (int f = 0; f < frames; ++f) {
+    std::map<int, std::vector<Spot>> seen;
+    for (std::size_t i = 0; i < rig.truth.size(); ++i) {
+      // Stretches seen (mean 300 frames) and hidden (mean 150).
+      if (unit(rng) < (visible[i] ? 1.0 / 300.0 : 1.0 / 150.0)) visible[i] = !visible[i];
+      if (!visible[i]) continue;
+      const sensor::CameraModel& c = rig.truth[i];
+      const sensor::Projection q = c.project(path[static_cast<std::size_t>(f)]);
+      if (!q.ok() || !c.contains(q.pixel)) continue;
+      // The centroid's systematic error: outwards (or inwards) in proportion to the distance from
+      // the image's centre, 0.15 px at the corners (a spot's asymmetric blur off axis).
+      const Eigen::Vector2d from_centre(q.pixel.x() - 0.5 * c.sensor.width_px,
+                                        q.pixel.y() - 0.5 * c.sensor.height_px);
+      const Eigen::Vector2d bias = bias_sign[i] * 0.15 * from_centre / 1131.0;
+      Spot s;
+      s.x = q.pixel.x() + bias.x() + noise_px[i] * gauss(rng);
+      s.y = q.pixel.y() + bias.y() + noise_px[i] * gauss(rng);
+      s.area = 20;
+      if (unit(rng) < 0.002) {
+        const double size = 5.0 + 15.0 * unit(rng), angle = 2.0 * M_PI * unit(rng);
+        s.x += size * std::cos(angle);
+        s.y += size * std::sin(angle);
+        ++rig.blunders;
+      }
+      seen[c.id].push_back(s);
+    }
+    if (seen.size() >= 3) rig.observations.frames[f] = std::move(seen);
+  }
+  rig.observations.source = "simulated big LED rig";
+  return rig;
+}
+
+}  // namespace syncap::calibration::test

@@ -1,0 +1,49 @@
+// The big-rig simulation (big_led_rig.hpp) at a size a test can afford: 10 of its cameras over
+// 1500 frames, calibrated with every default of `syncap calibrate --led`. The minimum must be
+// the truth's: focal lengths within 0.5 %, the centres after a similarity within 5 mm (0.25 %
+// of the rig's radius), every blunder of 5-20 px gone, in a few rounds. Not yet asserted: that
+// the sigmas cover the errors (issue 37's honest sigmas; measured here: centres 3.6 of their
+// sigmas off, the centroid bias being systematic). bench_calibrate_rig runs all 20
+// cameras and 5000 frames (scripts/bench.sh, calibrate-20cam).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "big_led_rig.hpp"
+#include "calibration/calibrate.hpp"
+
+namespace syncap::calibration {
+namespace {
+
+TEST(CalibrateBigRig, ReachesTheTruthsMinimumWithItsDefaults) {
+  const test::BigLedRig rig = test::big_led_rig(10, 1500);
+  CalibrationOptions options;
+  options.wand.led = true;
+  options.pixel_size_mm = test::kBigRigPixelMm;
+  const CalibrationResult r = calibrate(rig.observations, options);
+  ASSERT_TRUE(r.adjustment.converged);
+  ASSERT_EQ(r.cameras.size(), rig.truth.size());
+  double worst_focal = 0.0, sigma2 = 0.0;
+  for (std::size_t i = 0; i < r.cameras.size(); ++i) {
+    worst_focal =
+        std::max(worst_focal, std::abs(r.cameras[i].interior.c / rig.truth[i].interior.c - 1.0));
+    const auto& sx = r.adjustment.stations[i].exterior_sigma;
+    sigma2 += sx[0] * sx[0] + sx[1] * sx[1] + sx[2] * sx[2];
+  }
+  const double centres = centres_apart_mm(rig.truth, r.cameras);
+  const double centre_sigma = std::sqrt(sigma2 / static_cast<double>(r.cameras.size()));
+  EXPECT_LT(worst_focal, 0.005);  // measured 0.28 %
+  EXPECT_LT(centres, 5.0);         // mm; measured 2.4
+  EXPECT_GE(static_cast<long>(r.adjustment.rejected.size()), rig.blunders);
+  // Data snooping a point at a time: a few rounds, not one a blunder.
+  EXPECT_LT(r.adjustment.adjustments, 15);
+  EXPECT_LT(r.adjustment.adjustments, rig.blunders);
+  EXPECT_NE(r.verdict, Verdict::kFailed);
+  RecordProperty("worst_focal_error", std::to_string(worst_focal));
+  RecordProperty("centres_over_sigma", std::to_string(centres / centre_sigma));
+  RecordProperty("adjustments", r.adjustment.adjustments);
+  RecordProperty("blunders", static_cast<int>(rig.blunders));
+}
+
+}  // namespace
+}  // namespace syncap::calibration
