@@ -35,16 +35,10 @@ void calibrate_big_rig(benchmark::State& state) {
     };
     const calibration::CalibrationResult r = calibration::calibrate(rig.observations, options);
     if (!r.adjustment.converged) state.SkipWithError("the adjustment did not converge");
-    double worst_focal = 0.0, sigma2 = 0.0;
-    for (std::size_t i = 0; i < r.cameras.size(); ++i) {
-      worst_focal = std::max(
-          worst_focal, std::abs(r.cameras[i].interior.c / rig.truth[i].interior.c - 1.0));
-      const auto& sx = r.adjustment.stations[i].exterior_sigma;
-      sigma2 += sx[0] * sx[0] + sx[1] * sx[1] + sx[2] * sx[2];
-    }
-    state.counters["worst_focal_error"] = worst_focal;
-    state.counters["centres_rms"] = calibration::centres_apart_mm(rig.truth, r.cameras);
-    state.counters["centre_sigma_rms"] = std::sqrt(sigma2 / static_cast<double>(r.cameras.size()));
+    const calibration::test::RigErrors e = calibration::test::rig_errors(rig, r);
+    state.counters["worst_focal_error"] = e.worst_focal;
+    state.counters["centres_rms"] = e.centres;
+    state.counters["centre_sigma_rms"] = e.centre_sigma;
     state.counters["measurements"] = static_cast<double>(r.network.measurements.size());
   }
   state.counters["frames"] = static_cast<double>(rig.observations.frames.size());

@@ -1,4 +1,5 @@
 #include "calibration/report.hpp"
+#include "calibration/report_overview.hpp"
 #include "util/html_escape.hpp"
 #include "util/printf_string.hpp"
 
@@ -286,6 +287,26 @@ double residual_scale(const CalibrationReport& r) {
   return rms > 0 ? 10.0 / (rms * 300.0 / 1280.0) : 0;
 }
 
+std::string network_figures(const CalibrationReport& report) {
+  return "<h2>Network</h2>" + svg_network(report, 1, "plan (X right, Y up)") +
+         svg_network(report, 2, "elevation (X right, Z up)") + "</body></html>\n";
+}
+
+// A big rig's images as cells, one small figure a camera: where its rays are and the mean
+// residual of each cell, at one magnification for all.
+std::string html_cells(const CalibrationReport& report) {
+  constexpr double kWidth = 200.0;
+  const double scale = cell_residual_scale(report, kWidth);
+  std::string out = printf_string(
+      "<h2>Coverage and residuals by cell</h2><p>Each image in %d x %d cells: grey by the number "
+      "of rays kept, red the cell's mean residual x %.0f (a systematic error shows as a "
+      "pattern).</p>",
+      kGridColumns, kGridRows, scale);
+  for (const ReportCamera& c : report.cameras)
+    out += svg_cells(c, report.residuals, scale, kWidth, "rays and mean residuals");
+  return out;
+}
+
 }  // namespace
 
 std::string format_report_text(const CalibrationReport& report) {
@@ -301,14 +322,20 @@ std::string format_report_html(const CalibrationReport& report) {
                     util::html_escaped(report.title) + "</title><style>" + kStyle +
                     "</style></head><body>";
   out += html_summary(report);
+  out += "<h2>Cameras</h2>" + html_camera_overview(report);
   out += "<h2>Tests</h2>" + html_tests(report);
   out += "<h2>Parameters</h2>";
+  // A big rig's cameras folded (the table above says which to open), each a click away.
+  const bool fold = draws_cells(report);
   for (const ReportCamera& c : report.cameras) {
+    if (fold) out += printf_string("<details><summary>camera %d</summary>", c.camera.id);
     out += html_parameters(c);
     if (c.correlation.rows() > 0) out += "<p>correlations of the interior parameters</p>";
     out += html_correlation(c);
+    if (fold) out += "</details>";
   }
   out += "<h2>Residuals</h2>" + svg_histogram(report);
+  if (draws_cells(report)) return out + html_cells(report) + network_figures(report);
   const double scale = residual_scale(report);
   out += "<h2>Residual vectors</h2>";
   for (const ReportCamera& c : report.cameras) {
@@ -319,9 +346,7 @@ std::string format_report_html(const CalibrationReport& report) {
   for (const ReportCamera& c : report.cameras) {
     out += svg_image(c, report.residuals, 0, "measurements over the image");
   }
-  out += "<h2>Network</h2>" + svg_network(report, 1, "plan (X right, Y up)") +
-         svg_network(report, 2, "elevation (X right, Z up)");
-  return out + "</body></html>\n";
+  return out + network_figures(report);
 }
 
 std::string format_residuals_csv(const CalibrationReport& report) {

@@ -2,7 +2,9 @@
 // SVG, no scripts, no external files) with the parameters and their standard deviations, the
 // per-camera correlations of the interior parameters (as thesis Table 4.6), the residual
 // histogram, each camera's residual vectors over the image, the coverage of each image, a plan
-// and an elevation of the network with the wand positions, and the outcome of every test.
+// and an elevation of the network with the wand positions, and the outcome of every test. A
+// table of every camera says which limit the result; a big rig's images are drawn as cells
+// (report_overview.hpp).
 //
 // The report is filled from whatever produced the calibration (the bundle adjustment's result and
 // the observations); it computes nothing but layout and summary figures.

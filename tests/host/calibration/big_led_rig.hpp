@@ -15,9 +15,11 @@
 #include <random>
 #include <vector>
 
+#include "calibration/calibrate.hpp"
+#include "calibration/halves.hpp"
 #include "calibration/observations.hpp"
 #include "sensor/camera_model.hpp"
-#include "sensor/rotation.hpp"
+#include "sensor/test_cameras.hpp"
 
 namespace syncap::calibration::test {
 
@@ -28,17 +30,6 @@ struct BigLedRig {
   std::vector<sensor::CameraModel> truth;
   long blunders = 0;
 };
-
-inline sensor::ExteriorOrientation big_rig_looking_at(const Eigen::Vector3d& centre,
-                                                      const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (centre - target).normalized();
-  const Eigen::Vector3d x = Eigen::Vector3d::UnitZ().cross(z).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d r;
-  r << x, y, z;
-  const sensor::RotationAngles a = sensor::angles_from_rotation(r);
-  return {centre.x(), centre.y(), centre.z(), a.omega, a.phi, a.kappa};
-}
 
 inline std::vector<sensor::CameraModel> big_rig_cameras(int cameras, std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -58,7 +49,7 @@ inline std::vector<sensor::CameraModel> big_rig_cameras(int cameras, std::mt1993
     c.interior.yp = 8.0 * unit(rng) * kBigRigPixelMm;
     c.interior.k1 = (0.33 + 0.03 * unit(rng)) / std::pow(c.interior.c, 2);
     c.interior.k2 = 0.04 / std::pow(c.interior.c, 4);
-    c.exterior = big_rig_looking_at(centre, {60.0 * unit(rng), 60.0 * unit(rng), 250.0});
+    c.exterior = sensor::test::looking_at(centre, {60.0 * unit(rng), 60.0 * unit(rng), 250.0});
     out.push_back(c);
   }
   return out;
@@ -129,6 +120,29 @@ inline BigLedRig big_led_rig(int cameras = 20, int frames = 5000, uint32_t seed 
   }
   rig.observations.source = "simulated big LED rig";
   return rig;
+}
+
+// How far a calibration of the rig is from its truth: the worst focal length's relative error,
+// the centres' RMS distance after a similarity [mm] and the RMS of their 3-D sigmas.
+struct RigErrors {
+  double worst_focal = 0.0;
+  double centres = 0.0;
+  double centre_sigma = 0.0;
+};
+
+inline RigErrors rig_errors(const BigLedRig& rig, const CalibrationResult& r) {
+  RigErrors e;
+  double sigma2 = 0.0;
+  for (std::size_t i = 0; i < r.cameras.size(); ++i) {
+    e.worst_focal =
+        std::max(e.worst_focal, std::abs(r.cameras[i].interior.c / rig.truth[i].interior.c - 1.0));
+    const auto& sx = r.adjustment.stations[i].exterior_sigma;
+    sigma2 += sx[0] * sx[0] + sx[1] * sx[1] + sx[2] * sx[2];
+  }
+  e.centres = centres_apart_mm(rig.truth, r.cameras);
+  e.centre_sigma =
+      std::sqrt(sigma2 / static_cast<double>(std::max<std::size_t>(1, r.cameras.size())));
+  return e;
 }
 
 }  // namespace syncap::calibration::test

@@ -11,6 +11,7 @@
 
 #include "big_led_rig.hpp"
 #include "calibration/calibrate.hpp"
+#include "calibration/report.hpp"
 
 namespace syncap::calibration {
 namespace {
@@ -23,22 +24,21 @@ TEST(CalibrateBigRig, ReachesTheTruthsMinimumWithItsDefaults) {
   const CalibrationResult r = calibrate(rig.observations, options);
   ASSERT_TRUE(r.adjustment.converged);
   ASSERT_EQ(r.cameras.size(), rig.truth.size());
-  double worst_focal = 0.0, sigma2 = 0.0;
-  for (std::size_t i = 0; i < r.cameras.size(); ++i) {
-    worst_focal =
-        std::max(worst_focal, std::abs(r.cameras[i].interior.c / rig.truth[i].interior.c - 1.0));
-    const auto& sx = r.adjustment.stations[i].exterior_sigma;
-    sigma2 += sx[0] * sx[0] + sx[1] * sx[1] + sx[2] * sx[2];
-  }
-  const double centres = centres_apart_mm(rig.truth, r.cameras);
-  const double centre_sigma = std::sqrt(sigma2 / static_cast<double>(r.cameras.size()));
+  const test::RigErrors e = test::rig_errors(rig, r);
+  const double worst_focal = e.worst_focal, centres = e.centres, centre_sigma = e.centre_sigma;
   EXPECT_LT(worst_focal, 0.005);  // measured 0.28 %
-  EXPECT_LT(centres, 5.0);         // mm; measured 2.4
+  EXPECT_LT(centres, 5.0);        // mm; measured 2.4
   EXPECT_GE(static_cast<long>(r.adjustment.rejected.size()), rig.blunders);
   // Data snooping a point at a time: a few rounds, not one a blunder.
   EXPECT_LT(r.adjustment.adjustments, 15);
   EXPECT_LT(r.adjustment.adjustments, rig.blunders);
   EXPECT_NE(r.verdict, Verdict::kFailed);
+  // Its report stays readable and small: one table of the cameras, one cell figure each.
+  const std::string html = format_report_html(r.report);
+  EXPECT_NE(html.find("<h2>Cameras</h2>"), std::string::npos);
+  EXPECT_NE(html.find("Coverage and residuals by cell"), std::string::npos);
+  EXPECT_LT(html.size(), 1000000u);
+  RecordProperty("report_bytes", static_cast<int>(html.size()));
   RecordProperty("worst_focal_error", std::to_string(worst_focal));
   RecordProperty("centres_over_sigma", std::to_string(centres / centre_sigma));
   RecordProperty("adjustments", r.adjustment.adjustments);

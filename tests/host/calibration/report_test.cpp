@@ -1,5 +1,9 @@
 #include "calibration/report.hpp"
 
+#include <cmath>
+
+#include "calibration/report_overview.hpp"
+
 #include <gtest/gtest.h>
 
 namespace syncap::calibration {
@@ -85,6 +89,55 @@ TEST(CalibrationReportTables, HoldEveryResidualAndPointWithAHeader) {
   EXPECT_EQ(points.rfind("x_mm,y_mm,z_mm\n0.0000,0.0000,1000.0000\n", 0), 0u) << points;
   EXPECT_EQ(count(points, "\n"), r.points.size() + 1);
   EXPECT_NE(points.find("\n10.0000,5.0000,1001.0000\n"), std::string::npos) << points;
+}
+
+// Issue 37: a rig of 8 cameras, one of them (id 5) with few rays in one corner of its image and a
+// large sigma of c, each ray's residual pointing outwards (a systematic error).
+CalibrationReport eight_camera_report() {
+  CalibrationReport r;
+  for (int id = 0; id < 8; ++id) {
+    ReportCamera c;
+    c.camera.id = id;
+    c.camera.sensor = {1920, 1200, 0.00586, 0.00586};
+    c.camera.exterior = {1000.0 * id, -4000, 2000, 1.3, 0, 0};
+    const bool weak = id == 5;
+    c.parameters = {{"c", 15.2, weak ? 0.3 : 0.01, "mm", "free"},
+                    {"X0", 1000.0 * id, weak ? 9.0 : 1.0, "mm", "free"},
+                    {"Y0", -4000, 1.0, "mm", "free"},
+                    {"Z0", 2000, 1.0, "mm", "free"}};
+    c.rms_px = weak ? 0.4 : 0.1 + 0.01 * id;
+    const int rays = weak ? 300 : 3000;
+    c.observations = rays;
+    for (int i = 0; i < rays; ++i) {
+      const double u = weak ? 200.0 * (i % 10) / 10.0 : 1920.0 * (i % 60) / 60.0;
+      const double v = weak ? 150.0 * (i / 10 % 10) / 10.0 : 1200.0 * (i / 60 % 50) / 50.0;
+      r.residuals.push_back({id, i, u, v, 1e-4 * (u - 960), 1e-4 * (v - 600), 0.0, false});
+    }
+    r.cameras.push_back(c);
+  }
+  return r;
+}
+
+TEST(CalibrationReportHtml, ABigRigGetsOneTableAndOneSmallFigureACamera) {
+  const CalibrationReport r = eight_camera_report();
+  const std::vector<CameraOverview> overview = camera_overview(r);
+  ASSERT_EQ(overview.size(), 8u);
+  EXPECT_EQ(overview[5].rays, 300);
+  EXPECT_LT(overview[5].coverage, 0.05);  // one corner of 160 cells
+  EXPECT_GT(overview[0].coverage, 0.99);
+  EXPECT_NEAR(overview[5].c_sigma_share, 0.3 / 15.2, 1e-9);
+  EXPECT_NEAR(overview[5].centre_sigma, std::sqrt(81.0 + 2.0), 1e-9);
+  const std::string html = format_report_html(r);
+  EXPECT_TRUE(draws_cells(r));
+  // The histogram, one cell figure a camera, plan and elevation: not 2 x 8 figures of every ray.
+  EXPECT_EQ(count(html, "<svg"), 1u + 8u + 2u);
+  EXPECT_EQ(count(html, "<circle"), 16u);  // the cameras in plan and elevation, no dot per ray
+  EXPECT_NE(html.find("Camera 5 is among the three worst in 5 of the five columns"),
+            std::string::npos)
+      << html;
+  EXPECT_LT(html.size(), 200000u);          // 22 800 rays
+  EXPECT_EQ(count(html, "<details>"), 8u);  // each camera's parameters folded
+  EXPECT_EQ(count(html, "<table"), count(html, "</table>"));
 }
 
 TEST(CalibrationReportHtml, CopesWithAnEmptyReport) {
