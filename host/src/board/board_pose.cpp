@@ -30,10 +30,6 @@ void solve(const sensor::OpenCvCamera& c, const std::vector<cv::Point3d>& object
                cv::SOLVEPNP_ITERATIVE);
 }
 
-}  // namespace
-
-namespace {
-
 std::vector<double> residuals(const sensor::OpenCvCamera& posed,
                               const std::vector<cv::Point3d>& object,
                               const std::vector<cv::Point2d>& image) {

@@ -133,14 +133,9 @@ std::optional<BoardCorners> find_charuco_corners(const cv::Mat& grey, const Boar
                                                  int* preferred, const sensor::OpenCvCamera* lens) {
   const cv::Ptr<cv::aruco::CharucoBoard> charuco = charuco_board(board);
   const std::size_t all = board_points(board).size();
-  std::vector<int> order(std::begin(kStretches), std::end(kStretches));
-  if (preferred != nullptr && std::ranges::find(order, *preferred) != order.end()) {
-    std::erase(order, *preferred);
-    order.insert(order.begin(), *preferred);
-  }
   BoardCorners best;
   int best_stretch = 0;
-  for (const int stretch : order) {
+  for (const int stretch : stretches_in_order(preferred)) {
     BoardCorners found =
         corners_from_markers(detect_markers(grey, stretch, charuco), board, charuco, grey, lens);
     if (found.ids.size() > best.ids.size()) {

@@ -105,14 +105,18 @@ void canonical_order(const cv::Mat& grey, const BoardSpec& board, std::vector<cv
 
 }  // namespace
 
-std::optional<std::vector<cv::Point2d>> find_board_corners(const cv::Mat& grey,
-                                                           const BoardSpec& board, int* preferred) {
+std::vector<int> stretches_in_order(const int* preferred) {
   std::vector<int> order(std::begin(kStretches), std::end(kStretches));
   if (preferred != nullptr && std::ranges::find(order, *preferred) != order.end()) {
     std::erase(order, *preferred);
     order.insert(order.begin(), *preferred);
   }
-  for (const int stretch : order) {
+  return order;
+}
+
+std::optional<std::vector<cv::Point2d>> find_board_corners(const cv::Mat& grey,
+                                                           const BoardSpec& board, int* preferred) {
+  for (const int stretch : stretches_in_order(preferred)) {
     cv::Mat image = grey;
     if (stretch > 1) cv::resize(grey, image, {}, 1.0, stretch, cv::INTER_CUBIC);
     std::vector<cv::Point2f> found;

@@ -20,6 +20,9 @@ namespace syncap::board {
 // The vertical stretches tried, in order.
 inline constexpr int kStretches[] = {1, 2, 3, 4};
 
+// kStretches with `preferred` (when given and one of them) first: a clip's frames share one.
+std::vector<int> stretches_in_order(const int* preferred);
+
 // The inner corners in an 8-bit grey image, in the project's pixels, in the board's order: rows of
 // COLS corners, the COLS axis turning onto the ROWS axis clockwise in the image (the board seen
 // from its front), and, on a board a half turn does not map onto itself, the cell between the

@@ -325,7 +325,8 @@ std::string format_report_html(const CalibrationReport& report) {
   out += "<h2>Cameras</h2>" + html_camera_overview(report);
   out += "<h2>Tests</h2>" + html_tests(report);
   out += "<h2>Parameters</h2>";
-  // A big rig's cameras folded (the table above says which to open), each a click away.
+  // A big rig's cameras folded (the table above says which to open), each a click away, and its
+  // images drawn as cells.
   const bool fold = draws_cells(report);
   for (const ReportCamera& c : report.cameras) {
     if (fold) out += printf_string("<details><summary>camera %d</summary>", c.camera.id);
@@ -335,7 +336,7 @@ std::string format_report_html(const CalibrationReport& report) {
     if (fold) out += "</details>";
   }
   out += "<h2>Residuals</h2>" + svg_histogram(report);
-  if (draws_cells(report)) return out + html_cells(report) + network_figures(report);
+  if (fold) return out + html_cells(report) + network_figures(report);
   const double scale = residual_scale(report);
   out += "<h2>Residual vectors</h2>";
   for (const ReportCamera& c : report.cameras) {
