@@ -39,6 +39,7 @@ void calibrate_big_rig(benchmark::State& state) {
     state.counters["worst_focal_error"] = e.worst_focal;
     state.counters["centres_rms"] = e.centres;
     state.counters["centre_sigma_rms"] = e.centre_sigma;
+    state.counters["focal_z_rms"] = e.focal_z_rms;
     state.counters["measurements"] = static_cast<double>(r.network.measurements.size());
   }
   state.counters["frames"] = static_cast<double>(rig.observations.frames.size());

@@ -282,6 +282,14 @@ void add_adjustment_options(CLI::App& app, CalibrateArgs& a) {
                    "also the interior sigmas of N re-adjustments of simulated\n"
                    "measurements (a parametric bootstrap: honest in weak networks;\n"
                    "default 0)");
+  cli::add_checked(app, "--stretches", o.covariance_stretches, "N", cli::whole_in(0, 100'000),
+                   "sigmas also from the scatter over N stretches of the recording,\n"
+                   "the larger of that and the linearised each: systematic errors\n"
+                   "along the recording (default 30; 0: not from those)");
+  cli::add_checked(app, "--cells", o.covariance_cells, "N", cli::whole_in(0, 1'000),
+                   "sigmas also from the scatter over the cells of an N-wide grid on\n"
+                   "each image: systematic errors by place in the image (default 8;\n"
+                   "0: not from those)");
 }
 
 // The checks that span options, after parsing.

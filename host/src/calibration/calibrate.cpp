@@ -369,6 +369,68 @@ std::vector<sensor::CameraModel> cameras_of(const scene::Network& network,
   return cameras;
 }
 
+// Scales row and column `at` of the camera covariance, and the model's interior covariance when
+// the column is one of its interior values, so that the variance becomes `sigma`^2.
+void set_camera_sigma(estimators::BundleAdjustmentResult& r, int at, double sigma) {
+  Eigen::MatrixXd& c = r.camera_covariance;
+  if (at >= c.rows() || !(c(at, at) > 0)) return;
+  const double f = sigma / std::sqrt(c(at, at));
+  c.row(at) *= f;
+  c.col(at) *= f;
+  const int m = at / sensor::InteriorBlock::kSize;
+  if (m >= static_cast<int>(r.models.size())) return;
+  const int k = at % sensor::InteriorBlock::kSize;
+  r.models[m].interior_covariance.row(k) *= f;
+  r.models[m].interior_covariance.col(k) *= f;
+}
+
+// The whole's sigmas with the halves' excess added (halves_excess): the systematic part of the
+// error that the halves show and no covariance of one calibration can see. Returns the largest
+// factor a camera constant's sigma grew by.
+double widen_by_halves(CalibrationResult& out) {
+  const HalvesExcess e = halves_excess(out.halves, out.cameras);
+  if (e.interior_variance.empty()) return 1.0;
+  estimators::BundleAdjustmentResult& r = out.adjustment;
+  const int interiors = static_cast<int>(r.models.size()) * sensor::InteriorBlock::kSize;
+  std::vector<std::array<double, 10>> model_excess(r.models.size(), std::array<double, 10>{});
+  for (size_t s = 0; s < r.stations.size(); ++s) {
+    auto& excess = model_excess[model_index(out.network, s)];
+    for (size_t k = 0; k < excess.size(); ++k)
+      excess[k] = std::max(excess[k], e.interior_variance[s][k]);
+  }
+  double widest = 1.0;
+  for (size_t m = 0; m < r.models.size(); ++m) {
+    for (int k = 0; k < sensor::InteriorBlock::kSize; ++k) {
+      double& sigma = r.models[m].interior_sigma[static_cast<size_t>(k)];
+      if (!(sigma > 0)) continue;
+      const double widened = std::sqrt(sigma * sigma + model_excess[m][static_cast<size_t>(k)]);
+      if (k == sensor::InteriorBlock::kC) widest = std::max(widest, widened / sigma);
+      sigma = widened;
+      set_camera_sigma(r, static_cast<int>(m) * sensor::InteriorBlock::kSize + k, widened);
+    }
+  }
+  for (size_t s = 0; s < r.stations.size(); ++s) {
+    for (int k = 0; k < 3; ++k) {
+      double& sigma = r.stations[s].exterior_sigma[static_cast<size_t>(k)];
+      sigma = std::sqrt(sigma * sigma + e.centre_variance[s]);
+      set_camera_sigma(r, interiors + static_cast<int>(s) * sensor::ExteriorBlock::kSize + k,
+                       sigma);
+    }
+  }
+  out.cameras = cameras_of(out.network, r);
+  for (size_t s = 0; s < out.report.cameras.size() && s < r.stations.size(); ++s) {
+    auto& parameters = out.report.cameras[s].parameters;
+    const auto& m = r.models[model_index(out.network, s)];
+    for (int k = 0; k < sensor::InteriorBlock::kSize; ++k)
+      parameters[static_cast<size_t>(k)].sigma = m.interior_sigma[static_cast<size_t>(k)];
+    for (int k = 0; k < 3; ++k) {
+      parameters[static_cast<size_t>(sensor::InteriorBlock::kSize + k)].sigma =
+          r.stations[s].exterior_sigma[static_cast<size_t>(k)];
+    }
+  }
+  return widest;
+}
+
 // The checks of verdict.hpp on a finished result: the held-out frames predicted, the two halves
 // calibrated alone (`model`: the final model's options, `nominal`: the models' start), the
 // verdict.
@@ -385,6 +447,13 @@ void check(CalibrationResult& out, const Observations& observations,
     std::vector<sensor::InteriorOrientation> start;
     for (const scene::CameraModel& m : nominal) start.push_back(m.interior);
     out.halves = compare_halves(observations, frames, model, start);
+    const double widest = widen_by_halves(out);
+    if (widest > 1.0 + 1e-9) {
+      out.halves.text += util::printf_string(
+          "; the sigmas include the part of it the halves' own sigmas do not explain (c's up to "
+          "%.2fx)",
+          widest);
+    }
     say(model, "halves: " + out.halves.text);
   }
   out.findings = judge(out);

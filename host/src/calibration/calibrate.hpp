@@ -102,6 +102,12 @@ struct CalibrationOptions {
   // > 1: also the interior sigmas of this many re-adjustments of measurements simulated from the
   // result (estimators/bootstrap.hpp), in the report beside the linearised ones.
   int bootstrap_samples = 0;
+  // The sigmas also from the scatter over this many contiguous stretches of the adjusted frames
+  // and over the cells of a grid this many cells wide on each image, each the largest of those
+  // and the linearised one (estimators/cluster_covariance.hpp): the errors that follow the
+  // target along the recording or belong to a place in the image; 0: not from those.
+  int covariance_stretches = 30;
+  int covariance_cells = 8;
   NetworkStartOptions start;
   // Called with one line per step ("identified 3 cameras: ...", "start values: ..."); the CLI
   // prints them on a terminal.

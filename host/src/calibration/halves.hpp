@@ -11,6 +11,7 @@
 // of the centres' spread.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,10 +30,27 @@ struct HalvesAgreement {
   std::vector<int> camera_ids;
   std::vector<double> c_a_mm, c_b_mm, z;  // per camera
   double worst_z = 0;
-  double centres_rms_mm = 0;     // after the similarity fit
-  double centres_spread_mm = 0;  // RMS distance of the centres from their centroid
-  std::string text;              // one line for the report
+  double centres_rms_mm = 0;              // after the similarity fit
+  double centres_spread_mm = 0;           // RMS distance of the centres from their centroid
+  std::string text;                       // one line for the report
+  std::vector<sensor::CameraModel> a, b;  // each half's cameras, with their standard deviations
 };
+
+// The halves' disagreement beyond their own sigmas, as the variance a systematic error of the
+// recording adds to the whole's values (a random effect per half, as in DerSimonian & Laird
+// 1986): for each kind of value (c of all cameras, xp, ..., the centres) whose halves disagree
+// beyond the 99 % chi-square bound of their sigmas, the halves' variance tau^2 = (R - 1)
+// (sigma_a^2 + sigma_b^2) / 2 per camera, R the kind's mean (a - b)^2 / (sigma_a^2 + sigma_b^2),
+// of which the whole, the halves' mean, carries tau^2 / 2. Per camera, in interior block order,
+// then per camera one variance for each coordinate of its centre, in the whole's units (the halves'
+// centres after the similarity that fits b's onto a's, a's fitted onto `whole` for the units).
+struct HalvesExcess {
+  std::vector<std::array<double, 10>> interior_variance;
+  std::vector<double> centre_variance;
+};
+
+HalvesExcess halves_excess(const HalvesAgreement& halves,
+                           const std::vector<sensor::CameraModel>& whole);
 
 // The RMS distance of b's projection centres from a's (camera i of each alike) after the
 // similarity transformation that fits b's onto a's [a's units].

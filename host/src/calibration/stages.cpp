@@ -159,6 +159,8 @@ void prepare_stage(scene::Network& network, const CalibrationOptions& options, S
   network.design.max_iterations = stage.snoop ? kMaxIterations : kFirstStageIterations;
   network.design.calculate_covariance = stage.snoop || stage.clean;
   network.design.statistical_tests = stage.snoop || stage.clean;
+  network.design.covariance_stretches = options.covariance_stretches;
+  network.design.covariance_cells = options.covariance_cells;
   network.residual_test.iterative_rejection = stage.snoop;
   network.residual_test.reject_per_point = true;
   network.residual_test.critical_snooping = options.critical_snooping;

@@ -73,7 +73,8 @@ void judge_halves(const HalvesAgreement& h, std::vector<Finding>& out) {
     out.push_back(
         {Verdict::kWeak, h.camera_ids[i],
          util::printf_string("camera %d: the two halves of the recording give c %.4f "
-                             "and %.4f mm, %.1f of their sigmas apart",
+                             "and %.4f mm, %.1f of their sigmas apart (an error of the recording "
+                             "their sigmas miss; the sigmas reported include it)",
                              h.camera_ids[i], h.c_a_mm[i], h.c_b_mm[i], std::abs(h.z[i]))});
   }
   if (h.centres_rms_mm > kHalvesCentres * h.centres_spread_mm) {

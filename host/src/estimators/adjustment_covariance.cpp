@@ -67,8 +67,9 @@ bool evaluate_jacobian(const Term& term, const AdjustmentParameters& parameters,
   }
   std::vector<double*> jacobian_pointers;
   for (auto& part : parts) jacobian_pointers.push_back(part.data());
-  Eigen::VectorXd r(term.cost->num_residuals());
-  if (!term.cost->Evaluate(blocks.data(), r.data(), jacobian_pointers.data())) return false;
+  tj->residual.resize(term.cost->num_residuals());
+  if (!term.cost->Evaluate(blocks.data(), tj->residual.data(), jacobian_pointers.data()))
+    return false;
   // Blocks are ordered interior, exterior, group in every term, so the camera columns come first.
   tj->jacobian.resize(term.cost->num_residuals(), columns);
   int at = 0;

@@ -20,6 +20,7 @@ namespace syncap::estimators {
 // exterior blocks, then its group's values.
 struct TermJacobian {
   Eigen::MatrixXd jacobian;
+  Eigen::VectorXd residual;  // whitened, at the solution
   std::vector<int> camera_columns;
   int group = -1;
 };

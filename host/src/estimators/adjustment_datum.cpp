@@ -55,15 +55,6 @@ std::string hold_scale(const scene::Network& network, const AdjustmentParameters
          sensor::ExteriorBlock::kNames[best_axis];
 }
 
-// The directions of the null space of a free network's normal matrix: translations, rotations
-// about the points' centroid and, without distances, the scale, as changes of every exterior
-// orientation and object point (interior orientations do not change).
-struct DatumDefect {
-  int size = 0;
-  Eigen::MatrixXd camera;               // rows: camera parameters
-  std::vector<Eigen::MatrixXd> groups;  // rows: group values
-};
-
 // The change of a position under translation k (columns 0-2), rotation about axis k (3-5) and
 // scale (6), all about the centroid of the adjusted points.
 class SimilarityMotion {
@@ -100,6 +91,8 @@ Eigen::Vector3d angle_motion(const std::array<double, kExteriorSize>& exterior, 
                          wrapped(plus.kappa - minus.kappa) / (2 * step));
 }
 
+}  // namespace
+
 DatumDefect datum_defect(const scene::Network& network, const AdjustmentParameters& parameters) {
   DatumDefect defect;
   const bool scale = network.distances.empty();
@@ -127,8 +120,6 @@ DatumDefect datum_defect(const scene::Network& network, const AdjustmentParamete
   }
   return defect;
 }
-
-}  // namespace
 
 DatumChoice choose_datum(const ResolvedNetwork& resolved, const AdjustmentParameters& parameters,
                          std::vector<std::string>* messages) {

@@ -6,6 +6,7 @@
 // docs/design/calibration.md, "Bundle adjustment".
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
 #include <vector>
@@ -22,6 +23,17 @@ struct DatumChoice {
   // Per station, the exterior values held although free: a free network's minimal constraints.
   std::vector<std::array<bool, kExteriorSize>> held;
 };
+
+// The directions of the null space of a free network's normal matrix: translations, rotations
+// about the points' centroid and, without distances, the scale, as changes of every exterior
+// orientation and object point (interior orientations do not change).
+struct DatumDefect {
+  int size = 0;
+  Eigen::MatrixXd camera;               // rows: camera parameters
+  std::vector<Eigen::MatrixXd> groups;  // rows: group values
+};
+
+DatumDefect datum_defect(const scene::Network& network, const AdjustmentParameters& parameters);
 
 // The datum of the network at its approximate values; `messages` get how it is defined.
 DatumChoice choose_datum(const ResolvedNetwork& resolved, const AdjustmentParameters& parameters,

@@ -4,6 +4,7 @@
 //   adjustment_datum       given parameters or a free network's minimal constraints, S-transform
 //   adjustment_problem     the Ceres problem and solver of one adjustment, its residuals
 //   adjustment_covariance  the cofactors at the solution and the result's precision
+//   cluster_covariance     the precision from the scatter over stretches and image cells
 //   data_snooping          the residuals' test statistics and the rejections
 //   bundle_adjustment_summary  format_summary
 #include "estimators/bundle_adjustment.hpp"
@@ -21,6 +22,7 @@
 #include "estimators/adjustment_network.hpp"
 #include "estimators/adjustment_parameters.hpp"
 #include "estimators/adjustment_problem.hpp"
+#include "estimators/cluster_covariance.hpp"
 #include "estimators/data_snooping.hpp"
 
 namespace syncap::estimators {
@@ -71,6 +73,7 @@ class Adjuster {
   bool compute_cofactors();
   void test_adjustment();
   void fill_result();
+  Eigen::MatrixXd clustered_covariance();
   void fill_models();
   void fill_stations();
   void count_measurements();
@@ -92,6 +95,7 @@ class Adjuster {
   std::vector<Term> terms_;
   long unknowns_ = 0;
   ArrowCofactors cofactors_;
+  std::vector<TermJacobian> jacobians_;  // the cofactors came from these
   bool have_cofactors_ = false;
 
   BundleAdjustmentResult result_;
@@ -136,13 +140,12 @@ void Adjuster::evaluate_residuals() {
 }
 
 bool Adjuster::compute_cofactors() {
-  std::vector<TermJacobian> jacobians;
   if (!estimators::compute_cofactors(resolved_, parameters_, datum_, terms_, &cofactors_,
-                                     &jacobians, &result_.messages)) {
+                                     &jacobians_, &result_.messages)) {
     return false;
   }
 
-  test_residuals(network_, terms_, jacobians, cofactors_, snooping_sigma0(), &result_.measurements,
+  test_residuals(network_, terms_, jacobians_, cofactors_, snooping_sigma0(), &result_.measurements,
                  &log_p_);
   have_cofactors_ = true;
   return true;
@@ -151,13 +154,41 @@ bool Adjuster::compute_cofactors() {
 // The values of the last adjustment and, when it has cofactors, their precision: sigma0^2 times
 // the cofactors, of a free network S-transformed to the inner-constraint datum first.
 void Adjuster::fill_result() {
+  const Eigen::MatrixXd clustered = clustered_covariance();
   if (have_cofactors_ && result_.datum == Datum::kInnerConstraints)
     s_transform(network_, parameters_, &cofactors_);
   result_.covariance_computed = have_cofactors_;
-  if (have_cofactors_) result_.camera_covariance = variance() * cofactors_.camera_camera;
+  if (have_cofactors_) {
+    result_.linearised_camera_covariance = variance() * cofactors_.camera_camera;
+    result_.camera_covariance = larger_covariance(result_.linearised_camera_covariance, clustered);
+  }
   fill_models();
   fill_stations();
   fill_points();
+}
+
+// With DesignOptions::covariance_stretches or covariance_cells, the camera covariance from the
+// scatter over those clusters (the larger of the two each), in the result's datum; else empty.
+Eigen::MatrixXd Adjuster::clustered_covariance() {
+  const scene::DesignOptions& design = network_.design;
+  if (!have_cofactors_ || (design.covariance_stretches < 2 && design.covariance_cells < 1))
+    return {};
+  DatumDefect defect;
+  if (result_.datum == Datum::kInnerConstraints) defect = datum_defect(network_, parameters_);
+  const DatumDefect* datum = result_.datum == Datum::kInnerConstraints ? &defect : nullptr;
+  Eigen::MatrixXd out;
+  if (design.covariance_stretches >= 2) {
+    const Clustering c = by_stretch(resolved_, terms_, jacobians_, design.covariance_stretches);
+    result_.covariance_stretches = c.clusters;
+    out = cluster_covariance(parameters_, terms_, jacobians_, cofactors_, c, datum);
+  }
+  if (design.covariance_cells >= 1) {
+    const Clustering c = by_cell(resolved_, terms_, design.covariance_cells);
+    result_.covariance_cells = c.clusters;
+    out = larger_covariance(
+        out, cluster_covariance(parameters_, terms_, jacobians_, cofactors_, c, datum));
+  }
+  return out;
 }
 
 void Adjuster::fill_models() {

@@ -145,9 +145,15 @@ struct BundleAdjustmentResult {
   std::vector<PointResult> points;
   std::vector<MeasurementResult> measurements;
   std::vector<RejectedMeasurement> rejected;
-  // Cofactors of all camera parameters times sigma0^2: models' interior[10] in order, then
-  // stations' exterior[6] in order (rows of fixed values zero).
+  // The covariance of all camera parameters: models' interior[10] in order, then stations'
+  // exterior[6] in order (rows of fixed values zero). The linearised one, sigma0^2 times the
+  // cofactors; with DesignOptions::covariance_stretches or covariance_cells, each value's
+  // variance the larger of that and the scatter over those clusters (cluster_covariance.hpp),
+  // which the sigmas report.
   Eigen::MatrixXd camera_covariance;
+  Eigen::MatrixXd linearised_camera_covariance;
+  int covariance_stretches = 0;  // clusters camera_covariance came from (0: not clustered)
+  int covariance_cells = 0;
   std::vector<std::string> messages;  // what happened: datum, triangulations, rejections
 };
 

@@ -112,6 +112,12 @@ struct DesignOptions {
   bool wait = false;                       // WAIT: pause between iterations (interactive)
   int max_iterations = 50;                 // convergence control
   double convergence_tolerance = 1e-10;    // relative change of the cost
+  // COVARIANCE STRETCHES n, COVARIANCE CELLS n: the camera parameters' sigmas also from the
+  // scatter of the data over n contiguous stretches of the recording (its frames in order) and
+  // over the cells of an n-wide grid on each image, the largest of those and the linearised one
+  // each (estimators/cluster_covariance.hpp); 0: the linearised alone.
+  int covariance_stretches = 0;
+  int covariance_cells = 0;
 };
 
 // The residual test block (thesis section 4.1.4): significance levels and rejection.

@@ -23,16 +23,18 @@ enum class TagKind {
   kMaxIterations,         // MAX ITERATIONS n
   kConvergenceTolerance,  // CONVERGENCE TOLERANCE x
   kSeed,                  // SEED n (SIMULATE's noise)
+  kCount,                 // COVARIANCE STRETCHES n, COVARIANCE CELLS n: a DesignOptions int
 };
 
 struct DesignTag {
   std::string_view words;  // upper case, separated by one space
   TagKind kind = TagKind::kFlag;
   bool scene::DesignOptions::*flag = nullptr;  // kFlag
+  int scene::DesignOptions::*count = nullptr;  // kCount
 };
 
 using Design = scene::DesignOptions;
-inline const std::array<DesignTag, 19> kDesignTags{{
+inline const std::array<DesignTag, 21> kDesignTags{{
     {"SIMULATE", TagKind::kFlag, &Design::simulate},
     {"SEED", TagKind::kSeed, nullptr},
     {"UNIFIED LEAST SQUARES", TagKind::kFlag, &Design::unified_least_squares},
@@ -43,6 +45,8 @@ inline const std::array<DesignTag, 19> kDesignTags{{
     {"EXACT ITERATIONS", TagKind::kExactIterations, nullptr},
     {"MAX ITERATIONS", TagKind::kMaxIterations, nullptr},
     {"CONVERGENCE TOLERANCE", TagKind::kConvergenceTolerance, nullptr},
+    {"COVARIANCE STRETCHES", TagKind::kCount, nullptr, &Design::covariance_stretches},
+    {"COVARIANCE CELLS", TagKind::kCount, nullptr, &Design::covariance_cells},
     {"IGNORE APPROXIMATES", TagKind::kFlag, &Design::ignore_approximates},
     {"SORT", TagKind::kFlag, &Design::sort},
     {"OUTPUT COEFFICIENT MATRIX", TagKind::kFlag, &Design::output_coefficient_matrix},

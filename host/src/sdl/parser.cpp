@@ -458,6 +458,8 @@ void Parser::apply_design_tag(const DesignTag& tag, bool negated, const Position
   if (negated) fail(at, "NO cannot precede " + words + " (give it a value instead)");
   if (tag.kind == TagKind::kMaxIterations) {
     d.max_iterations = static_cast<int>(integer(words, 0, kMaxInt));
+  } else if (tag.kind == TagKind::kCount) {
+    d.*(tag.count) = static_cast<int>(integer(words, 0, kMaxInt));
   } else if (tag.kind == TagKind::kConvergenceTolerance) {
     d.convergence_tolerance = expression();
   } else {

@@ -103,6 +103,9 @@ void write_design(const scene::DesignOptions& d, std::string& out) {
       case detail::TagKind::kSeed:
         out += "  " + words + " " + std::to_string(d.simulation_seed) + "\n";
         break;
+      case detail::TagKind::kCount:
+        out += "  " + words + " " + std::to_string(d.*(tag.count)) + "\n";
+        break;
     }
   }
   out += "}\n";

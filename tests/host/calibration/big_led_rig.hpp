@@ -128,7 +128,19 @@ struct RigErrors {
   double worst_focal = 0.0;
   double centres = 0.0;
   double centre_sigma = 0.0;
+  double focal_z_rms = 0.0;  // RMS over the cameras of (c - true c) / sigma c
 };
+
+// The scale of the similarity that fits b's projection centres onto a's.
+inline double similarity_scale(const std::vector<sensor::CameraModel>& a,
+                               const std::vector<sensor::CameraModel>& b) {
+  Eigen::Matrix3Xd pa(3, a.size()), pb(3, b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    pa.col(static_cast<Eigen::Index>(i)) = a[i].projection_centre();
+    pb.col(static_cast<Eigen::Index>(i)) = b[i].projection_centre();
+  }
+  return std::cbrt(Eigen::umeyama(pb, pa, true).topLeftCorner<3, 3>().determinant());
+}
 
 inline RigErrors rig_errors(const BigLedRig& rig, const CalibrationResult& r) {
   RigErrors e;
@@ -136,11 +148,17 @@ inline RigErrors rig_errors(const BigLedRig& rig, const CalibrationResult& r) {
   for (std::size_t i = 0; i < r.cameras.size(); ++i) {
     e.worst_focal =
         std::max(e.worst_focal, std::abs(r.cameras[i].interior.c / rig.truth[i].interior.c - 1.0));
+    const double sc = r.cameras[i].std_devs ? r.cameras[i].std_devs->interior.c : 0.0;
+    const double zc = (r.cameras[i].interior.c - rig.truth[i].interior.c) / std::max(sc, 1e-30);
+    e.focal_z_rms += zc * zc / static_cast<double>(r.cameras.size());
     const auto& sx = r.adjustment.stations[i].exterior_sigma;
     sigma2 += sx[0] * sx[0] + sx[1] * sx[1] + sx[2] * sx[2];
   }
+  e.focal_z_rms = std::sqrt(e.focal_z_rms);
   e.centres = centres_apart_mm(rig.truth, r.cameras);
+  // The LED leaves the scale free: the sigmas are in the result's units, the errors in mm.
   e.centre_sigma =
+      similarity_scale(rig.truth, r.cameras) *
       std::sqrt(sigma2 / static_cast<double>(std::max<std::size_t>(1, r.cameras.size())));
   return e;
 }

@@ -28,6 +28,7 @@ design {
   OUTPUT MISCLOSURES
   MAX ITERATIONS 20
   CONVERGENCE TOLERANCE 1e-12
+  COVARIANCE STRETCHES 12
 }
 camera_model "m0" {
   sensor { width = 1280 height = 1024 pixel_width = pitch pixel_height = pitch }
@@ -73,6 +74,8 @@ TEST(SdlParser, ReadsEveryStatement) {
   EXPECT_TRUE(d.output_misclosures);
   EXPECT_EQ(d.max_iterations, 20);
   EXPECT_EQ(d.convergence_tolerance, 1e-12);
+  EXPECT_EQ(d.covariance_stretches, 12);
+  EXPECT_EQ(d.covariance_cells, 0);  // untouched: the default
 
   ASSERT_EQ(n.models.size(), 1u);
   const auto& m = n.models[0];
@@ -240,7 +243,8 @@ TEST(SdlParser, ErrorsNameLineColumnAndWhatWasExpected) {
        "'OUTPUT', found identifier 'FOO'"},
       {"design { simulate }",
        "1:10: expected a design tag (SIMULATE, SEED, UNIFIED, RESIDUALS, CALCULATE, STATISTICAL, "
-       "FORCE, EXACT, MAX, CONVERGENCE, IGNORE, SORT, OUTPUT, DEBUG, WAIT) or '}', found "
+       "FORCE, EXACT, MAX, CONVERGENCE, COVARIANCE, IGNORE, SORT, OUTPUT, DEBUG, WAIT) or '}', "
+       "found "
        "identifier 'simulate'"},
       {"design { NO MAX ITERATIONS 3 }",
        "1:13: NO cannot precede MAX ITERATIONS (give it a value "

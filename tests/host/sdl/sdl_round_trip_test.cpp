@@ -61,6 +61,8 @@ TEST(SdlRoundTrip, HardValuesAndNames) {
   d.exact_iterations = 0;
   d.max_iterations = std::numeric_limits<int>::max();
   d.convergence_tolerance = 5e-324;
+  d.covariance_stretches = 30;
+  d.covariance_cells = std::numeric_limits<int>::max();
 
   scene::CameraModel model;
   model.name = "m \"0\" \\ \n\t\r\x01\x7f ü";
