@@ -57,10 +57,17 @@ void add_tracking_options(CLI::App& app, controllers::MarkerOptions& args,
                           std::string& rigid_sets_path) {
   app.add_option_function<double>(
          "--acceleration-m-s2",
-         [&args](double m_s2) { args.tracker.acceleration_mm_s2 = m_s2 * 1000.0; },
-         "the markers' accelerations the tracker allows for, m/s^2 (default 10): larger "
-         "widens every track's gate")
+         [&args](double m_s2) { args.tracker.motion.quiet_acceleration_mm_s2 = m_s2 * 1000.0; },
+         "the accelerations of markers moving quietly, m/s^2 (default 10): larger widens "
+         "every track's gate")
       ->check(cli::number_in(0.1, 1000));
+  app.add_option_function<double>(
+         "--manoeuvre-acceleration-m-s2",
+         [&args](double m_s2) { args.tracker.motion.manoeuvre_acceleration_mm_s2 = m_s2 * 1000.0; },
+         "also a manoeuvring motion of this acceleration, m/s^2, each track mixing it with the "
+         "quiet one by how it moves (150 follows running at 60 Hz or more; at 30 Hz it widens "
+         "gates over neighbouring markers; default 0: the quiet motion alone)")
+      ->check(cli::number_in(0, 10000));
   app.add_option(
          "--rigid-sets", rigid_sets_path,
          "rigid marker sets (YAML, docs/design/reconstruction.md): each set's 6-DoF pose in "

@@ -53,10 +53,11 @@ void print_reconstruction(const SummaryInputs& in, std::ostream& out) {
 }  // namespace
 
 std::string host_time_line(const pipeline::HostNodeStats& s) {
-  char line[384];
+  char line[512];
   std::snprintf(line, sizeof line,
-                "host time per group: p50 %.3f ms, p99 %.3f ms; its CPU time p50 %.3f ms, p99 "
-                "%.3f ms (%ld groups, %ld dropped by a full queue)\n",
+                "host time per group (grouped to done, the queue's wait included): p50 %.3f ms, "
+                "p99 %.3f ms; its CPU time p50 %.3f ms, p99 %.3f ms (%ld groups, %ld dropped by "
+                "a full queue)\n",
                 pipeline::quantile(s.host_us.values(), 0.5) * 1e-3,
                 pipeline::quantile(s.host_us.values(), 0.99) * 1e-3,
                 pipeline::quantile(s.host_cpu_us.values(), 0.5) * 1e-3,

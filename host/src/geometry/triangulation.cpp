@@ -29,8 +29,26 @@ double pixels_per_rad(const sensor::CameraModel& camera) {
   return camera.interior.c / camera.sensor.pixel_width_mm;
 }
 
+double spot_pixels_per_rad(const sensor::CameraModel& camera, const Ray& ray) {
+  // Two small turns of the ray about axes across it; the area their pixels span, by the
+  // determinant of the 2x2 Jacobian.
+  constexpr double kTurn = 1e-3;        // rad
+  constexpr double kDistance = 1000.0;  // mm: any distance; the scale is angular
+  const Eigen::Vector3d d = ray.direction.normalized();
+  const Eigen::Vector3d a = d.unitOrthogonal(), b = d.cross(a);
+  const sensor::Projection centre = camera.project(ray.origin + kDistance * d);
+  const sensor::Projection pa = camera.project(ray.origin + kDistance * (d + kTurn * a));
+  const sensor::Projection pb = camera.project(ray.origin + kDistance * (d + kTurn * b));
+  if (!centre.ok() || !pa.ok() || !pb.ok()) return pixels_per_rad(camera);
+  Eigen::Matrix2d j;
+  j.col(0) = (pa.pixel - centre.pixel) / kTurn;
+  j.col(1) = (pb.pixel - centre.pixel) / kTurn;
+  return std::sqrt(std::abs(j.determinant()));
+}
+
 ViewRay view_ray(const sensor::CameraModel& camera, const Eigen::Vector2d& pixel) {
-  return {camera.back_project(pixel), pixels_per_rad(camera)};
+  const Ray ray = camera.back_project(pixel);
+  return {ray, pixels_per_rad(camera), spot_pixels_per_rad(camera, ray)};
 }
 
 double angle_to(const Ray& ray, const Eigen::Vector3d& point) {

@@ -9,7 +9,7 @@ namespace syncap::reconstruction {
 double apparent_width_mm(const geometry::ViewRay& ray, double area_px,
                          const Eigen::Vector3d& point) {
   const double distance_mm = (point - ray.ray.origin).norm();
-  return std::sqrt(std::max(area_px, 0.0)) * distance_mm / ray.pixels_per_rad;
+  return std::sqrt(std::max(area_px, 0.0)) * distance_mm / ray.spot_pixels_per_rad;
 }
 
 std::vector<bool> whole_spots(std::span<const geometry::ViewRay> rays,

@@ -2,8 +2,9 @@
 // the edge's roundness filter, but a smaller one, and its centroid is off by up to a pixel: on the
 // mocap replay 60 % of the markers had such a ray, and their 3D error was twice that of markers
 // all of whose spots were whole (docs/design/reconstruction.md). The spot's size tells them apart
-// once the point is known: sqrt(area) * distance / (pixels per radian) is the marker's apparent
-// width in mm, the same in every camera that sees it whole, smaller in one that sees part of it. So
+// once the point is known: sqrt(area) * distance / (pixels per radian at the spot, through the lens
+// model: ViewRay::spot_pixels_per_rad) is the marker's apparent width in mm, the same in every
+// camera that sees it whole, smaller in one that sees part of it. So
 // a point with enough whole spots is triangulated again from those alone.
 #pragma once
 

@@ -9,36 +9,15 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-void symmetrize(Matrix3d& m) { m = 0.5 * (m + m.transpose()).eval(); }
-
-// Constant velocity over dt, plus white acceleration of sigma held over the interval.
-void predict(Track& t, double time_s, double acceleration_sigma) {
-  const double dt = std::max(0.0, time_s - t.time_s);
-  const double q = acceleration_sigma * acceleration_sigma;
-  const Matrix3d pv = t.position_velocity_cov;
-  t.position_mm += dt * t.velocity_mm_s;
-  t.position_cov += dt * (pv + pv.transpose()) + dt * dt * t.velocity_cov;
-  t.position_cov.diagonal().array() += q * dt * dt * dt * dt / 4;
-  t.position_velocity_cov += dt * t.velocity_cov;
-  t.position_velocity_cov.diagonal().array() += q * dt * dt * dt / 2;
-  t.velocity_cov.diagonal().array() += q * dt * dt;
-  t.time_s = time_s;
-}
-
-// The Kalman update with a position measurement z of covariance r (H = [I 0]).
-void correct(Track& t, const Vector3d& z, const Matrix3d& r) {
-  const Matrix3d s_inverse = (t.position_cov + r).inverse();
-  const Matrix3d gain_p = t.position_cov * s_inverse;
-  const Matrix3d gain_v = t.position_velocity_cov.transpose() * s_inverse;
-  const Vector3d innovation = z - t.position_mm;
-  t.position_mm += gain_p * innovation;
-  t.velocity_mm_s += gain_v * innovation;
-  const Matrix3d pv = t.position_velocity_cov;
-  t.velocity_cov -= gain_v * pv;
-  t.position_velocity_cov -= gain_p * pv;
-  t.position_cov -= gain_p * t.position_cov;
-  symmetrize(t.position_cov);
-  symmetrize(t.velocity_cov);
+// The track's reported state from its motion model's combination.
+void take_state(Track& t) {
+  const KinematicState& c = t.motion.combined();
+  t.time_s = t.motion.time_s();
+  t.position_mm = c.x.head<3>();
+  t.velocity_mm_s = c.x.tail<3>();
+  t.position_cov = c.p.topLeftCorner<3, 3>();
+  t.position_velocity_cov = c.p.topRightCorner<3, 3>();
+  t.velocity_cov = c.p.bottomRightCorner<3, 3>();
 }
 
 }  // namespace
@@ -66,7 +45,10 @@ const TrackedFrame& MarkerTracker::update(int64_t frame, double time_s,
 }
 
 void MarkerTracker::predict_all(double time_s) {
-  for (Track& t : tracks_) predict(t, time_s, options_.acceleration_mm_s2);
+  for (Track& t : tracks_) {
+    t.motion.predict(time_s, options_.motion);
+    take_state(t);
+  }
 }
 
 // Every pair within the gate. d^T S^-1 d >= |d|^2 / trace(S), so pairs with |d|^2 above
@@ -189,7 +171,8 @@ void MarkerTracker::apply(int64_t frame, std::span<const PointObservation> point
     Track& track = tracks_[t];
     const int p = track_point_[t];
     if (p >= 0) {
-      correct(track, points[p].position_mm, measurement_cov(points[p]));
+      track.motion.correct(points[p].position_mm, measurement_cov(points[p]));
+      take_state(track);
       result_.ids[p] = track.id;
       track.last_seen_frame = frame;
       track.missed_frames = 0;
@@ -217,11 +200,9 @@ void MarkerTracker::apply(int64_t frame, std::span<const PointObservation> point
     }
     Track t;
     t.id = next_id_++;
-    t.time_s = result_.time_s;
-    t.position_mm = points[p].position_mm;
-    t.position_cov = measurement_cov(points[p]);
-    t.velocity_cov.diagonal().setConstant(options_.new_track_speed_mm_s *
-                                          options_.new_track_speed_mm_s);
+    t.motion = MotionModel(options_.motion, result_.time_s, points[p].position_mm,
+                           measurement_cov(points[p]), options_.new_track_speed_mm_s);
+    take_state(t);
     t.first_frame = t.last_seen_frame = frame;
     t.points = 1;
     tracks_.push_back(t);

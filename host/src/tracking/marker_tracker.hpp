@@ -1,8 +1,9 @@
 // 3D marker tracking: a persistent id for every marker across frames
 // (docs/design/reconstruction.md, "Tracking").
 //
-// Each track is a constant-velocity Kalman filter (state: position and velocity, mm and mm/s).
-// Why a filter rather than plain extrapolation: the points come with their covariance (a marker
+// Each track is a filter of position and velocity (mm, mm/s): a constant-velocity model, or two,
+// quiet and manoeuvring, mixed as an IMM (motion_model.hpp). Why a filter rather than plain
+// extrapolation: the points come with their covariance (a marker
 // seen by two cameras is far less certain along their baseline than one seen by eight), and the
 // filter weighs each point by it and keeps the prediction's own uncertainty, which grows while a
 // marker is hidden. That uncertainty is the gate: a point may continue a track only within the
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "tracking/assignment.hpp"
+#include "tracking/motion_model.hpp"
 
 namespace syncap::tracking {
 
@@ -43,12 +45,10 @@ struct PointObservation {
 };
 
 struct TrackerOptions {
-  // The accelerations markers reach [mm/s^2]: the process noise of the constant-velocity model,
-  // as white acceleration of this standard deviation held over each frame (Bar-Shalom's
-  // piecewise-constant model). 10 m/s^2: on the synthetic motion (peaks near 20 m/s^2) 15 gave
-  // more id switches at 30 Hz (wider gates take more ghosts while a marker is hidden) and none
-  // fewer at 100 Hz; larger widens every gate, much smaller loses fast turns.
-  double acceleration_mm_s2 = 10000;
+  // The accelerations markers reach: the quiet model's 10 m/s^2 (on the synthetic motion, peaks
+  // near 20 m/s^2, 15 gave more id switches at 30 Hz: wider gates take more ghosts while a marker
+  // is hidden); a manoeuvring model beside it only when asked (motion_model.hpp).
+  MotionModelOptions motion;
   // A point continues a track when its squared Mahalanobis distance to the prediction is below
   // this chi-square quantile of 3 degrees of freedom (11.34: 0.99, 16.27: 0.999).
   double gate_chi_square = 16.27;
@@ -63,7 +63,7 @@ struct TrackerOptions {
   double min_point_sigma_mm = 0.05;
 };
 
-// A track's filter state.
+// A track's filter state: the motion model's combination, as of time_s.
 struct Track {
   TrackId id = kNoTrack;
   double time_s = 0;  // when the state below holds
@@ -77,6 +77,7 @@ struct Track {
   int64_t last_seen_frame = 0;
   int missed_frames = 0;  // consecutive frames without a point
   long points = 0;        // frames with a point
+  MotionModel motion;
 };
 
 // A track without a point this frame: where it is predicted to be.

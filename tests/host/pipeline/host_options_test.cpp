@@ -37,7 +37,7 @@ TEST(HostOptions, MarkersOptionsAreParsed) {
   EXPECT_EQ(p.options->pipeline.markers.stage.partial_spots.min_whole_rays, 4);
   EXPECT_EQ(parse({"--partial-spot-ratio", "1.5"}).exit_status, 2);
   EXPECT_EQ(parse({"--partial-spot-min-rays", "1"}).exit_status, 2);
-  EXPECT_DOUBLE_EQ(p.options->pipeline.markers.tracker.acceleration_mm_s2, 25000);
+  EXPECT_DOUBLE_EQ(p.options->pipeline.markers.tracker.motion.quiet_acceleration_mm_s2, 25000);
 }
 
 TEST(HostOptions, HullOptionsAreParsedAndTheHullNeedsTheCalibration) {

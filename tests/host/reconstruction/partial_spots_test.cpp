@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "sensor/camera_model.hpp"
+
 namespace syncap::reconstruction {
 namespace {
 
@@ -17,6 +19,7 @@ geometry::ViewRay ray_from(const Eigen::Vector3d& origin, const Eigen::Vector3d&
   r.ray.origin = origin;
   r.ray.direction = (point - origin).normalized();
   r.pixels_per_rad = kPixelsPerRad;
+  r.spot_pixels_per_rad = kPixelsPerRad;
   return r;
 }
 
@@ -48,6 +51,29 @@ TEST(PartialSpots, TheApparentWidthIsTheMarkersAtAnyDistance) {
   const double expected = std::sqrt(std::numbers::pi) * kMarkerMm / 2;
   EXPECT_NEAR(apparent_width_mm(v.rays[0], v.areas[0], v.point), expected, 1e-9);
   EXPECT_NEAR(apparent_width_mm(v.rays[1], v.areas[1], v.point), expected, 1e-9);
+}
+
+// A sphere's image off axis is stretched: area pi (f r / D)^2 / cos^3(theta) for a pinhole at
+// distance D and angle theta. Through the camera's own scale at that pixel its apparent width is
+// the marker's, as on axis; with the on-axis scale it would be 1 / cos^1.5 = 24 % wider at 30 deg.
+TEST(PartialSpots, AnOffAxisSpotIsAsWideAsOnAxisThroughTheLocalScale) {
+  sensor::CameraModel camera;
+  camera.sensor = {1920, 1200, 0.005, 0.005};
+  camera.interior.c = 4.0;  // 800 px
+  const double f_px = 800.0, distance = 3000.0, radius = kMarkerMm / 2;
+  for (const double degrees : {0.0, 15.0, 30.0}) {
+    const double theta = degrees * std::numbers::pi / 180;
+    // In camera coordinates the camera looks along -z (sensor::CameraModel's convention).
+    const Eigen::Vector3d point(distance * std::sin(theta), 0, -distance * std::cos(theta));
+    const sensor::Projection p = camera.project(point);
+    ASSERT_TRUE(p.ok()) << degrees;
+    const geometry::ViewRay ray = geometry::view_ray(camera, p.pixel);
+    const double area =
+        std::numbers::pi * std::pow(f_px * radius / distance, 2) / std::pow(std::cos(theta), 3);
+    EXPECT_NEAR(apparent_width_mm(ray, area, point), std::sqrt(std::numbers::pi) * radius,
+                0.005 * radius)
+        << degrees << " deg";
+  }
 }
 
 TEST(PartialSpots, ASmallerSpotAtItsDistanceIsPartial) {

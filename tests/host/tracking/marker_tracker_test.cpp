@@ -6,54 +6,13 @@
 #include <map>
 
 #include "synthetic_motion.hpp"
+#include "tracking_score.hpp"
 
 namespace syncap::tracking {
 namespace {
 
 using test::Motion;
 using test::MotionOptions;
-
-struct Score {
-  long marker_frames = 0;  // markers seen
-  long unlabelled = 0;     // of them given no id
-  long switches = 0;       // a marker's id differs from its previous one
-  long occlusions = 0;     // gaps of <= max_missed_frames between two seen frames
-  long bridged = 0;        // of them, the same id on both sides
-  double switches_per_1000() const { return 1000.0 * switches / marker_frames; }
-};
-
-// Runs the tracker over the motion and scores its ids against the truth.
-Score track_and_score(const Motion& motion, const TrackerOptions& options,
-                      TrackerCounters* counters = nullptr) {
-  MarkerTracker tracker(options);
-  Score score;
-  std::vector<std::vector<TrackId>> id_of(motion.frames.size());  // [frame][marker]
-  std::map<int, TrackId> last_id;
-  for (const test::MotionFrame& f : motion.frames) {
-    const TrackedFrame& out = tracker.update(f.frame, f.time_s, f.points);
-    id_of[f.frame].assign(motion.truth[f.frame].size(), kNoTrack);
-    for (std::size_t p = 0; p < f.points.size(); ++p) {
-      const int m = f.marker_of_point[p];
-      if (m < 0) continue;
-      ++score.marker_frames;
-      id_of[f.frame][m] = out.ids[p];
-      if (out.ids[p] == kNoTrack) {
-        ++score.unlabelled;
-        continue;
-      }
-      if (last_id.contains(m) && last_id[m] != out.ids[p]) ++score.switches;
-      last_id[m] = out.ids[p];
-    }
-  }
-  for (const test::Occlusion& o : motion.occlusions) {
-    if (o.length > options.max_missed_frames) continue;
-    ++score.occlusions;
-    const TrackId before = id_of[o.first_hidden - 1][o.marker];
-    score.bridged += before != kNoTrack && before == id_of[o.first_hidden + o.length][o.marker];
-  }
-  if (counters) *counters = tracker.counters();
-  return score;
-}
 
 void print(const char* name, const Score& s, const TrackerCounters& c) {
   std::printf(
