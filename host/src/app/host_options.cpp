@@ -65,9 +65,22 @@ void add_tracking_options(CLI::App& app, controllers::MarkerOptions& args,
          "--manoeuvre-acceleration-m-s2",
          [&args](double m_s2) { args.tracker.motion.manoeuvre_acceleration_mm_s2 = m_s2 * 1000.0; },
          "also a manoeuvring motion of this acceleration, m/s^2, each track mixing it with the "
-         "quiet one by how it moves (150 follows running at 60 Hz or more; at 30 Hz it widens "
-         "gates over neighbouring markers; default 0: the quiet motion alone)")
+         "quiet one by how it moves (default 20; 0: the quiet motion alone)")
       ->check(cli::number_in(0, 10000));
+  app.add_option_function<double>(
+         "--wide-gate-acceleration-m-s2",
+         [&args](double m_s2) { args.tracker.wide_gate_acceleration_mm_s2 = m_s2 * 1000.0; },
+         "the wide gate: tracks and points the narrow gates left meet again as if the marker had "
+         "manoeuvred this hard over the last frame, m/s^2 (default 60; 0: no wide gate)")
+      ->check(cli::number_in(0, 10000));
+  app.add_option("--wide-gate-point-sigma-mm", args.tracker.wide_gate_point_sigma_mm,
+                 "the wide gate's extra sigma of a point, mm (default 3)")
+      ->check(cli::number_in(0, 1000));
+  app.add_option("--wide-gate-max-sigma-mm", args.tracker.wide_gate_max_sigma_mm,
+                 "the wide gate's manoeuvre at most this sigma, mm, however long the frame "
+                 "interval (default 6: its 4 sigmas stay within half the distance of a body's "
+                 "neighbouring markers, 50 mm)")
+      ->check(cli::number_in(0, 1000));
   app.add_option(
          "--rigid-sets", rigid_sets_path,
          "rigid marker sets (YAML, docs/design/reconstruction.md): each set's 6-DoF pose in "

@@ -36,9 +36,12 @@ const TrackedFrame& MarkerTracker::update(int64_t frame, double time_s,
   result_.time_s = time_s;
   result_.coasting.clear();
   result_.ended.clear();
+  frame_interval_s_ = started_ ? time_s - last_time_s_ : 0;
+  started_ = true;
+  last_time_s_ = time_s;
   predict_all(time_s);
   gate(points);
-  assign(static_cast<int>(points.size()));
+  assign(points);
   apply(frame, points);
   ++counters_.frames;
   return result_;
@@ -81,9 +84,11 @@ int MarkerTracker::find_root(int node) {
 // Confirmed tracks first, then the young ones on the points left: a ghost's new track has a wide
 // gate (its velocity is unknown) in which a marker's point can look nearer, by Mahalanobis
 // distance, than to the marker's own track.
-void MarkerTracker::assign(int point_count) {
+void MarkerTracker::assign(std::span<const PointObservation> points) {
+  const int point_count = static_cast<int>(points.size());
   track_point_.assign(tracks_.size(), -1);
   point_taken_.assign(point_count, 0);
+  track_manoeuvred_.assign(tracks_.size(), 0);
   for (const bool confirmed : {true, false}) {
     pass_edges_.clear();
     for (const Edge& e : edges_) {
@@ -95,7 +100,47 @@ void MarkerTracker::assign(int point_count) {
     for (int p : track_point_) {
       if (p >= 0) point_taken_[p] = 1;
     }
+    if (confirmed) gate_wide(points, frame_interval_s_);
   }
+}
+
+// Tracks left without a point and points left over, within the gate of a manoeuvre over the last
+// frame interval: a heel strike, a hand's turn, a jump in the points. Only those compete, so the
+// wide gate cannot take a point another track explains within its own narrow one.
+void MarkerTracker::gate_wide(std::span<const PointObservation> points, double dt) {
+  const double a = wide_gate_acceleration(dt);
+  if (!(a > 0)) return;
+  const double manoeuvre = a * dt * dt / 2;
+  const double sigma = options_.wide_gate_point_sigma_mm;
+  const double widen = manoeuvre * manoeuvre + sigma * sigma;
+  pass_edges_.clear();
+  for (int t = 0; t < static_cast<int>(tracks_.size()); ++t) {
+    const Track& track = tracks_[t];
+    if (track_point_[t] >= 0 || !is_confirmed(track)) continue;
+    for (int p = 0; p < static_cast<int>(points.size()); ++p) {
+      if (point_taken_[p]) continue;
+      const Vector3d d = points[p].position_mm - track.position_mm;
+      Matrix3d s = track.position_cov + measurement_cov(points[p]);
+      s.diagonal().array() += widen;
+      const double cost = d.dot(s.inverse() * d);
+      if (cost < options_.gate_chi_square) pass_edges_.push_back({t, p, cost, 0});
+    }
+  }
+  assign_pass(static_cast<int>(points.size()));
+  for (int t = 0; t < static_cast<int>(tracks_.size()); ++t) {
+    if (track_point_[t] >= 0 && !point_taken_[track_point_[t]]) {
+      track_manoeuvred_[t] = 1;
+      point_taken_[track_point_[t]] = 1;
+      point_claimable_[track_point_[t]] = 1;
+    }
+  }
+}
+
+// The wide gate's acceleration over a frame interval of dt, its position sigma capped; 0: none.
+double MarkerTracker::wide_gate_acceleration(double dt) const {
+  if (!(dt > 0)) return 0;
+  return std::min(options_.wide_gate_acceleration_mm_s2,
+                  2 * options_.wide_gate_max_sigma_mm / (dt * dt));
 }
 
 bool MarkerTracker::is_confirmed(const Track& t) const {
@@ -171,7 +216,13 @@ void MarkerTracker::apply(int64_t frame, std::span<const PointObservation> point
     Track& track = tracks_[t];
     const int p = track_point_[t];
     if (p >= 0) {
-      track.motion.correct(points[p].position_mm, measurement_cov(points[p]));
+      Matrix3d r = measurement_cov(points[p]);
+      if (track_manoeuvred_[t]) {  // the state as if it manoeuvred, the point as a rough one
+        track.motion.widen(frame_interval_s_, wide_gate_acceleration(frame_interval_s_));
+        r.diagonal().array() +=
+            options_.wide_gate_point_sigma_mm * options_.wide_gate_point_sigma_mm;
+      }
+      track.motion.correct(points[p].position_mm, r);
       take_state(track);
       result_.ids[p] = track.id;
       track.last_seen_frame = frame;

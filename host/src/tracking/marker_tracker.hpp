@@ -17,6 +17,8 @@
 //    other; each group is solved exactly (AssignmentSolver, every track may also miss at the cost
 //    of the gate), never greedily by index. Confirmed tracks (seen in `confirmation_points`
 //    frames) are assigned first, young ones then on the points left.
+//    Between the two: the wide gate, for the confirmed tracks and the points still left
+//    (TrackerOptions::wide_gate_acceleration_mm_s2): a manoeuvre within the last frame.
 // 4. Update the assigned tracks; the others coast and end after `max_missed_frames` misses.
 // 5. A point left over starts a new track unless it lies within some track's gate (it could
 //    belong to that track, e.g. a duplicate or a ghost next to a marker): it gets no id.
@@ -45,9 +47,9 @@ struct PointObservation {
 };
 
 struct TrackerOptions {
-  // The accelerations markers reach: the quiet model's 10 m/s^2 (on the synthetic motion, peaks
-  // near 20 m/s^2, 15 gave more id switches at 30 Hz: wider gates take more ghosts while a marker
-  // is hidden); a manoeuvring model beside it only when asked (motion_model.hpp).
+  // The accelerations markers reach: a quiet model of 10 m/s^2 mixed with a manoeuvring one of
+  // 20 (motion_model.hpp). Each sets the gates' growth while a marker is hidden: wider gates take
+  // more ghosts and neighbours. A single frame's larger manoeuvre is the wide gate's (below).
   MotionModelOptions motion;
   // A point continues a track when its squared Mahalanobis distance to the prediction is below
   // this chi-square quantile of 3 degrees of freedom (11.34: 0.99, 16.27: 0.999).
@@ -61,6 +63,16 @@ struct TrackerOptions {
   double new_track_speed_mm_s = 3000;
   // Added to every point's covariance [mm]: a floor for points with none (or a tiny one).
   double min_point_sigma_mm = 0.05;
+  // The wide gate: confirmed tracks left without a point by the narrow gate and the points left
+  // over meet again, gated as if the marker had manoeuvred over the last frame interval with this
+  // white acceleration, the point with this extra sigma (a partly hidden spot, a jump in a
+  // recording). Only they compete, before the young tracks: a heel strike or a hand's turn keeps
+  // its track, and the wide gate never takes a point another track explains within its narrow
+  // one. 0: no wide gate. Measured on real walking (200, 100, 50 Hz) and running (60 Hz) and the
+  // synthetic 30 and 100 Hz motion (docs/results/markers.md, "Tracking real human motion").
+  double wide_gate_acceleration_mm_s2 = 60000;  // 60 m/s^2
+  double wide_gate_point_sigma_mm = 3;
+  double wide_gate_max_sigma_mm = 6;
 };
 
 // A track's filter state: the motion model's combination, as of time_s.
@@ -134,8 +146,12 @@ class MarkerTracker {
   // per-frame buffers
   std::vector<Edge> edges_, pass_edges_;
   std::vector<char> point_taken_;
-  std::vector<int> parent_;       // union-find over tracks then points
-  std::vector<int> track_point_;  // per track: its point this frame, -1 none
+  std::vector<int> parent_;             // union-find over tracks then points
+  std::vector<int> track_point_;        // per track: its point this frame, -1 none
+  std::vector<char> track_manoeuvred_;  // per track: its point came from the wide gate
+  double last_time_s_ = 0;
+  double frame_interval_s_ = 0;  // since the previous update
+  bool started_ = false;
   std::vector<char> point_claimable_;
   std::vector<int> local_;  // node -> index within its group
   std::vector<int> group_tracks_, group_points_, group_choice_;
@@ -144,9 +160,11 @@ class MarkerTracker {
 
   void predict_all(double time_s);
   void gate(std::span<const PointObservation> points);
-  void assign(int point_count);
+  void assign(std::span<const PointObservation> points);
   void assign_pass(int point_count);
+  void gate_wide(std::span<const PointObservation> points, double dt);
   bool is_confirmed(const Track& t) const;
+  double wide_gate_acceleration(double dt) const;
   void solve_group(std::span<const Edge> group);
   void apply(int64_t frame, std::span<const PointObservation> points);
   int find_root(int node);

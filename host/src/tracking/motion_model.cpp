@@ -11,19 +11,23 @@ namespace {
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
-// Constant velocity over dt plus white acceleration of sigma held over the interval (Bar-Shalom's
-// piecewise-constant model).
-void predict_cv(KinematicState& s, double dt, double acceleration_sigma) {
-  Matrix6 f = Matrix6::Identity();
-  f.topRightCorner<3, 3>().diagonal().setConstant(dt);
+// White acceleration of sigma held over dt (Bar-Shalom's piecewise-constant model).
+Matrix6 process_noise(double dt, double acceleration_sigma) {
   const double q = acceleration_sigma * acceleration_sigma;
   Matrix6 noise = Matrix6::Zero();
   noise.topLeftCorner<3, 3>().diagonal().setConstant(q * dt * dt * dt * dt / 4);
   noise.topRightCorner<3, 3>().diagonal().setConstant(q * dt * dt * dt / 2);
   noise.bottomLeftCorner<3, 3>().diagonal().setConstant(q * dt * dt * dt / 2);
   noise.bottomRightCorner<3, 3>().diagonal().setConstant(q * dt * dt);
+  return noise;
+}
+
+// Constant velocity over dt plus the process noise.
+void predict_cv(KinematicState& s, double dt, double acceleration_sigma) {
+  Matrix6 f = Matrix6::Identity();
+  f.topRightCorner<3, 3>().diagonal().setConstant(dt);
   s.x = f * s.x;
-  s.p = f * s.p * f.transpose() + noise;
+  s.p = f * s.p * f.transpose() + process_noise(dt, acceleration_sigma);
 }
 
 // The update with H = [I 0]; returns the log-likelihood of the innovation.
@@ -110,6 +114,16 @@ void MotionModel::correct(const Eigen::Vector3d& z, const Eigen::Matrix3d& r) {
   for (int j = 0; j < 2; ++j) total += probability_[j] *= std::exp(log_likelihood[j] - top);
   for (double& p : probability_) p = std::clamp(p / total, 1e-9, 1.0);
   combine();
+}
+
+void MotionModel::widen(double dt, double acceleration_sigma) {
+  const Matrix6 noise = process_noise(dt, acceleration_sigma);
+  for (KinematicState& m : models_) m.p += noise;
+  if (single_) {
+    combined_ = models_[0];
+  } else {
+    combine();
+  }
 }
 
 void MotionModel::combine() {

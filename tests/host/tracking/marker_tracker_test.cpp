@@ -122,6 +122,55 @@ TEST(MarkerTracker, GlobalAssignmentWhereGreedyWouldSwap) {
   }
 }
 
+// A marker at 1.5 m/s stops within one frame at 100 Hz (a heel strike): its point lands 15 mm
+// off the constant-velocity prediction, far outside the narrow gate (sub-millimetre at 100 Hz).
+// The wide gate (a 60 m/s^2 manoeuvre over the frame, 3 mm on the point: 4.2 mm, 17 mm at 4
+// sigma) keeps the id; without it the stop starts a new track.
+TrackId id_after_a_stop(const TrackerOptions& options) {
+  MarkerTracker tracker(options);
+  TrackId id = kNoTrack;
+  for (int f = 0; f < 30; ++f) {
+    const double x = 15.0 * std::min(f, 20);
+    const TrackedFrame& out =
+        tracker.update(f, f / 100.0, std::vector{test::observed({x, 0, 1000}, 0.1)});
+    if (f == 20) id = out.ids[0];
+    if (f == 21) return out.ids[0] == id ? id : kNoTrack;  // the first frame at rest
+  }
+  return kNoTrack;
+}
+
+TEST(MarkerTracker, WideGateKeepsAMarkerThatStops) {
+  EXPECT_NE(id_after_a_stop({}), kNoTrack);
+  TrackerOptions narrow;
+  narrow.wide_gate_acceleration_mm_s2 = 0;
+  narrow.motion.manoeuvre_acceleration_mm_s2 = 0;
+  EXPECT_EQ(id_after_a_stop(narrow), kNoTrack);
+}
+
+// Markers A and B move side by side 12 mm apart at 1.5 m/s; A is hidden from frame 20. B's point
+// is then within A's wide gate (17 mm at 4 sigma) but where B's own track predicts it: B's narrow
+// gate takes it before any wide gate is looked at, and A coasts.
+TEST(MarkerTracker, WideGateNeverTakesAPointANarrowGateExplains) {
+  MarkerTracker tracker;
+  TrackId a = kNoTrack, b = kNoTrack;
+  for (int f = 0; f < 25; ++f) {
+    const double t = f / 100.0;
+    std::vector<PointObservation> points = {test::observed({1500 * t, 12, 1000}, 0.1)};
+    if (f < 20) points.push_back(test::observed({1500 * t, 0, 1000}, 0.1));
+    const TrackedFrame& out = tracker.update(f, t, points);
+    if (f == 0) {
+      b = out.ids[0];
+      a = out.ids[1];
+    }
+    EXPECT_EQ(out.ids[0], b) << "frame " << f;
+    if (f >= 20) {
+      ASSERT_EQ(out.coasting.size(), 1u) << "frame " << f;
+      EXPECT_EQ(out.coasting[0].id, a);
+    }
+  }
+  EXPECT_EQ(tracker.counters().tracks_started, 2);
+}
+
 TEST(MarkerTracker, PointInAGateStartsNoTrack) {
   MarkerTracker tracker;
   tracker.update(0, 0.0, std::vector{test::observed({0, 0, 1000}, 0.3)});

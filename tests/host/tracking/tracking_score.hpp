@@ -4,6 +4,7 @@
 // syncap-hil-compare scores them (hil/compare/src/markers_check.hpp).
 #pragma once
 
+#include <array>
 #include <cstdio>
 #include <map>
 #include <vector>
@@ -20,6 +21,9 @@ struct Score {
   long breaks = 0;         // of the switches, to an id that last meant no other marker
   long occlusions = 0;     // gaps of <= max_missed_frames between two seen frames
   long bridged = 0;        // of them, the same id on both sides
+  // Switches by the frames since the marker was last seen (1: seen in the frame before; the
+  // last counts all of 7 and more): a switch after an occlusion or on a marker in full view.
+  std::array<long, 8> switches_after_gap{};
   double switches_per_1000() const { return 1000.0 * switches / marker_frames; }
   double breaks_per_1000() const { return 1000.0 * breaks / marker_frames; }
   // Switches to an id that meant another marker.
@@ -33,6 +37,7 @@ inline Score track_and_score(const test::Motion& motion, const TrackerOptions& o
   Score score;
   std::vector<std::vector<TrackId>> id_of(motion.frames.size());  // [frame][marker]
   std::map<int, TrackId> last_id;
+  std::map<int, int64_t> last_seen;
   std::map<TrackId, int> meant;  // the marker an id last meant
   for (const test::MotionFrame& f : motion.frames) {
     const TrackedFrame& out = tracker.update(f.frame, f.time_s, f.points);
@@ -48,10 +53,12 @@ inline Score track_and_score(const test::Motion& motion, const TrackerOptions& o
       }
       if (last_id.contains(m) && last_id[m] != out.ids[p]) {
         ++score.switches;
+        ++score.switches_after_gap[std::min<int64_t>(7, f.frame - last_seen[m])];
         const auto owner = meant.find(out.ids[p]);
         score.breaks += owner == meant.end() || owner->second == m;
       }
       last_id[m] = out.ids[p];
+      last_seen[m] = f.frame;
       meant[out.ids[p]] = m;
     }
   }
