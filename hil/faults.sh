@@ -66,7 +66,7 @@ write_rig() {
 # The host reconstructs the markers (and, with a person, its hull) live with the scene's true
 # cameras, as the rig file says; syncap-hil-compare scores them against the true targets.
 start_host() {
-  "$bin/syncap-host" --config "$out/rig.yaml" --out "$1" > "$2" 2>&1 &
+  "$bin/syncap-host" --config "$out/rig.yaml" "${track_rate_args[@]}" --out "$1" > "$2" 2>&1 &
   host_pid=$!
   host_log=$2
   pids+=("$host_pid")

@@ -51,10 +51,22 @@ void add_marker_options(CLI::App& app, controllers::MarkerOptions& args) {
                  "leave partial spots out only when this many whole ones remain (default " +
                      std::to_string(partial.min_whole_rays) + ")")
       ->check(cli::whole_in<int>(2, 64));
+  reconstruction::MergedSpotOptions& merged = args.stage.merged_spots;
+  app.add_option("--merged-spot-ratio", merged.max_width_ratio,
+                 "a spot wider than this times a whole spot (the median of recent frames' widths "
+                 "at their points' distances) counts as two markers run together: never one "
+                 "marker's view; 0: none counts (default " +
+                     cli::number_text(merged.max_width_ratio) + ")")
+      ->check(cli::number_in(0, 100));
 }
 
 void add_tracking_options(CLI::App& app, controllers::MarkerOptions& args,
                           std::string& rigid_sets_path) {
+  app.add_option("--frame-rate-hz", args.frame_rate_hz,
+                 "time the frames by their numbers at this rate instead of by the trigger's "
+                 "clock: a recording replayed slower or faster than it was taken (default: the "
+                 "trigger's clock)")
+      ->check(cli::number_in(0.01, 100000));
   app.add_option_function<double>(
          "--acceleration-m-s2",
          [&args](double m_s2) { args.tracker.motion.quiet_acceleration_mm_s2 = m_s2 * 1000.0; },

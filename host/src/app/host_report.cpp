@@ -26,13 +26,15 @@ void print_grouping(const SummaryInputs& in, std::ostream& out) {
 void print_reconstruction(const SummaryInputs& in, std::ostream& out) {
   const pipeline::HostNodeStats s = in.node.stats();
   const reconstruction::MarkerStageStats& m = in.markers->stats();
-  char line[384];
+  char line[512];
   std::snprintf(line, sizeof line,
                 "host markers: %ld frames, %ld markers (%ld seen by two cameras only), %ld of "
                 "%ld blobs in a marker, %ld of cameras outside the calibration, %ld not round "
-                "(left out), %ld partly hidden (left out of their marker's position)\n",
+                "(left out), %ld partly hidden (left out of their marker's position), %ld "
+                "merged (left out; %ld points without two other spots dropped)\n",
                 m.frames, m.markers, m.two_camera_markers, m.blobs_used, m.blobs,
-                m.blobs_of_unknown_cameras, m.blobs_not_round, m.partial_spots_left_out);
+                m.blobs_of_unknown_cameras, m.blobs_not_round, m.partial_spots_left_out,
+                m.merged_spots_left_out, m.merged_points_dropped);
   out << line;
   out << host_time_line(s);
   if (in.marker_message != nullptr && in.marker_message->latency().added() > 0) {

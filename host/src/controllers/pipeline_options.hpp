@@ -25,6 +25,7 @@ struct MarkerOptions {
   matching::MatchOptions matching;
   reconstruction::MarkerStageOptions stage;
   tracking::TrackerOptions tracker;
+  double frame_rate_hz = 0;  // > 0: the tracker times frames by number at this rate
   std::vector<tracking::RigidSet> rigid_sets;  // none: no rigid set stage
 };
 

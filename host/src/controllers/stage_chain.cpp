@@ -45,8 +45,8 @@ void add_marker_stages(const std::vector<sensor::CameraModel>& cameras, const Ma
                        const Sinks& sinks, StageChain& chain) {
   chain.markers =
       append(chain, std::make_unique<reconstruction::MarkerStage>(cameras, o.matching, o.stage));
-  chain.tracking =
-      append(chain, std::make_unique<reconstruction::TrackingStage>(o.tracker, sinks.tracks));
+  chain.tracking = append(chain, std::make_unique<reconstruction::TrackingStage>(
+                                     o.tracker, sinks.tracks, o.frame_rate_hz));
   if (!o.rigid_sets.empty())
     chain.rigid_sets = append(chain, std::make_unique<reconstruction::RigidSetStage>(o.rigid_sets));
   if (sinks.publish_markers)

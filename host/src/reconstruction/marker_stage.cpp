@@ -30,46 +30,89 @@ void MarkerStage::process(pipeline::FrameWork& work) {
     }
   }
   const matching::MatchResult result = matcher_.match(pixels);
-  for (const matching::MatchedPoint& p : result.points) {
-    pipeline::Marker3d m = marker_of(p, pixels, areas);
-    stats_.two_camera_markers += m.two_cameras_only();
-    work.markers.push_back(std::move(m));
+  std::vector<PointSpots> spots;
+  spots.reserve(result.points.size());
+  for (const matching::MatchedPoint& p : result.points) spots.push_back(spots_of(p, pixels, areas));
+  learn_spot_width(spots);
+  for (std::size_t i = 0; i < result.points.size(); ++i) {
+    std::optional<pipeline::Marker3d> m = marker_of(result.points[i], spots[i]);
+    if (!m) continue;
+    stats_.two_camera_markers += m->two_cameras_only();
+    work.markers.push_back(std::move(*m));
+    ++stats_.markers;
   }
-  stats_.markers += static_cast<long>(result.points.size());
 }
 
-pipeline::Marker3d MarkerStage::marker_of(const matching::MatchedPoint& p,
-                                          const std::vector<std::vector<Eigen::Vector2d>>& pixels,
-                                          const std::vector<std::vector<double>>& areas) {
-  std::vector<geometry::ViewRay> rays;
-  std::vector<double> spot_areas;
+MarkerStage::PointSpots MarkerStage::spots_of(
+    const matching::MatchedPoint& p, const std::vector<std::vector<Eigen::Vector2d>>& pixels,
+    const std::vector<std::vector<double>>& areas) const {
+  PointSpots s;
   for (const matching::BlobRef& b : p.blobs) {
     const auto c = static_cast<std::size_t>(b.camera);
     const auto i = static_cast<std::size_t>(b.blob);
-    rays.push_back(geometry::view_ray(matcher_.cameras()[c], pixels[c][i]));
-    spot_areas.push_back(areas[c][i]);
+    s.rays.push_back(geometry::view_ray(matcher_.cameras()[c], pixels[c][i]));
+    s.areas_px.push_back(areas[c][i]);
+    s.widths_mm.push_back(apparent_width_mm(s.rays.back(), areas[c][i], p.point.position));
+  }
+  return s;
+}
+
+void MarkerStage::learn_spot_width(const std::vector<PointSpots>& points) {
+  if (!options_.merged_spots.enabled()) return;
+  std::vector<double> widths;
+  for (const PointSpots& s : points)
+    if (s.widths_mm.size() >= 3)
+      widths.insert(widths.end(), s.widths_mm.begin(), s.widths_mm.end());
+  typical_width_.add_frame(widths);
+}
+
+std::optional<pipeline::Marker3d> MarkerStage::marker_of(const matching::MatchedPoint& p,
+                                                         const PointSpots& spots) {
+  const std::vector<bool> merged =
+      merged_spots(spots.widths_mm, typical_width_.width_mm(), options_.merged_spots);
+  PointSpots kept;
+  std::vector<int> kept_cameras;
+  for (std::size_t i = 0; i < spots.rays.size(); ++i) {
+    if (merged[i]) continue;
+    kept.rays.push_back(spots.rays[i]);
+    kept.areas_px.push_back(spots.areas_px[i]);
+    kept_cameras.push_back(p.blobs[i].camera);
+  }
+  const long left_out = static_cast<long>(spots.rays.size() - kept.rays.size());
+  if (kept.rays.size() < 2) {
+    ++stats_.merged_points_dropped;
+    return std::nullopt;
+  }
+  geometry::RayPoint point = p.point;
+  if (left_out > 0) {
+    geometry::RayPoint again = geometry::triangulate(kept.rays, sigma_px_);
+    if (!again.ok) {
+      ++stats_.merged_points_dropped;
+      return std::nullopt;
+    }
+    point = std::move(again);
+    stats_.merged_spots_left_out += left_out;
   }
   const std::vector<bool> whole =
-      whole_spots(rays, spot_areas, p.point.position, options_.partial_spots);
-  geometry::RayPoint point = p.point;
+      whole_spots(kept.rays, kept.areas_px, point.position, options_.partial_spots);
   std::vector<geometry::ViewRay> whole_rays;
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    if (whole[i]) whole_rays.push_back(rays[i]);
+  for (std::size_t i = 0; i < kept.rays.size(); ++i) {
+    if (whole[i]) whole_rays.push_back(kept.rays[i]);
   }
-  if (whole_rays.size() < rays.size()) {
+  if (whole_rays.size() < kept.rays.size()) {
     geometry::RayPoint again = geometry::triangulate(whole_rays, sigma_px_);
     if (again.ok) {
       point = std::move(again);
-      stats_.partial_spots_left_out += static_cast<long>(rays.size() - whole_rays.size());
+      stats_.partial_spots_left_out += static_cast<long>(kept.rays.size() - whole_rays.size());
     }
   }
   pipeline::Marker3d m;
   m.position = point.position;
   m.covariance = point.covariance;
   m.residual_px = point.rms_px();
-  for (const matching::BlobRef& b : p.blobs)
-    m.camera_ids.push_back(matcher_.cameras()[static_cast<std::size_t>(b.camera)].id);
-  stats_.blobs_used += static_cast<long>(p.blobs.size());
+  for (const int camera : kept_cameras)
+    m.camera_ids.push_back(matcher_.cameras()[static_cast<std::size_t>(camera)].id);
+  stats_.blobs_used += static_cast<long>(kept.rays.size());
   return m;
 }
 

@@ -14,6 +14,7 @@ uint64_t camera_mask(const std::vector<int>& camera_ids) {
 
 double TrackingStage::time_of(const pipeline::FrameWork& work) {
   const grouping::FrameGroup& g = work.group;
+  if (fixed_rate_hz_ > 0) return static_cast<double>(g.frame_number) / fixed_rate_hz_;
   if (g.trigger) {
     if (g.trigger->rate_hz > 0) rate_hz_ = g.trigger->rate_hz;
     return static_cast<double>(g.trigger->monotonic_ns) * 1e-9;

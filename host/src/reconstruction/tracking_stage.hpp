@@ -14,10 +14,13 @@ namespace syncap::reconstruction {
 
 class TrackingStage : public pipeline::Stage {
  public:
-  // `history`: kept by the caller, filled frame by frame (nullptr: none kept).
+  // `history`: kept by the caller, filled frame by frame (nullptr: none kept). `frame_rate_hz`
+  // > 0 times the frames by their numbers at that rate instead of by the trigger's clock: a
+  // recording replayed at another pace than it was taken (the replay bench paces 100 Hz scenes
+  // at 30 Hz) moves its markers as fast as they moved.
   explicit TrackingStage(tracking::TrackerOptions options = {},
-                         tracking::TrackHistory* history = nullptr)
-      : tracker_(options), history_(history) {}
+                         tracking::TrackHistory* history = nullptr, double frame_rate_hz = 0)
+      : tracker_(options), history_(history), fixed_rate_hz_(frame_rate_hz) {}
   const char* name() const override { return "tracking"; }
   void process(pipeline::FrameWork& work) override;
   const tracking::MarkerTracker& tracker() const { return tracker_; }
@@ -25,14 +28,15 @@ class TrackingStage : public pipeline::Stage {
   double rate_hz() const { return rate_hz_; }
 
  private:
-  // The frame's time [s]: the trigger's clock; without a trigger, from the frame number and the
-  // last rate the trigger announced.
+  // The frame's time [s]: the frame number at the fixed rate if one was given, else the
+  // trigger's clock; without a trigger, from the frame number and the last rate it announced.
   double time_of(const pipeline::FrameWork& work);
 
   tracking::MarkerTracker tracker_;
   tracking::TrackHistory* history_;
   std::vector<tracking::PointObservation> points_;  // reused frame to frame
   double rate_hz_ = 0;
+  double fixed_rate_hz_ = 0;
   std::optional<std::pair<int64_t, double>> last_;  // (frame, time) of the last frame
 };
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "outputs/marker_message_stage.hpp"
@@ -143,6 +144,58 @@ TEST(MarkerStage, APartlyHiddenSpotIsLeftOutOfItsMarkersPosition) {
   EXPECT_GT(error_kept_mm, 10 * error_mm);
 }
 
+// Gives every spot of `w` the threshold area of a whole 25 mm marker at `marker`.
+void whole_spot_areas(pipeline::FrameWork& w, const std::vector<sensor::CameraModel>& cameras,
+                      const Eigen::Vector3d& marker) {
+  for (const sensor::CameraModel& camera : cameras) {
+    for (blob_t& spot : w.group.blobs[camera.id].blobs) {
+      const geometry::ViewRay ray = geometry::view_ray(camera, {spot.x, spot.y});
+      const double radius_px = 12.5 / (marker - ray.ray.origin).norm() * ray.spot_pixels_per_rad;
+      spot.area = static_cast<float>(3.14159 * radius_px * radius_px);
+    }
+  }
+}
+
+TEST(MarkerStage, AMergedSpotIsLeftOutOfItsMarker) {
+  const auto cameras = test::marker_ring(6);
+  const auto [truth, f] = one_exact_marker(cameras, 8);
+  pipeline::FrameWork w = work_of(f, cameras);
+  whole_spot_areas(w, cameras, truth[0]);
+  blob_t& merged = w.group.blobs[cameras[2].id].blobs.at(0);
+  merged.area *= 1.9f;  // a neighbour's spot run into it
+  merged.x += 0.8f;
+  MarkerStage stage(cameras, {});
+  stage.process(w);
+  ASSERT_EQ(w.markers.size(), 1u);
+  EXPECT_EQ(w.markers[0].camera_ids.size(), 5u);
+  EXPECT_EQ(
+      std::count(w.markers[0].camera_ids.begin(), w.markers[0].camera_ids.end(), cameras[2].id), 0);
+  EXPECT_LT((w.markers[0].position - truth[0]).norm(), 1e-3);
+  EXPECT_EQ(stage.stats().merged_spots_left_out, 1);
+}
+
+TEST(MarkerStage, ATwoCameraPointWithAMergedSpotIsNoMarker) {
+  const auto cameras = test::marker_ring(6);
+  const auto [truth, f] = one_exact_marker(cameras, 8);
+  MarkerStage stage(cameras, {});
+  pipeline::FrameWork learn = work_of(f, cameras);
+  whole_spot_areas(learn, cameras, truth[0]);
+  stage.process(learn);  // the whole spot's width, from a frame of six whole spots
+  ASSERT_EQ(learn.markers.size(), 1u);
+
+  auto two_views = [&](float area_factor) {
+    pipeline::FrameWork w = work_of(f, cameras);
+    whole_spot_areas(w, cameras, truth[0]);
+    for (std::size_t c = 2; c < cameras.size(); ++c) w.group.blobs[cameras[c].id].blobs.clear();
+    w.group.blobs[cameras[1].id].blobs.at(0).area *= area_factor;
+    stage.process(w);
+    return w.markers.size();
+  };
+  EXPECT_EQ(two_views(1.0f), 1u);
+  EXPECT_EQ(two_views(1.9f), 0u);
+  EXPECT_EQ(stage.stats().merged_points_dropped, 1);
+}
+
 TEST(MarkerMessageStage, ManyMarkersGoOutInPartsWithTheFramesHeader) {
   pipeline::FrameWork w;
   w.group.frame_number = 7;
@@ -215,6 +268,31 @@ TEST(TrackingStage, IdsPersistAndAHiddenMarkerIsPredicted) {
     }
   }
   EXPECT_DOUBLE_EQ(stage.rate_hz(), 100);
+}
+
+// A 100 Hz recording replayed with the trigger at 10 Hz: by the trigger's clock a marker moving
+// 3 m/s seems to move 0.3 m/s; timed by its frame numbers at 100 Hz it moves as it did.
+TEST(TrackingStage, AFixedFrameRateTimesFramesByTheirNumbers) {
+  auto speed_mm_s = [](double frame_rate_hz) {
+    TrackingStage stage({}, nullptr, frame_rate_hz);
+    for (int k = 0; k < 10; ++k) {
+      pipeline::FrameWork w;
+      w.group.frame_number = 500 + k;
+      w.group.trigger = trigger_t{};
+      w.group.trigger->monotonic_ns = 1'000'000'000 + k * 100'000'000;  // paced at 10 Hz
+      w.group.trigger->rate_hz = 10;
+      pipeline::Marker3d marker;
+      marker.position = Eigen::Vector3d(30.0 * k, 0, 1000);  // 30 mm a frame
+      marker.covariance = Eigen::Matrix3d::Identity() * 0.01;
+      marker.camera_ids = {0, 1, 2};
+      w.markers.push_back(marker);
+      stage.process(w);
+    }
+    EXPECT_EQ(stage.tracker().tracks().size(), 1u);
+    return stage.tracker().tracks().at(0).velocity_mm_s.x();
+  };
+  EXPECT_NEAR(speed_mm_s(0), 300, 5);      // the trigger's clock
+  EXPECT_NEAR(speed_mm_s(100), 3000, 50);  // the frames' own rate
 }
 
 }  // namespace
