@@ -55,7 +55,7 @@ TEST(Scenario, ErrorsNameFileLineAndProblem) {
   EXPECT_EQ(error_of("cameras:\n  count: 2\n  lens: 4\nphases:\n  - {type: wand, frames: 1}\n"),
             "broken.yaml:3: unknown key 'lens' in cameras");
   EXPECT_EQ(error_of("cameras:\n  count: 2\nphases:\n  - type: dance\n    frames: 1\n"),
-            "broken.yaml:4: phases[0].type 'dance' is not one of: led, person, room, wand");
+            "broken.yaml:4: phases[0].type 'dance' is not one of: led, mocap, person, room, wand");
   EXPECT_EQ(error_of("phases:\n  - {type: room, frames: 1}\n"),
             "broken.yaml:1: scenario needs 'cameras'");
   EXPECT_EQ(
