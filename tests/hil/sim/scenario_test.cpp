@@ -38,7 +38,9 @@ TEST(Scenario, MinimalFileGetsDocumentedDefaults) {
 
 TEST(Scenario, ShippedScenariosLoad) {
   const std::filesystem::path dir = std::filesystem::path(SYNCAP_SOURCE_DIR) / "hil" / "scenarios";
-  for (const char* name : {"wand-3cam-basler", "ring-6cam-person", "led-6cam-webcam"}) {
+  for (const char* name :
+       {"wand-3cam-basler", "ring-6cam-person", "led-6cam-webcam", "markers-8cam-qualisys",
+        "markers-8cam-qualisys-dense", "markers-8cam-running"}) {
     const Scenario s = load_scenario(dir / (std::string(name) + ".yaml"));
     EXPECT_EQ(s.name, name);
     EXPECT_GT(s.total_frames(), 0);
