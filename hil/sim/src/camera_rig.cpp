@@ -66,6 +66,7 @@ std::vector<sensor::CameraModel> build_rig(const Scenario& scenario) {
 
 View make_view(const sensor::CameraModel& camera, const Scenario& scenario) {
   View view;
+  view.camera = camera.id;
   view.width = camera.sensor.width_px;
   view.height = camera.sensor.height_px;
   view.centre_mm = camera.projection_centre();

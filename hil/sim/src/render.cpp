@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "disc_coverage.hpp"
+#include "reflections.hpp"
 
 namespace syncap::sim {
 namespace {
@@ -270,6 +271,9 @@ RenderedView render_view(const View& view, const FrameContent& content, const Im
   }
   for (const auto& s : content.spheres)
     out.spheres.push_back(paint_sphere(view, s, body_depth, radiance));
+  paint_discs(reflection_discs(content.reflections, content.reflection_seed, view.camera,
+                               view.width, view.height),
+              radiance);
   radiance *= content.gain;
   if (image.noise_sigma_dn > 0) add_noise(radiance, image.noise_sigma_dn, noise_seed);
   radiance.convertTo(out.image, CV_8U);  // rounds to nearest and saturates at 0 and 255

@@ -1,6 +1,6 @@
 // Renders one camera's image of one frame: background (dark or room), wand targets, the LED or the
 // person's markers as exactly covered discs (hidden where the person is nearer), the person as
-// textured ellipsoids with their shadow on the floor,
+// textured ellipsoids with their shadow on the floor, the reflections (static discs, not targets),
 // then lamp gain (drift, flicker) and sensor noise. Also returns the exact truth: each target's
 // projection and the person's silhouette mask.
 #pragma once
@@ -40,6 +40,10 @@ struct FrameContent {
   double shadow_darkening = 0.45;
   double body_brightness = 1.0;  // scales the person's shading (dim in infrared)
   double gain = 1.0;             // lamp drift and flicker
+  // Static discs drawn over everything in each camera's image, not targets (reflections.hpp);
+  // their places come from the seed and the view's camera.
+  ReflectionSpec reflections;
+  unsigned reflection_seed = 0;
 };
 
 struct SphereTruth {

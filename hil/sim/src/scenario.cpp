@@ -112,6 +112,20 @@ class Section {
     return v;
   }
 
+  // A list of words, e.g. marker names; at least one.
+  std::vector<std::string> words(const std::string& key) {
+    const YAML::Node n = child(key);
+    std::vector<std::string> v;
+    for (const YAML::Node& element : n) {
+      if (!element.IsScalar()) break;
+      v.push_back(element.Scalar());
+    }
+    if (!n.IsSequence() || v.empty() || v.size() != n.size()) {
+      fail(n, what_ + "." + key + " must be a list of names [A, B, ...]");
+    }
+    return v;
+  }
+
   void require(const std::string& key) {
     if (!has(key)) fail(node_, what_ + " needs '" + key + "'");
   }
@@ -257,24 +271,88 @@ void read_person(Section& s, PersonSpec& p, const std::filesystem::path& file) {
   (void)file;
 }
 
+// mocap.occluders: a list of {from: [NAMES], to: [NAMES], radius_mm: R}. The names are checked
+// against the file when it is read (mocap_source.cpp).
+void read_occluders(Section& s, const YAML::Node& list, std::vector<OccluderSpec>& occluders) {
+  if (!list.IsSequence()) s.fail(list, "mocap.occluders must be a list of {from, to, radius_mm}");
+  for (const YAML::Node& node : list) {
+    Section o = s.nested(node, "mocap.occluders[]");
+    OccluderSpec occluder;
+    occluder.line = o.line();
+    for (const char* key : {"from", "to", "radius_mm"}) o.require(key);
+    occluder.from = o.words("from");
+    occluder.to = o.words("to");
+    occluder.radius_mm = o.number("radius_mm", occluder.radius_mm, 1, 1000);
+    o.finish();
+    occluders.push_back(occluder);
+  }
+}
+
+// mocap.extra_markers: a list of {near: A, towards: B, distance_mm: D}.
+void read_extra_markers(Section& s, const YAML::Node& list, std::vector<ExtraMarkerSpec>& extras) {
+  if (!list.IsSequence()) {
+    s.fail(list, "mocap.extra_markers must be a list of {near, towards, distance_mm}");
+  }
+  for (const YAML::Node& node : list) {
+    Section e = s.nested(node, "mocap.extra_markers[]");
+    ExtraMarkerSpec extra;
+    extra.line = e.line();
+    for (const char* key : {"near", "towards", "distance_mm"}) e.require(key);
+    extra.near = e.text("near", "");
+    extra.towards = e.text("towards", "");
+    extra.distance_mm = e.number("distance_mm", extra.distance_mm, 0.1, 1000);
+    e.finish();
+    extras.push_back(extra);
+  }
+}
+
+void read_reflections(Section& s, ReflectionSpec& r) {
+  s.require("count");
+  r.count = s.integer("count", 0, 0, 10000);
+  r.radius_px = s.number("radius_px", r.radius_px, 0.3, 50);
+  r.brightness_dn = s.number("brightness_dn", r.brightness_dn, 1, 255);
+  s.finish();
+}
+
+void read_mocap(Section& s, MocapSpec& m) {
+  s.require("trajectories");
+  m.trajectories = s.text("trajectories", "");
+  m.up = s.text("up", m.up, {"y", "z"});
+  m.start_s = s.number("start_s", m.start_s, 0, kHuge);
+  m.speed = s.number("speed", m.speed, 0.01, 100);
+  m.marker_radius_mm = s.number("marker_radius_mm", m.marker_radius_mm, 0.5, 50);
+  m.marker_brightness_dn = s.number("marker_brightness_dn", m.marker_brightness_dn, 1, 255);
+  m.body_brightness = s.number("body_brightness", m.body_brightness, 0, 1);
+  m.light_dir = s.vec3("light_dir", m.light_dir);
+  if (m.light_dir.z() >= 0) s.fail(s.child("light_dir"), "mocap.light_dir must point down (z < 0)");
+  m.shadow_darkening = s.number("shadow_darkening", m.shadow_darkening, 0, 1);
+  if (s.has("occluders")) read_occluders(s, s.child("occluders"), m.occluders);
+  if (s.has("extra_markers")) read_extra_markers(s, s.child("extra_markers"), m.extra_markers);
+  if (s.has("reflections")) {
+    Section r = s.nested(s.child("reflections"), "mocap.reflections");
+    read_reflections(r, m.reflections);
+  }
+}
+
 PhaseSpec read_phase(Section& s, const std::filesystem::path& file) {
   PhaseSpec ph;
   ph.line = s.line();
   s.require("type");
   s.require("frames");
-  ph.type = s.text("type", "", {"wand", "led", "room", "person"});
+  ph.type = s.text("type", "", {"wand", "led", "room", "person", "mocap"});
   ph.frames = s.integer("frames", 0, 1, 10'000'000);
   const bool lit = ph.type == "room" || ph.type == "person";
   ph.background = s.text("background", lit ? "room" : "dark", {"dark", "room"});
   if (ph.type == "wand") read_wand(s, ph.wand);
   if (ph.type == "led") read_led(s, ph.led);
   if (ph.type == "person") read_person(s, ph.person, file);
+  if (ph.type == "mocap") read_mocap(s, ph.mocap);
   s.finish();
   return ph;
 }
 
-// A relative BVH path is looked for beside the scenario, then under $SYNCAP_DATA (unset: the
-// default ../shared/data, as the tests'). Not found: the path beside the scenario, and
+// A relative BVH or marker file path is looked for beside the scenario, then under $SYNCAP_DATA
+// (unset: the default ../shared/data, as the tests'). Not found: the path beside the scenario, and
 // `not_found` naming both places.
 std::filesystem::path resolve_data_path(const std::filesystem::path& p,
                                         const std::filesystem::path& scenario_file,
@@ -334,9 +412,13 @@ Scenario parse_scenario(const std::string& text, const std::filesystem::path& fi
   for (std::size_t i = 0; i < phases.size(); ++i) {
     Section ph(phases[i], file, "phases[" + std::to_string(i) + "]");
     sc.phases.push_back(read_phase(ph, file));
-    auto& person = sc.phases.back().person;
-    if (sc.phases.back().type == "person") {
-      person.bvh = resolve_data_path(person.bvh, file, person.bvh_not_found);
+    PhaseSpec& phase = sc.phases.back();
+    if (phase.type == "person") {
+      phase.person.bvh = resolve_data_path(phase.person.bvh, file, phase.person.bvh_not_found);
+    }
+    if (phase.type == "mocap") {
+      MocapSpec& m = phase.mocap;
+      m.trajectories = resolve_data_path(m.trajectories, file, m.trajectories_not_found);
     }
   }
   top.finish();

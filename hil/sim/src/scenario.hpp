@@ -89,13 +89,57 @@ struct PersonSpec {
   double body_brightness = 1.0;
 };
 
+// A body part of a mocap phase that hides markers: an ellipsoid along the line from the centroid
+// of the `from` markers to the centroid of the `to` markers (joint-centre estimates), long
+// semi-axis half that length plus radius_mm / 2 (the ends overlap the neighbouring parts), both
+// cross semi-axes radius_mm.
+struct OccluderSpec {
+  std::vector<std::string> from, to;
+  double radius_mm = 60;
+  int line = 0;
+};
+
+// A marker added to a mocap phase: distance_mm from marker `near`'s centre on the line towards
+// marker `towards` (a dense marker set built from a sparse one).
+struct ExtraMarkerSpec {
+  std::string near, towards;
+  double distance_mm = 25;
+  int line = 0;
+};
+
+// Static bright discs in each camera's image (reflections off shiny things), not targets.
+struct ReflectionSpec {
+  int count = 0;  // per camera
+  double radius_px = 2;
+  double brightness_dn = 250;
+};
+
+// Real marker trajectories (a C3D or TRC file) played back, markers as spheres; the occluders
+// stand for the body.
+struct MocapSpec {
+  std::filesystem::path trajectories;  // resolved as PersonSpec::bvh
+  std::string trajectories_not_found;
+  std::string up = "z";  // the file's vertical axis: z, or y (OpenSim: X forward, Y up)
+  double start_s = 0;
+  double speed = 1.0;
+  double marker_radius_mm = 7;
+  double marker_brightness_dn = 250;
+  double body_brightness = 1.0;
+  Eigen::Vector3d light_dir{0.3, 0.2, -1.0};
+  double shadow_darkening = 0.45;
+  std::vector<OccluderSpec> occluders;
+  std::vector<ExtraMarkerSpec> extra_markers;
+  ReflectionSpec reflections;
+};
+
 struct PhaseSpec {
-  std::string type;  // wand | led | room | person
+  std::string type;  // wand | led | room | person | mocap
   int frames = 0;
   std::string background = "dark";  // dark | room
   WandSpec wand;
   LedSpec led;
   PersonSpec person;
+  MocapSpec mocap;
   int line = 0;  // where in the file, for later errors
 };
 

@@ -48,7 +48,8 @@ std::optional<Eigen::Vector3d> marker_centre(const BodyFrame& body, const Marker
   return std::nullopt;
 }
 
-Sequence::Sequence(const Scenario& scenario, const BodySourceFactory& bodies)
+Sequence::Sequence(const Scenario& scenario, const BodySourceFactory& bodies,
+                   const MocapSourceFactory& mocaps)
     : scenario_(scenario) {
   int first = 0;
   for (std::size_t i = 0; i < scenario.phases.size(); ++i) {
@@ -58,6 +59,7 @@ Sequence::Sequence(const Scenario& scenario, const BodySourceFactory& bodies)
     const bool moves = ph.type == "wand" || ph.type == "led";
     paths_.push_back(moves ? path_for(scenario, ph, static_cast<int>(i)) : nullptr);
     bodies_.push_back(ph.type == "person" ? bodies(ph.person, scenario) : nullptr);
+    mocaps_.push_back(ph.type == "mocap" ? mocaps(ph, scenario) : nullptr);
   }
 }
 
@@ -86,6 +88,30 @@ Sphere Sequence::sphere_at(WaypointPath& path, double t, double offset_mm, doubl
     }
   }
   return s;
+}
+
+// The markers present at the phase's time as targets (numbered as in the file), the occluders as
+// the body, the reflections.
+void Sequence::add_mocap(FrameState& st) const {
+  const MocapSpec& m = st.phase->mocap;
+  const MocapSource& source = *mocaps_[static_cast<std::size_t>(st.phase_index)];
+  const MocapFrame frame = source.at(st.phase_time_s);
+  st.target_names = &source.names();
+  for (std::size_t i = 0; i < frame.markers.size(); ++i) {
+    if (!frame.markers[i]) continue;
+    Sphere sphere;
+    sphere.centre_mm = *frame.markers[i];
+    sphere.radius_mm = m.marker_radius_mm;
+    sphere.brightness_dn = m.marker_brightness_dn;
+    st.content.spheres.push_back(sphere);
+    st.target_ids.push_back(static_cast<int>(i));
+  }
+  st.content.body = frame.occluders;
+  st.content.light_dir = m.light_dir.normalized();
+  st.content.shadow_darkening = m.shadow_darkening;
+  st.content.body_brightness = m.body_brightness;
+  st.content.reflections = m.reflections;
+  st.content.reflection_seed = scenario_.seed;
 }
 
 FrameState Sequence::at(int frame) {
@@ -129,6 +155,8 @@ FrameState Sequence::at(int frame) {
       sphere.centre_mm = marker_centre(st.body, marker, sphere.radius_mm).value();
       st.content.spheres.push_back(sphere);
     }
+  } else if (ph.type == "mocap") {
+    add_mocap(st);
   }
   return st;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mocap_source.hpp"
 #include "motion.hpp"
 #include "render.hpp"
 #include "scenario.hpp"
@@ -29,6 +30,9 @@ std::optional<Eigen::Vector3d> marker_centre(const BodyFrame& body, const Marker
 using BodySource = std::function<BodyFrame(double t_s)>;
 // Opens the motion of a person phase (its BVH); throws with file and line on a broken file.
 using BodySourceFactory = std::function<BodySource(const PersonSpec&, const Scenario&)>;
+// Opens the trajectories of a mocap phase (mocap_source.hpp).
+using MocapSourceFactory =
+    std::function<std::shared_ptr<const MocapSource>(const PhaseSpec&, const Scenario&)>;
 
 struct FrameState {
   int frame = 0;
@@ -39,11 +43,17 @@ struct FrameState {
   bool led_on = false;
   FrameContent content;
   BodyFrame body;  // person phases only
+  // The target number of each of content.spheres; empty: 0, 1, ... (a mocap phase leaves out the
+  // absent markers, the others keep their numbers).
+  std::vector<int> target_ids;
+  // Mocap phases: the name of every target number (the file's markers, then the extra ones).
+  const std::vector<std::string>* target_names = nullptr;
 };
 
 class Sequence {
  public:
-  Sequence(const Scenario& scenario, const BodySourceFactory& bodies);
+  Sequence(const Scenario& scenario, const BodySourceFactory& bodies,
+           const MocapSourceFactory& mocaps = open_mocap);
 
   int frames() const { return scenario_.total_frames(); }
   FrameState at(int frame);
@@ -52,11 +62,13 @@ class Sequence {
   Sphere sphere_at(WaypointPath& path, double t, double offset_mm, double radius_mm,
                    double brightness, double exposure_ms) const;
   double gain_at(int frame) const;
+  void add_mocap(FrameState& st) const;
 
   const Scenario& scenario_;
-  std::vector<int> first_frame_;                      // per phase
-  std::vector<std::unique_ptr<WaypointPath>> paths_;  // per phase (wand and LED)
-  std::vector<BodySource> bodies_;                    // per phase (person)
+  std::vector<int> first_frame_;                            // per phase
+  std::vector<std::unique_ptr<WaypointPath>> paths_;        // per phase (wand and LED)
+  std::vector<BodySource> bodies_;                          // per phase (person)
+  std::vector<std::shared_ptr<const MocapSource>> mocaps_;  // per phase (mocap)
 };
 
 }  // namespace syncap::sim

@@ -33,9 +33,10 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
   cli::App app(
       "syncap-sim",
       "Renders a scenario into per-camera images and ground truth (docs/design/scenario.md).",
-      "A relative motion (bvh) path is looked for beside the scenario, then under $SYNCAP_DATA\n"
-      "(default ../shared/data). Exit status: 0 rendered, 1 writing failed, 2 usage error or a\n"
-      "bad scenario or motion file.");
+      "A relative motion (bvh) or marker trajectory (trajectories: .c3d, .trc) path is looked\n"
+      "for beside the scenario, then under $SYNCAP_DATA (default ../shared/data).\n"
+      "Exit status: 0 rendered, 1 writing failed, 2 usage error or a bad scenario, motion or\n"
+      "marker file.");
   app.add_option("--scenario", o.scenario, "scenario (YAML, docs/design/scenario.md)")
       ->option_text("FILE")
       ->required();

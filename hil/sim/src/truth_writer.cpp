@@ -61,20 +61,34 @@ void TruthWriter::write_image(const std::filesystem::path& path, const cv::Mat& 
   if (!cv::imwrite(path.string(), image)) throw std::runtime_error("cannot write " + path.string());
 }
 
+// The names of a mocap phase's targets, once per phase: phase,target,name.
+void TruthWriter::write_names(const FrameState& st) {
+  if (st.target_names == nullptr || st.phase_index == names_phase_) return;
+  if (!names_.is_open())
+    names_ = open_csv(out_ / "truth" / "marker_names.csv", "phase,target,name");
+  for (std::size_t t = 0; t < st.target_names->size(); ++t)
+    names_ << st.phase_index << "," << t << "," << (*st.target_names)[t] << "\n";
+  names_phase_ = st.phase_index;
+}
+
 void TruthWriter::write(const FrameState& st, const std::vector<RenderedView>& views) {
   frames_ << st.frame << "," << st.time_s << "," << st.phase_index << "," << st.phase->type << ","
           << (st.led_on ? 1 : 0) << "," << st.content.gain << "\n";
+  write_names(st);
+  const auto target = [&st](std::size_t t) {
+    return st.target_ids.empty() ? static_cast<int>(t) : st.target_ids.at(t);
+  };
   for (std::size_t t = 0; t < st.content.spheres.size(); ++t) {
     const Sphere& s = st.content.spheres[t];
-    targets_ << st.frame << "," << t << "," << s.centre_mm.x() << "," << s.centre_mm.y() << ","
-             << s.centre_mm.z() << "," << s.radius_mm << "\n";
+    targets_ << st.frame << "," << target(t) << "," << s.centre_mm.x() << "," << s.centre_mm.y()
+             << "," << s.centre_mm.z() << "," << s.radius_mm << "\n";
   }
   for (std::size_t c = 0; c < views.size(); ++c) {
     const int camera = static_cast<int>(c);
     write_image(image_path(out_, camera, st.frame), views[c].image);
     for (std::size_t t = 0; t < views[c].spheres.size(); ++t) {
       const SphereTruth& p = views[c].spheres[t];
-      projections_ << st.frame << "," << camera << "," << t << "," << p.pixel.x() << ","
+      projections_ << st.frame << "," << camera << "," << target(t) << "," << p.pixel.x() << ","
                    << p.pixel.y() << "," << p.radius_px << "," << (p.visible ? 1 : 0) << "\n";
     }
     if (!st.body.ellipsoids.empty()) write_image(mask_path(out_, camera, st.frame), views[c].mask);

@@ -24,9 +24,12 @@ class TruthWriter {
 
  private:
   void write_image(const std::filesystem::path& path, const cv::Mat& image) const;
+  void write_names(const FrameState& state);
 
   std::filesystem::path out_;
   std::ofstream frames_, targets_, projections_, body_;
+  std::ofstream names_;   // truth/marker_names.csv, opened at the first mocap phase
+  int names_phase_ = -1;  // the last phase whose names were written
 };
 
 }  // namespace syncap::sim

@@ -13,6 +13,7 @@
 namespace syncap::sim {
 
 struct View {
+  int camera = 0;  // the camera's index in the rig
   int width = 0, height = 0;
   Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  // projection centre
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();      // viewing direction, unit

@@ -38,7 +38,9 @@ TEST(Scenario, MinimalFileGetsDocumentedDefaults) {
 
 TEST(Scenario, ShippedScenariosLoad) {
   const std::filesystem::path dir = std::filesystem::path(SYNCAP_SOURCE_DIR) / "hil" / "scenarios";
-  for (const char* name : {"wand-3cam-basler", "ring-6cam-person", "led-6cam-webcam"}) {
+  for (const char* name :
+       {"wand-3cam-basler", "ring-6cam-person", "led-6cam-webcam", "markers-8cam-qualisys",
+        "markers-8cam-qualisys-dense", "markers-8cam-running"}) {
     const Scenario s = load_scenario(dir / (std::string(name) + ".yaml"));
     EXPECT_EQ(s.name, name);
     EXPECT_GT(s.total_frames(), 0);
@@ -55,7 +57,7 @@ TEST(Scenario, ErrorsNameFileLineAndProblem) {
   EXPECT_EQ(error_of("cameras:\n  count: 2\n  lens: 4\nphases:\n  - {type: wand, frames: 1}\n"),
             "broken.yaml:3: unknown key 'lens' in cameras");
   EXPECT_EQ(error_of("cameras:\n  count: 2\nphases:\n  - type: dance\n    frames: 1\n"),
-            "broken.yaml:4: phases[0].type 'dance' is not one of: led, person, room, wand");
+            "broken.yaml:4: phases[0].type 'dance' is not one of: led, mocap, person, room, wand");
   EXPECT_EQ(error_of("phases:\n  - {type: room, frames: 1}\n"),
             "broken.yaml:1: scenario needs 'cameras'");
   EXPECT_EQ(

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
@@ -158,6 +159,50 @@ TEST_F(SimOutput, MissingMotionNamesSyncapDataAndThePathTriedAndExitsTwo) {
   const std::string err = read(dir / "err.txt");
   EXPECT_NE(err.find("$SYNCAP_DATA (/nonexistent-data/motion/none.bvh)"), std::string::npos) << err;
   EXPECT_NE(err.find("set SYNCAP_DATA"), std::string::npos) << err;
+  fs::remove_all(dir);
+}
+
+// A mocap phase from a TRC file beside the scenario: marker_names.csv names every target, and a
+// marker absent in a frame (B's gap in the second sample) has no rows that frame while the
+// others keep their numbers.
+TEST_F(SimOutput, MocapPhaseWritesMarkerNamesAndLeavesOutAbsentMarkers) {
+  const fs::path dir = fs::temp_directory_path() / ("syncap_sim_trc_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "walk.trc") << "PathFileType\t4\t(X/Y/Z)\twalk.trc\n"
+                                     "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\n"
+                                     "10\t10\t3\t3\tmm\n"
+                                     "Frame#\tTime\tA\t\t\tB\t\t\tC\t\t\n"
+                                     "\t\tX1\tY1\tZ1\tX2\tY2\tZ2\tX3\tY3\tZ3\n\n"
+                                     "1\t0\t0\t0\t1000\t100\t0\t1000\t0\t100\t1200\n"
+                                     "2\t0.1\t10\t0\t1000\t\t\t\t10\t100\t1200\n"
+                                     "3\t0.2\t20\t0\t1000\t120\t0\t1000\t20\t100\t1200\n";
+  const fs::path out = run_sim(
+      "cameras: {count: 2, width_px: 160, height_px: 120, pixel_size_mm: 0.02}\n"
+      "frame_rate_hz: 10\n"
+      "phases:\n"
+      "  - {type: wand, frames: 2}\n"
+      "  - type: mocap\n"
+      "    frames: 3\n"
+      "    trajectories: " +
+          (dir / "walk.trc").string() +
+          "\n"
+          "    extra_markers: [{near: A, towards: C, distance_mm: 25}]\n",
+      "mocap");
+  EXPECT_EQ(read(out / "truth" / "marker_names.csv"),
+            "phase,target,name\n1,0,A\n1,1,B\n1,2,C\n1,3,A+25mm>C\n");
+  std::ifstream t(out / "truth" / "targets.csv");
+  std::string line;
+  std::getline(t, line);
+  std::map<int, std::vector<int>> per_frame;
+  while (std::getline(t, line)) {
+    int frame = 0, target = 0;
+    char c;
+    std::istringstream(line) >> frame >> c >> target;
+    per_frame[frame].push_back(target);
+  }
+  EXPECT_EQ(per_frame[2], (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(per_frame[3], (std::vector<int>{0, 2, 3}));
+  EXPECT_EQ(per_frame[4], (std::vector<int>{0, 1, 2, 3}));
   fs::remove_all(dir);
 }
 
