@@ -28,6 +28,8 @@ struct MarkerLimits {
   double min_found = 0.995;
   double max_ghosts = 0.005;
   double max_rms_mm = 0.5;
+  // The 3D RMS over the best estimator's on the same whole views at most this; 0: not checked.
+  double max_rms_over_reference = 0;
 };
 
 // The host's visual hulls, when --hull-meshes names their folder.
@@ -108,6 +110,11 @@ void add_marker_options(CLI::App& app, MarkerLimits& m) {
   cli::add_checked(app, "--max-marker-rms-mm", m.max_rms_mm, "MM", cli::non_negative(),
                    "3D RMS error of the found markers (0.5)")
       ->group(group);
+  cli::add_checked(app, "--max-rms-over-reference", m.max_rms_over_reference, "R",
+                   cli::non_negative(),
+                   "3D RMS / the best estimator's on the same whole views and targets\n"
+                   "(hil/compare/README.md) at most R (0: not checked)")
+      ->group(group);
 }
 
 void add_hull_options(CLI::App& app, HullLimits& h) {
@@ -176,9 +183,13 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
   });
 }
 
-void write_json(const std::string& file, const syncap::compare::Report& report) {
+// The report's figures, and the markers' when they were checked.
+void write_json(const std::string& file, const syncap::compare::Report& report,
+                const std::optional<nlohmann::ordered_json>& markers) {
+  auto json = syncap::compare::report_json(report);
+  if (markers) json["markers"] = *markers;
   std::ofstream out(file);
-  out << syncap::compare::report_json(report).dump(2) << "\n";
+  out << json.dump(2) << "\n";
   if (!out) throw syncap::compare::InputError(file + ": cannot write");
 }
 
@@ -195,26 +206,48 @@ syncap::compare::Similarity motion_to_truth(const Options& o, const char* what) 
   return motion;
 }
 
-// The host's markers against the true targets, when the groups carry them; true when within the
-// limits (or when there are none).
-bool check_markers(const Options& o, const syncap::compare::Truth& truth,
-                   std::vector<syncap::compare::Group> groups) {
+// The host's markers against the true targets, when the groups carry them: whether within the
+// limits (true when there are none) and the figures for --json.
+struct MarkersResult {
+  bool pass = true;
+  std::optional<nlohmann::ordered_json> json;
+};
+
+MarkersResult check_markers(const Options& o, const syncap::compare::Truth& truth,
+                            std::vector<syncap::compare::Group> groups) {
   const bool any = std::any_of(groups.begin(), groups.end(),
                                [](const auto& g) { return g.markers.has_value(); });
-  if (!any) return true;
+  if (!any) return {};
   if (!o.cameras.empty()) syncap::compare::move_markers(groups, motion_to_truth(o, "markers"));
   const auto positions = syncap::compare::read_true_positions(std::filesystem::path(o.truth) /
                                                               "truth" / "targets.csv");
-  const auto check =
-      syncap::compare::check_markers(truth, positions, groups, o.markers.match_radius_mm);
+  const auto check = syncap::compare::check_markers(
+      truth, positions, groups, o.markers.match_radius_mm, o.thresholds.match_radius_px);
   std::cout << syncap::compare::format_markers_check(check);
-  const bool pass = check.found_share() >= o.markers.min_found &&
-                    check.ghost_share() <= o.markers.max_ghosts &&
-                    check.rms_mm() <= o.markers.max_rms_mm;
-  std::cout << (pass ? "PASS" : "FAIL") << ": markers (found >= " << o.markers.min_found
-            << ", ghosts <= " << o.markers.max_ghosts << ", 3D RMS <= " << o.markers.max_rms_mm
-            << " mm)\n";
-  return pass;
+  const MarkerLimits& m = o.markers;
+  // Without a reference (no found target with two whole views) the ratio has no figure and
+  // cannot fail, as a camera without counted targets cannot fail its RMS.
+  const auto ratio = check.reference.ratio();
+  const bool ratio_pass =
+      m.max_rms_over_reference <= 0 || !ratio || *ratio <= m.max_rms_over_reference;
+  const bool pass = check.found_share() >= m.min_found && check.ghost_share() <= m.max_ghosts &&
+                    check.rms_mm() <= m.max_rms_mm && ratio_pass;
+  std::cout << (pass ? "PASS" : "FAIL") << ": markers (found >= " << m.min_found
+            << ", ghosts <= " << m.max_ghosts << ", 3D RMS <= " << m.max_rms_mm << " mm";
+  if (m.max_rms_over_reference > 0)
+    std::cout << ", 3D RMS / best estimator's on the same whole views <= "
+              << m.max_rms_over_reference;
+  std::cout << ")\n";
+  auto json = syncap::compare::markers_json(check);
+  json["pass"] = pass;
+  json["limits"] = {{"match_radius_mm", m.match_radius_mm},
+                    {"min_found", m.min_found},
+                    {"max_ghosts", m.max_ghosts},
+                    {"max_rms_mm", m.max_rms_mm},
+                    {"max_rms_over_reference",
+                     m.max_rms_over_reference > 0 ? nlohmann::ordered_json(m.max_rms_over_reference)
+                                                  : nlohmann::ordered_json(nullptr)}};
+  return {pass, std::move(json)};
 }
 
 // The hulls against the true body, when asked; true when within the limits. The reference (the
@@ -303,8 +336,9 @@ int main(int argc, char** argv) {
                                 std::to_string(truth.frames.size()) + " frames), groups " +
                                 o.groups + " (" + std::to_string(groups.size()) + " lines)";
     std::cout << syncap::compare::format_summary(report, heading) << std::flush;
-    if (!o.json.empty()) write_json(o.json, report);
-    const bool markers_pass = check_markers(o, truth, groups);
+    const MarkersResult markers = check_markers(o, truth, groups);
+    if (!o.json.empty()) write_json(o.json, report, markers.json);
+    const bool markers_pass = markers.pass;
     const bool hull_pass = check_hulls(o);
     const bool body_pass = check_body(o);
     return report.pass() && markers_pass && hull_pass && body_pass && cameras_status == 0 ? 0 : 1;

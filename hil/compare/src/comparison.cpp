@@ -126,20 +126,15 @@ void judge_camera(int id, const CameraReport& c, Report& r) {
 Tally compare_camera_frame(const std::vector<Projection>& targets, const std::vector<Blob>& blobs,
                            const ImageSize& image, double match_radius_px) {
   Tally tally;
-  std::vector<TargetClass> kinds;  // of the visible targets, in the order of target_points
-  std::vector<Eigen::Vector2d> target_points, blob_points;
-  for (const Projection& p : targets) {
-    const TargetClass kind = classify(p, image);
-    if (kind == TargetClass::hidden) {
-      ++tally.hidden;
-      continue;
-    }
-    kinds.push_back(kind);
-    target_points.emplace_back(p.x_px, p.y_px);
-  }
+  std::vector<Eigen::Vector2d> blob_points;
   for (const Blob& b : blobs) blob_points.emplace_back(b.x, b.y);
+  std::vector<std::size_t> visible;  // indices into targets, in the matching's target order
+  const Matching m = match_visible(targets, blob_points, match_radius_px, visible);
+  std::vector<TargetClass> kinds;  // of the visible targets, in the same order
+  for (const std::size_t i : visible) kinds.push_back(classify(targets[i], image));
+  tally.hidden = static_cast<long>(targets.size() - visible.size());
   tally.blobs = static_cast<long>(blobs.size());
-  tally_matching(kinds, match_nearest(blob_points, target_points, match_radius_px), tally);
+  tally_matching(kinds, m, tally);
   return tally;
 }
 

@@ -52,6 +52,19 @@ Matching match_nearest(const std::vector<Eigen::Vector2d>& blobs,
   return m;
 }
 
+Matching match_visible(const std::vector<Projection>& targets,
+                       const std::vector<Eigen::Vector2d>& blobs, double radius_px,
+                       std::vector<std::size_t>& visible) {
+  visible.clear();
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!targets[i].visible) continue;
+    visible.push_back(i);
+    points.emplace_back(targets[i].x_px, targets[i].y_px);
+  }
+  return match_nearest(blobs, points, radius_px);
+}
+
 TargetClass classify(const Projection& target, const ImageSize& image) {
   if (!target.visible) return TargetClass::hidden;
   const double r = target.radius_px;

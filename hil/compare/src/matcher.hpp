@@ -27,6 +27,13 @@ struct Matching {
 Matching match_nearest(const std::vector<Eigen::Vector2d>& blobs,
                        const std::vector<Eigen::Vector2d>& targets, double radius_px);
 
+// The matching the comparison scores in one camera and frame: match_nearest of `blobs` and the
+// visible targets of `targets` (hidden ones take no part). `visible` gets, for each target index
+// of the result, the target's index into `targets`.
+Matching match_visible(const std::vector<Projection>& targets,
+                       const std::vector<Eigen::Vector2d>& blobs, double radius_px,
+                       std::vector<std::size_t>& visible);
+
 // Which truth targets count for the centroid error and the detection rate.
 enum class TargetClass {
   counted,  // visible and the whole disc inside the image

@@ -35,16 +35,22 @@ TruthFrames read_frames(const std::filesystem::path& file) {
   return frames;
 }
 
-ImageSizes read_image_sizes(const std::filesystem::path& cameras_json) {
-  ImageSizes images;
+std::map<int, sensor::CameraModel> read_true_cameras(const std::filesystem::path& cameras_json) {
+  std::map<int, sensor::CameraModel> cameras;
   try {
-    for (const auto& camera : sensor::read_cameras(cameras_json)) {
-      images[camera.id] = {camera.sensor.width_px, camera.sensor.height_px};
-    }
+    for (auto& camera : sensor::read_cameras(cameras_json)) cameras[camera.id] = std::move(camera);
   } catch (const sensor::CameraFileError& e) {
     throw InputError(e.what());  // already names the file, the camera and the field
   }
-  if (images.empty()) throw InputError(cameras_json.string() + ": no cameras");
+  if (cameras.empty()) throw InputError(cameras_json.string() + ": no cameras");
+  return cameras;
+}
+
+ImageSizes read_image_sizes(const std::filesystem::path& cameras_json) {
+  ImageSizes images;
+  for (const auto& [id, camera] : read_true_cameras(cameras_json)) {
+    images[id] = {camera.sensor.width_px, camera.sensor.height_px};
+  }
   return images;
 }
 
@@ -89,7 +95,10 @@ Truth read_truth(const std::filesystem::path& dir) {
   Truth truth;
   truth.dir = dir;
   truth.frames = read_frames(dir / "truth" / "frames.csv");
-  truth.images = read_image_sizes(dir / "cameras.json");
+  truth.cameras = read_true_cameras(dir / "cameras.json");
+  for (const auto& [id, camera] : truth.cameras) {
+    truth.images[id] = {camera.sensor.width_px, camera.sensor.height_px};
+  }
   for (const Projection& p :
        read_projections(dir / "truth" / "projections.csv", truth.frames, truth.images)) {
     truth.projections[{p.frame, p.camera}].push_back(p);

@@ -1,6 +1,7 @@
 // The simulator's ground truth (hil/sim/src/truth_writer.cpp), as far as the comparison in the
 // image needs it: frames.csv (phase of every frame), projections.csv (every target's disc in
-// every camera) and cameras.json (image sizes). targets.csv (object space) is not needed here.
+// every camera) and cameras.json (image sizes; the true cameras, for the markers' reference).
+// targets.csv (object space) is not needed here.
 #pragma once
 
 #include <array>
@@ -9,6 +10,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "sensor/camera_model.hpp"
 
 namespace syncap::compare {
 
@@ -28,7 +31,9 @@ struct Projection {
   int camera = 0;
   int target = 0;
   double x_px = 0, y_px = 0, radius_px = 0;
-  bool visible = false;  // centre in front of the camera and inside the image
+  // centre in front of the camera and inside the image, and >= 98 % of the disc not hidden by
+  // the person; a target behind the camera has radius 0 (no disc)
+  bool visible = false;
 };
 
 struct ImageSize {
@@ -43,12 +48,14 @@ struct Truth {
   std::filesystem::path dir;  // the simulator's output folder (masks are read from it on demand)
   TruthFrames frames;
   ImageSizes images;
+  std::map<int, sensor::CameraModel> cameras;  // by id: the true cameras (cameras.json)
   std::map<FrameCamera, std::vector<Projection>> projections;  // in target order
 };
 
 // Each throws InputError naming the file and line of the first problem.
 TruthFrames read_frames(const std::filesystem::path& file);
 ImageSizes read_image_sizes(const std::filesystem::path& cameras_json);
+std::map<int, sensor::CameraModel> read_true_cameras(const std::filesystem::path& cameras_json);
 // Every row must name a frame of `frames` and a camera of `images`, each (frame, camera,
 // target) once.
 std::vector<Projection> read_projections(const std::filesystem::path& file,

@@ -9,7 +9,10 @@
 
 #include "help_check.hpp"
 #include "program_run.hpp"
+#include "ring_scene.hpp"
 #include "scratch_files.hpp"
+#include "sensor/camera_file.hpp"
+#include "util/printf_string.hpp"
 
 namespace syncap::compare {
 namespace {
@@ -128,6 +131,83 @@ TEST(Program, RejectsBadOptions) {
   }
 }
 
+// The ring scene's truth and the host's lines written as files: every blob's rays meet at its
+// target moved by `shift`, every marker lies `marker_offset` from its target.
+void write_ring(const ScratchDir& dir, const Eigen::Vector3d& shift,
+                const Eigen::Vector3d& marker_offset) {
+  testing::RingScene scene;
+  std::vector<sensor::CameraModel> cameras;
+  for (const auto& [id, camera] : scene.truth.cameras) cameras.push_back(camera);
+  sensor::write_cameras(dir.path() / "cameras.json", cameras);
+  std::string frames = "frame,time_s,phase,phase_type,led_on,gain\n";
+  std::string targets = "frame,target,X_mm,Y_mm,Z_mm,radius_mm\n";
+  std::string rows = "frame,camera,target,x_px,y_px,radius_px,visible\n";
+  for (const auto& [f, frame] : scene.truth.frames) {
+    frames += std::to_string(f) + "," + std::to_string(frame.time_s) + ",0,wand,0,1\n";
+    for (const auto& [t, p] : scene.positions.at(f)) {
+      targets += util::printf_string("%ld,%d,%.9f,%.9f,%.9f,%g\n", f, t, p[0], p[1], p[2],
+                                     testing::RingScene::kRadiusMm);
+    }
+    for (const auto& [id, camera] : scene.truth.cameras) {
+      for (const Projection& p : scene.truth.projections.at({f, id})) {
+        rows += util::printf_string("%ld,%d,%d,%.9f,%.9f,%.9f,1\n", f, id, p.target, p.x_px, p.y_px,
+                                    p.radius_px);
+      }
+    }
+  }
+  dir.write("truth/frames.csv", frames);
+  dir.write("truth/targets.csv", targets);
+  dir.write("truth/projections.csv", rows);
+  std::string lines;
+  for (const Group& g : scene.groups(shift, marker_offset)) {
+    nlohmann::json j{
+        {"frame", g.frame}, {"complete", true}, {"missing_cameras", nlohmann::json::array()}};
+    for (const auto& [id, camera] : g.cameras) {
+      nlohmann::json blobs = nlohmann::json::array();
+      for (const Blob& b : camera.blobs)
+        blobs.push_back({{"x", b.x}, {"y", b.y}, {"area", b.area}});
+      j["cameras"][std::to_string(id)] = {{"processing_us", 100}, {"blobs", blobs}};
+    }
+    j["markers"] = nlohmann::json::array();
+    for (const Marker& m : *g.markers) {
+      j["markers"].push_back(
+          {{"cameras", {0, 1, 2, 3}}, {"id", m.id}, {"x", m.x}, {"y", m.y}, {"z", m.z}});
+    }
+    lines += j.dump() + "\n";
+  }
+  dir.write("groups.jsonl", lines);
+}
+
+// The markers' reference end to end: printed, in --json, and the optional limit on the ratio.
+TEST(Program, PrintsTheMarkersReferenceAndJudgesTheRatioWhenAsked) {
+  ScratchDir dir;
+  const Eigen::Vector3d shift(0.2, -0.1, 0.15);
+  write_ring(dir, shift, {0, 0.5, 0});
+  const std::string args = arguments(dir) + " --max-rms-px 1 --max-marker-rms-mm 1";
+  const ProgramRun run = run_compare(args + " --json " + (dir.path() / "r.json").string());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("3D RMS 0.500 mm, best estimator on the same whole views 0.269 mm "
+                            "(the host 0.500 mm on those 8 targets, ratio 1.86; 0 with fewer "
+                            "than 2 whole views; their 28 blobs' 2D RMS"),
+            std::string::npos)
+      << run.output;
+  const auto report = nlohmann::json::parse(std::ifstream(dir.path() / "r.json"));
+  const auto& markers = report["markers"];
+  EXPECT_NEAR(markers["reference_rms_mm"].get<double>(), shift.norm(), 1e-5);
+  EXPECT_NEAR(markers["rms_over_reference"].get<double>(), 0.5 / shift.norm(), 1e-4);
+  EXPECT_EQ(markers["reference_targets"], 8);
+  EXPECT_EQ(markers["targets_without_reference"], 0);
+  EXPECT_TRUE(markers["pass"].get<bool>());
+  EXPECT_TRUE(markers["limits"]["max_rms_over_reference"].is_null());
+  const ProgramRun strict = run_compare(args + " --max-rms-over-reference 1.5");
+  EXPECT_EQ(strict.exit_code, 1) << strict.output;
+  EXPECT_NE(strict.output.find("FAIL: markers (found >= 0.995, ghosts <= 0.005, 3D RMS <= 1 mm, "
+                               "3D RMS / best estimator's on the same whole views <= 1.5)"),
+            std::string::npos)
+      << strict.output;
+  EXPECT_EQ(run_compare(args + " --max-rms-over-reference 2").exit_code, 0);
+}
+
 // --help: both forms and every option with its meaning and default.
 TEST(Program, HelpIsComplete) {
   const ProgramRun run = run_compare("--help");
@@ -156,6 +236,8 @@ TEST(Program, HelpIsComplete) {
                                                   "(0.005)",
                                                   "--max-marker-rms-mm MM",
                                                   "(0.5)",
+                                                  "--max-rms-over-reference R",
+                                                  "(0: not checked)",
                                                   "--calibration FILE",
                                                   "--max-reprojection-px PX",
                                                   "Both --groups and --calibration",
