@@ -51,6 +51,12 @@ void add_marker_options(CLI::App& app, controllers::MarkerOptions& args) {
                  "leave partial spots out only when this many whole ones remain (default " +
                      std::to_string(partial.min_whole_rays) + ")")
       ->check(cli::whole_in<int>(2, 64));
+  app.add_option("--partial-spot-shift", partial.shift_per_hidden_share,
+                 "weigh each kept spot by its size: one whose area is a share h short of a whole "
+                 "spot's has its centroid off by about K * h * its radius, added to --sigma-px; "
+                 "0: every spot weighs the same (default " +
+                     cli::number_text(partial.shift_per_hidden_share) + ")")
+      ->check(cli::number_in(0, 100));
   reconstruction::MergedSpotOptions& merged = args.stage.merged_spots;
   app.add_option("--merged-spot-ratio", merged.max_width_ratio,
                  "a spot wider than this times a whole spot (the median of recent frames' widths "

@@ -63,7 +63,12 @@ double RayPoint::rms_px() const {
   return std::sqrt(sum / static_cast<double>(errors_px.size()));
 }
 
-RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_by_distance) {
+namespace {
+
+// triangulate() with ray i's image sigma sigma_of(i).
+template <typename SigmaOf>
+RayPoint triangulate_with(std::span<const ViewRay> rays, const SigmaOf& sigma_of,
+                          bool weigh_by_distance) {
   RayPoint result;
   if (rays.size() < 2 || !well_conditioned(rays)) return result;
   NearestPoint first;
@@ -72,16 +77,18 @@ RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_
   // Each ray weighted by its precision across itself at the point: 1 / (r sigma_rad)^2 (a ray
   // with the point behind it weighs as if at 1 um: its error below names it).
   NearestPoint weighted;
-  for (const ViewRay& r : rays) {
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const ViewRay& r = rays[i];
     const double along =
         weigh_by_distance ? std::max(r.ray.direction.dot(start - r.ray.origin), 1e-3) : 1.0;
-    const double sigma_mm = along * sigma_px / r.pixels_per_rad;
+    const double sigma_mm = along * sigma_of(i) / r.pixels_per_rad;
     weighted.add(r.ray, 1.0 / (sigma_mm * sigma_mm));
   }
   result.position = weighted.solve();
   result.covariance = weighted.normal.inverse();
   result.errors_px.reserve(rays.size());
-  for (const ViewRay& r : rays) {
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const ViewRay& r = rays[i];
     // The sine of the ray's angle to the point: the angle itself for the small ones that matter
     // (1e-5 relative at 10 mrad), without atan2's cost. A point behind the ray: kBehindPx.
     const Eigen::Vector3d to_point = result.position - r.ray.origin;
@@ -89,11 +96,25 @@ RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_
     result.errors_px.push_back(in_front ? r.ray.direction.cross(to_point).norm() / to_point.norm() *
                                               r.pixels_per_rad
                                         : kBehindPx);
-    const double normalised = result.errors_px.back() / sigma_px;
+    const double normalised = result.errors_px.back() / sigma_of(i);
     result.chi_square += normalised * normalised;
   }
   result.ok = result.position.allFinite();
   return result;
+}
+
+}  // namespace
+
+RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_by_distance) {
+  return triangulate_with(
+      rays, [sigma_px](std::size_t) { return sigma_px; }, weigh_by_distance);
+}
+
+RayPoint triangulate(std::span<const ViewRay> rays, std::span<const double> sigmas_px,
+                     bool weigh_by_distance) {
+  if (sigmas_px.size() != rays.size()) return {};
+  return triangulate_with(
+      rays, [sigmas_px](std::size_t i) { return sigmas_px[i]; }, weigh_by_distance);
 }
 
 RayPoint triangulate_dropping_outliers(std::span<const ViewRay> rays, double sigma_px,

@@ -77,6 +77,10 @@ struct RayPoint {
 // arbitrary until the network is oriented; the covariance is then in units of its frame).
 RayPoint triangulate(std::span<const ViewRay> rays, double sigma_px, bool weigh_by_distance = true);
 
+// The same with ray i's own image standard deviation sigmas_px[i] (a spot partly hidden is
+// less precise than a whole one); not ok when the sizes differ.
+RayPoint triangulate(std::span<const ViewRay> rays, std::span<const double> sigmas_px,
+                     bool weigh_by_distance = true);
 // triangulate(), then while a ray is off by more than `max_error_px`, the worst is left out and
 // the rest triangulated again. `kept` (optional) gets which rays the point keeps.
 RayPoint triangulate_dropping_outliers(std::span<const ViewRay> rays, double sigma_px,

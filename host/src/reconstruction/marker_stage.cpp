@@ -1,5 +1,9 @@
 #include "reconstruction/marker_stage.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 namespace syncap::reconstruction {
 
 MarkerStage::MarkerStage(std::vector<sensor::CameraModel> cameras, matching::MatchOptions options,
@@ -66,6 +70,23 @@ void MarkerStage::learn_spot_width(const std::vector<PointSpots>& points) {
   typical_width_.add_frame(widths);
 }
 
+std::vector<double> MarkerStage::spot_sigmas(std::span<const geometry::ViewRay> rays,
+                                             std::span<const double> areas_px,
+                                             const Eigen::Vector3d& point) const {
+  const double k = options_.partial_spots.shift_per_hidden_share;
+  const double typical = typical_width_.width_mm();
+  if (!(k > 0) || !(typical > 0)) return {};
+  std::vector<double> sigmas;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const double ratio = apparent_width_mm(rays[i], areas_px[i], point) / typical;
+    const double hidden = std::clamp(1 - ratio * ratio, 0.0, 1.0);
+    const double radius_px = std::sqrt(std::max(areas_px[i], 0.0) / std::numbers::pi);
+    const double shift_px = k * hidden * radius_px;
+    sigmas.push_back(std::sqrt(sigma_px_ * sigma_px_ + shift_px * shift_px));
+  }
+  return sigmas;
+}
+
 std::optional<pipeline::Marker3d> MarkerStage::marker_of(const matching::MatchedPoint& p,
                                                          const PointSpots& spots) {
   const std::vector<bool> merged =
@@ -99,8 +120,14 @@ std::optional<pipeline::Marker3d> MarkerStage::marker_of(const matching::Matched
   for (std::size_t i = 0; i < kept.rays.size(); ++i) {
     if (whole[i]) whole_rays.push_back(kept.rays[i]);
   }
-  if (whole_rays.size() < kept.rays.size()) {
-    geometry::RayPoint again = geometry::triangulate(whole_rays, sigma_px_);
+  std::vector<double> whole_areas;
+  for (std::size_t i = 0; i < kept.rays.size(); ++i)
+    if (whole[i]) whole_areas.push_back(kept.areas_px[i]);
+  const std::vector<double> sigmas = spot_sigmas(whole_rays, whole_areas, point.position);
+  const bool weighted = !sigmas.empty();
+  if (whole_rays.size() < kept.rays.size() || weighted) {
+    geometry::RayPoint again = weighted ? geometry::triangulate(whole_rays, sigmas)
+                                        : geometry::triangulate(whole_rays, sigma_px_);
     if (again.ok) {
       point = std::move(again);
       stats_.partial_spots_left_out += static_cast<long>(kept.rays.size() - whole_rays.size());

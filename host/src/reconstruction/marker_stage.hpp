@@ -12,6 +12,7 @@
 
 #include <map>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "matching/marker_matcher.hpp"
@@ -61,6 +62,11 @@ class MarkerStage : public pipeline::Stage {
   // The widths of this frame's spots of points seen by three or more cameras, into the typical
   // whole spot's width.
   void learn_spot_width(const std::vector<PointSpots>& points);
+  // Each spot's image sigma: the blobs' own, and the centroid shift a spot narrower than a whole
+  // one suggests (partial_spots.hpp); empty when no typical width is known or it is off.
+  std::vector<double> spot_sigmas(std::span<const geometry::ViewRay> rays,
+                                  std::span<const double> areas_px,
+                                  const Eigen::Vector3d& point) const;
   // The marker of matched point `p`, its position from its whole spots; nothing when merged
   // spots leave it fewer than two.
   std::optional<pipeline::Marker3d> marker_of(const matching::MatchedPoint& p,

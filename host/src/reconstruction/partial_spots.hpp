@@ -25,6 +25,11 @@ struct PartialSpotOptions {
   // Partial spots are left out only when at least this many whole ones remain: fewer rays fix
   // the point less well, and two from near cameras fix it badly along their baseline.
   int min_whole_rays = 3;
+  // The spots kept are weighted by what their size says: a spot whose area is a share h short of
+  // a whole spot's (the typical width, merged_spots.hpp) has its centroid moved by about
+  // k * h * its radius (a disc cut by a straight edge: k ~ 0.9), added to the blob noise in its
+  // ray's sigma. 0: every kept spot weighs the same.
+  double shift_per_hidden_share = 0.9;
   bool enabled() const { return min_width_ratio > 0; }
 };
 

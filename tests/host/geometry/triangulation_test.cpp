@@ -85,6 +85,26 @@ TEST(Triangulation, ParallelRaysAndSingleRaysGiveNoPoint) {
   EXPECT_EQ(std::max(p.errors_px[0], p.errors_px[1]), kBehindPx);
 }
 
+// A ray given a larger sigma of its own pulls the point less, and the covariance says so.
+TEST(Triangulation, ARayWithALargerSigmaOfItsOwnPullsThePointLess) {
+  const auto cameras = ring_of_cameras(5);
+  std::mt19937 rng(4);
+  const Eigen::Vector3d truth(100, 200, 900);
+  std::vector<ViewRay> rays = rays_of(cameras, truth, 0.0, rng);
+  const sensor::Projection off = cameras[1].project(truth);
+  rays[1] = view_ray(cameras[1], off.pixel + Eigen::Vector2d(0.8, 0));  // a partly hidden spot
+  const std::vector<double> equal(rays.size(), 0.1);
+  std::vector<double> own = equal;
+  own[1] = 1.0;
+  const RayPoint same = triangulate(rays, equal);
+  const RayPoint weighted = triangulate(rays, own);
+  ASSERT_TRUE(same.ok && weighted.ok);
+  EXPECT_LT((same.position - triangulate(rays, 0.1).position).norm(), 1e-9);
+  EXPECT_LT((weighted.position - truth).norm(), 0.1 * (same.position - truth).norm());
+  EXPECT_LT(weighted.chi_square, same.chi_square);  // its error is counted in its own sigma
+  EXPECT_FALSE(triangulate(rays, std::vector<double>{0.1}).ok);  // one sigma for five rays
+}
+
 TEST(Triangulation, AWrongRayIsLeftOutAndNamed) {
   const auto cameras = ring_of_cameras(5);
   std::mt19937 rng(3);
