@@ -46,9 +46,12 @@ double spot_pixels_per_rad(const sensor::CameraModel& camera, const Ray& ray) {
   return std::sqrt(std::abs(j.determinant()));
 }
 
-ViewRay view_ray(const sensor::CameraModel& camera, const Eigen::Vector2d& pixel) {
+ViewRay view_ray(const sensor::CameraModel& camera, const Eigen::Vector2d& pixel,
+                 SpotScale spot_scale) {
   const Ray ray = camera.back_project(pixel);
-  return {ray, pixels_per_rad(camera), spot_pixels_per_rad(camera, ray)};
+  const double scale = pixels_per_rad(camera);
+  return {ray, scale,
+          spot_scale == SpotScale::kMeasured ? spot_pixels_per_rad(camera, ray) : scale};
 }
 
 double angle_to(const Ray& ray, const Eigen::Vector3d& point) {

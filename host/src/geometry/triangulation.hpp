@@ -46,8 +46,14 @@ struct ViewRay {
   double spot_pixels_per_rad = 1.0;
 };
 
-// The ray of `pixel` in `camera`, distortion removed, with both image scales.
-ViewRay view_ray(const sensor::CameraModel& camera, const Eigen::Vector2d& pixel);
+// Whether view_ray measures the image scale at the pixel itself (three projections through the
+// lens model, most of a ray's cost): matching needs only the ray, a spot's size test the scale.
+enum class SpotScale { kMeasured, kSkipped };
+
+// The ray of `pixel` in `camera`, distortion removed, with both image scales (kSkipped:
+// spot_pixels_per_rad is pixels_per_rad).
+ViewRay view_ray(const sensor::CameraModel& camera, const Eigen::Vector2d& pixel,
+                 SpotScale spot_scale = SpotScale::kMeasured);
 // c / pixel width: pixels per radian near the principal point.
 double pixels_per_rad(const sensor::CameraModel& camera);
 // The local image scale of `ray` (ViewRay::spot_pixels_per_rad); pixels_per_rad(camera) where

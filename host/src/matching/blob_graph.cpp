@@ -49,7 +49,8 @@ BlobGraph BlobGraph::build(const std::vector<sensor::CameraModel>& cameras,
     if (c >= pixels.size()) continue;
     for (std::size_t k = 0; k < pixels[c].size(); ++k) {
       g.blobs.push_back({static_cast<int>(c), static_cast<int>(k)});
-      g.rays.push_back(geometry::view_ray(cameras[c], pixels[c][k]));
+      // The matcher needs the rays alone; the marker stage measures the spots' scale.
+      g.rays.push_back(geometry::view_ray(cameras[c], pixels[c][k], geometry::SpotScale::kSkipped));
     }
   }
   first[cameras.size()] = g.size();
