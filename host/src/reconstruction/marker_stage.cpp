@@ -62,7 +62,9 @@ MarkerStage::PointSpots MarkerStage::spots_of(
 }
 
 void MarkerStage::learn_spot_width(const std::vector<PointSpots>& points) {
-  if (!options_.merged_spots.enabled()) return;
+  // Both the merged spots and the spots' weights are judged against it.
+  if (!options_.merged_spots.enabled() && !(options_.partial_spots.shift_per_hidden_share > 0))
+    return;
   std::vector<double> widths;
   for (const PointSpots& s : points)
     if (s.widths_mm.size() >= 3)
@@ -117,12 +119,12 @@ std::optional<pipeline::Marker3d> MarkerStage::marker_of(const matching::Matched
   const std::vector<bool> whole =
       whole_spots(kept.rays, kept.areas_px, point.position, options_.partial_spots);
   std::vector<geometry::ViewRay> whole_rays;
-  for (std::size_t i = 0; i < kept.rays.size(); ++i) {
-    if (whole[i]) whole_rays.push_back(kept.rays[i]);
-  }
   std::vector<double> whole_areas;
-  for (std::size_t i = 0; i < kept.rays.size(); ++i)
-    if (whole[i]) whole_areas.push_back(kept.areas_px[i]);
+  for (std::size_t i = 0; i < kept.rays.size(); ++i) {
+    if (!whole[i]) continue;
+    whole_rays.push_back(kept.rays[i]);
+    whole_areas.push_back(kept.areas_px[i]);
+  }
   const std::vector<double> sigmas = spot_sigmas(whole_rays, whole_areas, point.position);
   const bool weighted = !sigmas.empty();
   if (whole_rays.size() < kept.rays.size() || weighted) {

@@ -60,7 +60,7 @@ class MarkerStage : public pipeline::Stage {
                       const std::vector<std::vector<Eigen::Vector2d>>& pixels,
                       const std::vector<std::vector<double>>& areas) const;
   // The widths of this frame's spots of points seen by three or more cameras, into the typical
-  // whole spot's width.
+  // whole spot's width (when merged spots or the spots' weights are on).
   void learn_spot_width(const std::vector<PointSpots>& points);
   // Each spot's image sigma: the blobs' own, and the centroid shift a spot narrower than a whole
   // one suggests (partial_spots.hpp); empty when no typical width is known or it is off.
