@@ -23,6 +23,18 @@ struct Ellipsoid {
   Eigen::Vector3d radii_mm = Eigen::Vector3d::Ones();
 };
 
+// A posed triangle mesh (the skinned human, skinned_body.hpp). The clothes' pattern is a solid
+// texture on the body at rest, so it moves with the skin: each vertex carries its rest position.
+struct Mesh {
+  std::vector<Eigen::Vector3d> vertices_mm;  // posed, world frame
+  std::vector<Eigen::Vector3d> normals;      // posed, unit, per vertex (smooth shading)
+  std::vector<Eigen::Vector3d> texture_mm;   // per vertex: where it is on the rest body
+  std::vector<Eigen::Vector3i> triangles;    // vertex indices, counter-clockwise seen from outside
+  std::vector<int> triangle_part;            // per triangle: the body part (the pattern's phase)
+
+  bool empty() const { return triangles.empty(); }
+};
+
 // A bright sphere (wand target or LED) during the exposure: its centre at mid-exposure and,
 // for motion blur, its centres at evenly spaced instants over the exposure.
 struct Sphere {
@@ -36,6 +48,7 @@ struct FrameContent {
   bool room_background = false;
   std::vector<Sphere> spheres;
   std::vector<Ellipsoid> body;
+  Mesh body_mesh;  // a skinned person instead of (or beside) the ellipsoids; empty: none
   Eigen::Vector3d light_dir = Eigen::Vector3d(0.3, 0.2, -1).normalized();
   double shadow_darkening = 0.45;
   double body_brightness = 1.0;  // scales the person's shading (dim in infrared)
