@@ -35,18 +35,19 @@ HANIM_SOURCE = HERE.parents[2] / "host/src/body/hanim_model.cpp"
 
 # The subjects: target weights on the base mesh. The base mesh is MakeHuman's neutral figure;
 # a "<race>-<gender>-young" target makes it a young adult of that gender (MakeHuman's default
-# human blends the three); the height and weight targets are those of average muscle.
+# human blends the three); the height and weight targets are those of average muscle. A height
+# target at full weight makes a 1.24 m or a 2.47 m adult: a quarter and a fifth of it give
+# 1.51 m and 1.89 m (skinned_body_test checks the heights).
 SUBJECTS = {
     "average-male": {"caucasian-male-young": 1.0},
     "short-female": {"caucasian-female-young": 1.0,
-                     "female-young-averagemuscle-averageweight-minheight": 1.0},
+                     "female-young-averagemuscle-averageweight-minheight": 0.25},
     "tall-male": {"caucasian-male-young": 1.0,
-                  "male-young-averagemuscle-averageweight-maxheight": 1.0},
+                  "male-young-averagemuscle-averageweight-maxheight": 0.2},
     "heavy-male": {"african-male-young": 1.0,
                    "universal-male-young-averagemuscle-maxweight": 1.0},
     "heavy-female": {"asian-female-young": 1.0,
-                     "universal-female-young-averagemuscle-maxweight": 1.0,
-                     "female-young-averagemuscle-averageweight-minheight": 0.5},
+                     "universal-female-young-averagemuscle-maxweight": 1.0},
 }
 TARGET_FOLDERS = {
     "caucasian-male-young": "macrodetails",
