@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "disc_coverage.hpp"
 #include "reflections.hpp"
@@ -259,6 +260,10 @@ std::optional<double> ray_ellipsoid(const Eigen::Vector3d& origin, const Eigen::
 
 RenderedView render_view(const View& view, const FrameContent& content, const ImageSpec& image,
                          uint64_t noise_seed) {
+  // The mesh's rasteriser is the next step of issue 39; until it lands, say so rather than draw
+  // an empty room where the person should be.
+  if (!content.body_mesh.empty())
+    throw std::runtime_error("the skinned human (person.model: mesh) is not drawn yet");
   RenderedView out;
   cv::Mat radiance = content.room_background
                          ? view.room.clone()

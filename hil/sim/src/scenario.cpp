@@ -260,6 +260,10 @@ void read_person(Section& s, PersonSpec& p, const std::filesystem::path& file) {
   p.bvh = s.text("bvh", "");
   p.start_s = s.number("start_s", p.start_s, 0, kHuge);
   p.speed = s.number("speed", p.speed, 0.01, 100);
+  p.model = s.text("model", p.model, {"ellipsoids", "mesh"});
+  p.subject = s.text("subject", p.subject);
+  if (s.has("subject") && p.model != "mesh")
+    s.fail(s.child("subject"), "person.subject needs person.model: mesh");
   p.light_dir = s.vec3("light_dir", p.light_dir);
   if (p.light_dir.z() >= 0)
     s.fail(s.child("light_dir"), "person.light_dir must point down (z < 0)");
@@ -268,6 +272,8 @@ void read_person(Section& s, PersonSpec& p, const std::filesystem::path& file) {
   p.marker_brightness_dn = s.number("marker_brightness_dn", p.marker_brightness_dn, 1, 255);
   p.body_brightness = s.number("body_brightness", p.body_brightness, 0, 1);
   if (s.has("markers")) read_markers(s, s.child("markers"), p.markers);
+  if (!p.markers.empty() && p.model == "mesh")
+    s.fail(s.child("markers"), "person.markers sit on the ellipsoids; the mesh has none yet");
   (void)file;
 }
 

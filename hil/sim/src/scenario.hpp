@@ -79,6 +79,10 @@ struct PersonSpec {
   std::string bvh_not_found;
   double start_s = 0;
   double speed = 1.0;
+  // "ellipsoids": the H-Anim body the fit uses; "mesh": the skinned human (skinned_body.hpp),
+  // a person who is not the model, of the named subject.
+  std::string model = "ellipsoids";
+  std::string subject = "average-male";
   Eigen::Vector3d light_dir{0.3, 0.2, -1.0};  // direction the light travels, for the shadow
   double shadow_darkening = 0.45;
   std::vector<MarkerSpec> markers;  // none: a person without markers

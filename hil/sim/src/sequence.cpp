@@ -144,6 +144,7 @@ FrameState Sequence::at(int frame) {
     st.body = bodies_[static_cast<std::size_t>(st.phase_index)](ph.person.start_s +
                                                                 ph.person.speed * st.phase_time_s);
     st.content.body = st.body.ellipsoids;
+    st.content.body_mesh = st.body.mesh;
     st.content.light_dir = ph.person.light_dir.normalized();
     st.content.shadow_darkening = ph.person.shadow_darkening;
     st.content.body_brightness = ph.person.body_brightness;

@@ -15,12 +15,16 @@
 
 namespace syncap::sim {
 
-// The person at time t: joint positions and one ellipsoid per segment (with its H-Anim name),
-// mm, Z up.
+// The person at time t: joint positions and either one ellipsoid per segment (with its H-Anim
+// name) or the skinned human's posed mesh, mm, Z up.
 struct BodyFrame {
   std::vector<std::pair<std::string, Eigen::Vector3d>> joints;
   std::vector<Ellipsoid> ellipsoids;
   std::vector<std::string> segments;  // the ellipsoids' names
+  Mesh mesh;                          // person.model: mesh
+  std::string subject;                // the mesh's subject
+
+  bool empty() const { return joints.empty(); }
 };
 
 // The centre of `marker` on `body` (its segment's ellipsoid), or nothing when the body has no

@@ -25,6 +25,7 @@ namespace cli = syncap::cli;
 struct Options {
   std::filesystem::path scenario, out;
   int max_phase_frames = 0;
+  std::string subject;  // non-empty: every person is this skinned subject
   bool quiet = false;
 };
 
@@ -46,6 +47,10 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
   cli::add_checked(app, "--max-phase-frames", o.max_phase_frames, "N",
                    cli::whole_in(1, 1'000'000'000),
                    "render at most N frames of each phase (short runs, CI; default all)");
+  app.add_option("--subject", o.subject,
+                 "draw every person phase as the skinned human of subject NAME, as\n"
+                 "person: {model: mesh, subject: NAME} would (hil/assets/makehuman/README.md)")
+      ->option_text("NAME");
   app.add_flag("--quiet", o.quiet, "only errors");
   return cli::parse_main(app, argc, argv);
 }
@@ -60,6 +65,16 @@ int run(const Options& o, bool& input_read) {
   syncap::sim::Scenario scenario = syncap::sim::load_scenario(o.scenario);
   if (o.max_phase_frames > 0) {
     for (auto& phase : scenario.phases) phase.frames = std::min(phase.frames, o.max_phase_frames);
+  }
+  if (!o.subject.empty()) {
+    for (auto& phase : scenario.phases) {
+      if (phase.type != "person") continue;
+      if (!phase.person.markers.empty())
+        throw std::runtime_error(o.scenario.string() + ":" + std::to_string(phase.line) +
+                                 ": --subject: this person's markers sit on the ellipsoids");
+      phase.person.model = "mesh";
+      phase.person.subject = o.subject;
+    }
   }
   const auto start = std::chrono::steady_clock::now();
   const auto rig = syncap::sim::build_rig(scenario);

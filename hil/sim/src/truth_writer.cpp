@@ -91,10 +91,11 @@ void TruthWriter::write(const FrameState& st, const std::vector<RenderedView>& v
       projections_ << st.frame << "," << camera << "," << target(t) << "," << p.pixel.x() << ","
                    << p.pixel.y() << "," << p.radius_px << "," << (p.visible ? 1 : 0) << "\n";
     }
-    if (!st.body.ellipsoids.empty()) write_image(mask_path(out_, camera, st.frame), views[c].mask);
+    if (!st.body.empty()) write_image(mask_path(out_, camera, st.frame), views[c].mask);
   }
-  if (st.body.ellipsoids.empty()) return;
+  if (st.body.empty()) return;
   nlohmann::json line{{"frame", st.frame}};
+  if (!st.body.subject.empty()) line["subject"] = st.body.subject;
   for (const auto& [name, p] : st.body.joints) line["joints"][name] = vec(p);
   for (std::size_t i = 0; i < st.body.ellipsoids.size(); ++i) {
     const Ellipsoid& e = st.body.ellipsoids[i];

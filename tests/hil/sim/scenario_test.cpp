@@ -143,6 +143,26 @@ TEST(Scenario, ABrokenMarkerNamesItsLine) {
   EXPECT_EQ(error_of(text), "broken.yaml:11: person.markers[] needs 'at'");
 }
 
+TEST(Scenario, APersonIsTheEllipsoidsOrANamedSkinnedSubject) {
+  const char* person = R"(
+name: skinned
+cameras: {count: 2}
+phases:
+  - {type: person, frames: 3, bvh: /dev/null, model: mesh, subject: tall-male}
+)";
+  const PersonSpec p = parse_scenario(person, "skinned.yaml").phases.at(0).person;
+  EXPECT_EQ(p.model, "mesh");
+  EXPECT_EQ(p.subject, "tall-male");
+  EXPECT_EQ(parse_scenario(kMarkers, "markers.yaml").phases.at(0).person.model, "ellipsoids");
+  std::string text = person;
+  text.replace(text.find("model: mesh, "), 13, "");
+  EXPECT_NE(error_of(text).find("person.subject needs person.model: mesh"), std::string::npos)
+      << error_of(text);
+  text = person;
+  text.replace(text.find("mesh"), 4, "voxels");
+  EXPECT_NE(error_of(text).find("broken.yaml:5:"), std::string::npos) << error_of(text);
+}
+
 TEST(Scenario, MissingFileIsNamed) {
   try {
     load_scenario("/nonexistent/s.yaml");

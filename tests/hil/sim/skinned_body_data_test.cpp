@@ -6,7 +6,10 @@
 #include <algorithm>
 
 #include "body/bvh.hpp"
+#include "body/hanim_model.hpp"
 #include "body/retarget.hpp"
+#include "body_source.hpp"
+#include "scenario.hpp"
 #include "skinned_body.hpp"
 #include "syncap_test_data.hpp"
 
@@ -48,6 +51,44 @@ TEST(SkinnedBodyData, TheRealMotionMovesEverySubjectsSkinOnTheFloor) {
     EXPECT_LT(lowest_max, 120) << name;
     std::cout << name << ": height " << subject.height_mm << " mm, lowest skin point " << lowest_min
               << " .. " << lowest_max << " mm over the clip\n";
+  }
+}
+
+// A scenario's person of model mesh is the subject's posed skin with the subject's joints (the
+// truth), and no ellipsoids.
+TEST(SkinnedBodyData, AMeshPersonGivesItsSkinAndItsOwnJoints) {
+  SYNCAP_REQUIRE_DATA(bvh_file, "motion/mixamo-free.bvh");
+  Scenario sc = parse_scenario(R"(
+cameras: {count: 2}
+phases:
+  - {type: person, frames: 3, bvh: /dev/null, model: mesh, subject: short-female}
+)",
+                               "mesh.yaml");
+  sc.phases[0].person.bvh = bvh_file;
+  const BodySource body = open_bvh_body(sc.phases[0].person, sc);
+  const BodyFrame frame = body(0.5);
+  EXPECT_TRUE(frame.ellipsoids.empty());
+  EXPECT_EQ(frame.subject, "short-female");
+  EXPECT_EQ(frame.mesh.triangles.size(), 26756u);
+  ASSERT_EQ(frame.joints.size(), body::hanim_skeleton().size());
+  const SkinnedSubject subject =
+      make_subject(load_skinned_human(default_skinned_human_file()), "short-female");
+  auto joint = [&](const std::string& name) {
+    for (const auto& [n, p] : frame.joints)
+      if (n == name) return p;
+    return Eigen::Vector3d(Eigen::Vector3d::Constant(1e9));
+  };
+  // The subject's own thigh, not the thesis figure's.
+  const double thigh = (joint("l_knee") - joint("l_hip")).norm();
+  EXPECT_NEAR(thigh, subject.skeleton.bone_length_mm(subject.skeleton.at("l_knee")), 1e-6);
+  EXPECT_LT(thigh, 380);  // the thesis figure's is 386 mm
+  sc.phases[0].person.subject = "giant";
+  try {
+    open_bvh_body(sc.phases[0].person, sc);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh.yaml: person.subject:"), std::string::npos)
+        << e.what();
   }
 }
 
