@@ -31,8 +31,10 @@ BodySource open_mesh_body(const PersonSpec& person, const Scenario& scenario) {
     }
   };
   auto shared = std::make_shared<const SkinnedSubject>(subject());
-  auto retargeter = std::make_shared<body::BvhRetargeter>(
-      shared->skeleton, body::load_bvh(person.bvh), retarget_options(scenario));
+  body::RetargetOptions options = retarget_options(scenario);
+  options.align_legs = true;  // MakeHuman's rest legs stand about 7 degrees apart
+  auto retargeter =
+      std::make_shared<body::BvhRetargeter>(shared->skeleton, body::load_bvh(person.bvh), options);
   return [shared, retargeter](double t_s) {
     const body::Pose pose = retargeter->pose_at(t_s);
     const auto positions = body::node_positions(shared->skeleton, pose);

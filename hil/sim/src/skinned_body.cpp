@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -160,20 +161,10 @@ body::Skeleton place_skeleton(const std::vector<Eigen::Vector3d>& shaped,
     for (const auto& [i, c] : asset.node_places[k]) at[k] += c * shaped[static_cast<size_t>(i)];
   }
   root_world = at[0];
-  std::vector<body::Node> nodes = hanim.nodes();
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    nodes[k].rest_mm = at[k] - root_world;
-    nodes[k].source_mm = at[k];
-    nodes[k].source_line = 0;
-  }
-  std::vector<body::SegmentSpec> specs;
-  for (const body::Segment& s : hanim.segments()) {
-    specs.push_back({s.name, hanim.node(s.from).name, hanim.node(s.to).name,
-                     hanim.node(s.attached_to).name, s.radii_mm});
-  }
+  for (auto& p : at) p -= root_world;
   double floor = std::numeric_limits<double>::infinity();
   for (int i = 0; i < asset.skinned; ++i) floor = std::min(floor, shaped[size_t(i)].z());
-  return body::Skeleton(std::move(nodes), specs, hanim.front(), root_world.z() - floor);
+  return hanim.with_rest(at, root_world.z() - floor);
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ BvhRetargeter::BvhRetargeter(Skeleton skeleton, Bvh bvh, const RetargetOptions& 
       bvh_(std::move(bvh)),
       mapping_(map_joints(skeleton_, bvh_)),
       loop_(options.loop),
+      align_legs_(options.align_legs),
       to_world_(bvh_to_world(options.up)),
       bvh_rest_(bvh_forward_kinematics(bvh_, bvh_rest_pose(bvh_)).position) {
   left_hip_ = skeleton_.at("l_hip");
@@ -68,6 +69,13 @@ bool BvhRetargeter::in_arm(int i) const {
   return false;
 }
 
+bool BvhRetargeter::in_leg_above_ankle(int i) const {
+  for (const char* name : {"l_hip", "r_hip", "l_knee", "r_knee"}) {
+    if (skeleton_.node(i).name == name) return true;
+  }
+  return false;
+}
+
 // Of the mapped nodes driven right below mapped node h, the one whose BVH bone continues the
 // BVH bone into h most nearly; -1 when there is none.
 int BvhRetargeter::primary_child(int h) const {
@@ -94,7 +102,9 @@ int BvhRetargeter::primary_child(int h) const {
 // are turned: BVH rest poses differ from ours (arms hanging) in arm posture (T-pose, A-pose),
 // while every one stands upright on flat feet, so that differences in the trunk, pelvis or feet
 // are differences of shape (Mixamo's ankle-to-toe bone points 40 degrees down, ours 20), and
-// turning them would tilt our pelvis or put our figure on tiptoe. An arm joint's alignment is its
+// turning them would tilt our pelvis or put our figure on tiptoe (RetargetOptions::align_legs
+// also turns the hips and knees, for a skeleton standing with its legs apart, and keeps the feet
+// as they are). An arm joint's alignment is its
 // parent's, then the shortest arc that lays our bone towards its primary mapped child onto the
 // BVH's (for a hand, the finger continuing the forearm most nearly).
 void BvhRetargeter::align_rest_poses() {
@@ -104,7 +114,10 @@ void BvhRetargeter::align_rest_poses() {
     const int above = driver_[static_cast<std::size_t>(skeleton_.node(h).parent)];
     const Eigen::Quaterniond inherited = alignment_[static_cast<std::size_t>(above)];
     alignment_[static_cast<std::size_t>(h)] = inherited;
-    const int primary = in_arm(h) ? primary_child(h) : -1;
+    const bool leg = align_legs_ && in_leg_above_ankle(h);
+    // The foot stands flat in both rest poses: it does not inherit the shank's turn.
+    if (align_legs_ && !leg && !in_arm(h)) alignment_[static_cast<std::size_t>(h)].setIdentity();
+    const int primary = in_arm(h) || leg ? primary_child(h) : -1;
     if (primary < 0) continue;
     const Eigen::Vector3d ours =
         inherited * (skeleton_.node(primary).rest_mm - skeleton_.node(h).rest_mm);

@@ -41,6 +41,10 @@ struct RetargetOptions {
   // horizontally (never enlarge) where it would come nearer than margin_mm to a wall.
   std::optional<CaptureVolume> volume;
   double margin_mm = 300;
+  // Also turn our rest thighs and shanks onto the BVH's (the feet keep their rest posture): for
+  // a skeleton whose rest legs stand apart (MakeHuman's, about 7 degrees), which would otherwise
+  // walk with its legs that far apart. Off for the thesis figure, whose legs hang straight.
+  bool align_legs = false;
   // Sample t modulo the duration (the root jumps back at the wrap) instead of holding the ends.
   bool loop = false;
 };
@@ -71,6 +75,7 @@ class BvhRetargeter {
   void choose_scale(const RetargetOptions& options);
   Eigen::Vector3d bvh_rest_vector(int from, int to) const;  // between the nodes' BVH joints
   bool in_arm(int node) const;
+  bool in_leg_above_ankle(int node) const;
   int primary_child(int node) const;
   Pose pose_from(const BvhLocalPose& local) const;  // without grounding and placement
   void place(const RetargetOptions& options);
@@ -79,6 +84,7 @@ class BvhRetargeter {
   Bvh bvh_;
   JointMapping mapping_;
   bool loop_ = false;
+  bool align_legs_ = false;
   Eigen::Quaterniond to_world_;                // BVH axes -> ours
   std::vector<Eigen::Vector3d> bvh_rest_;      // BVH joint positions with all channels zero
   std::vector<int> driver_;                    // per node: the nearest mapped node at or above it

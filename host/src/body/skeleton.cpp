@@ -66,6 +66,20 @@ Skeleton::Skeleton(std::vector<Node> nodes, const std::vector<SegmentSpec>& segm
   }
 }
 
+Skeleton Skeleton::with_rest(const std::vector<Eigen::Vector3d>& rest_mm,
+                             double rest_root_height_mm) const {
+  if (rest_mm.size() != nodes_.size())
+    throw std::invalid_argument("skeleton: with_rest needs one place per node");
+  std::vector<Node> nodes = nodes_;
+  for (std::size_t i = 0; i < nodes.size(); ++i) nodes[i].rest_mm = rest_mm[i];
+  std::vector<SegmentSpec> specs;
+  for (const Segment& s : segments_) {
+    specs.push_back(
+        {s.name, node(s.from).name, node(s.to).name, node(s.attached_to).name, s.radii_mm});
+  }
+  return Skeleton(std::move(nodes), specs, front_, rest_root_height_mm);
+}
+
 int Skeleton::find(std::string_view name) const {
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     if (nodes_[i].name == name) return static_cast<int>(i);

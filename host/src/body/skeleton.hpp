@@ -48,6 +48,10 @@ class Skeleton {
   Skeleton(std::vector<Node> nodes, const std::vector<SegmentSpec>& segments,
            const Eigen::Vector3d& front, double rest_root_height_mm);
 
+  // The same tree and segments with the nodes at other rest places (rest_mm[i] relative to the
+  // root, as Node::rest_mm), e.g. placed in a subject's mesh; the segments' rest axes follow.
+  Skeleton with_rest(const std::vector<Eigen::Vector3d>& rest_mm, double rest_root_height_mm) const;
+
   const std::vector<Node>& nodes() const { return nodes_; }
   const std::vector<Segment>& segments() const { return segments_; }
   std::size_t size() const { return nodes_.size(); }

@@ -27,6 +27,7 @@ TEST(SkinnedBodyData, TheRealMotionMovesEverySubjectsSkinOnTheFloor) {
     const SkinnedSubject subject = make_subject(asset, name);
     body::RetargetOptions options;
     options.loop = true;
+    options.align_legs = true;
     const body::BvhRetargeter retargeter(subject.skeleton, bvh, options);
     const auto& k = subject.skeleton;
     const int knee = k.at("l_knee"), ankle = k.at("l_ankle");

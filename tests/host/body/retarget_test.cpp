@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "body/hanim_model.hpp"
@@ -159,6 +160,43 @@ TEST(Retarget, TPoseRestFrameGivesOurBonesInItsPosture) {
   }
   // Grounded: the ankles as high above the floor as at rest.
   EXPECT_NEAR(at(r, p, "l_ankle").z(), at(r, q, "l_ankle").z(), 1e-9);
+}
+
+// A rest figure whose left leg stands 8 degrees out (MakeHuman's stand apart) with its foot flat:
+// with align_legs the BVH's straight rest legs hang straight down and the foot stays flat;
+// without, the leg keeps its spread.
+TEST(Retarget, AlignLegsStraightensARestLegThatStandsApart) {
+  const Skeleton thesis = hanim_skeleton();
+  std::vector<Eigen::Vector3d> rest;
+  for (const Node& n : thesis.nodes()) rest.push_back(n.rest_mm);
+  const int hip = thesis.at("l_hip"), knee = thesis.at("l_knee"), ankle = thesis.at("l_ankle");
+  const Eigen::AngleAxisd out(-8.0 * std::numbers::pi / 180, Eigen::Vector3d::UnitY());  // to +X
+  const Eigen::Vector3d ankle_shift =
+      out * (rest[size_t(ankle)] - rest[size_t(hip)]) - (rest[size_t(ankle)] - rest[size_t(hip)]);
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    if (int(i) == knee) rest[i] = rest[size_t(hip)] + out * (rest[i] - rest[size_t(hip)]);
+    if (int(i) == ankle || thesis.is_ancestor(ankle, int(i))) rest[i] += ankle_shift;
+  }
+  const Skeleton apart = thesis.with_rest(rest, thesis.rest_root_height_mm());
+  const auto rows = test::mixamo_rows();
+  const Bvh bvh = parse_bvh(
+      test::synthetic_bvh(rows, {SyntheticFrame(rows).root(0, 98, 0)}, false, 1.0), "t.bvh");
+  for (bool align : {true, false}) {
+    RetargetOptions options;
+    options.align_legs = align;
+    const BvhRetargeter r(apart, bvh, options);
+    const auto p = node_positions(apart, r.pose_at(0));
+    const Eigen::Vector3d leg = p[size_t(ankle)] - p[size_t(hip)];
+    const Eigen::Vector3d foot = at(r, p, "l_forefoot_tip") - p[size_t(ankle)];
+    const Eigen::Vector3d rest_foot =
+        rest[size_t(apart.at("l_forefoot_tip"))] - rest[size_t(ankle)];
+    if (align) {
+      EXPECT_NEAR(leg.x(), 0.0, 1e-6) << "the leg hangs straight";
+      EXPECT_LT((foot - rest_foot).norm(), 1e-6) << "the foot stays flat";
+    } else {
+      EXPECT_GT(leg.x(), 40.0) << "the leg keeps its spread";
+    }
+  }
 }
 
 TEST(Retarget, BoneLengthsStayOursUnderAnyMotion) {
