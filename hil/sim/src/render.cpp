@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "disc_coverage.hpp"
+#include "mesh_raster.hpp"
 #include "reflections.hpp"
 
 namespace syncap::sim {
@@ -117,6 +118,51 @@ cv::Mat paint_body(const View& view, const FrameContent& content, cv::Mat& radia
     }
   }
   return depth;
+}
+
+// The skinned person over what is painted (nearer than `depth`): the clothes' pattern at the
+// hit's rest place on the skin, Lambert on the interpolated normal. Returns the merged depth.
+cv::Mat paint_mesh(const View& view, const FrameContent& content, cv::Mat depth, cv::Mat& radiance,
+                   cv::Mat& mask) {
+  const Mesh& mesh = content.body_mesh;
+  MeshFragments hits = rasterize_mesh(view, mesh, depth);
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const int k = hits.triangle.at<int>(y, x);
+      if (k < 0) continue;
+      const Eigen::Vector3d dir =
+          view.rays[static_cast<std::size_t>(y) * view.width + x].cast<double>();
+      const Eigen::Vector3d w =
+          barycentric(mesh, k, view.centre_mm + double(hits.depth.at<float>(y, x)) * dir);
+      const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t>(k)];
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero(), rest = Eigen::Vector3d::Zero();
+      for (int i = 0; i < 3; ++i) {
+        normal += w[i] * mesh.normals[size_t(t[i])];
+        rest += w[i] * mesh.texture_mm[size_t(t[i])];
+      }
+      const double lambert = std::max(0.0, -normal.normalized().dot(content.light_dir));
+      const double pattern = clothes_pattern(rest, mesh.triangle_part[static_cast<std::size_t>(k)]);
+      radiance.at<float>(y, x) = static_cast<float>(
+          content.body_brightness * (5.0 + 95.0 * pattern) * (0.45 + 0.75 * lambert));
+      mask.at<uint8_t>(y, x) = 255;
+    }
+  }
+  return hits.depth;
+}
+
+// Floor pixels in the skinned person's shadow are darkened (not those the person covers).
+void paint_mesh_shadow(const View& view, const FrameContent& content, cv::Mat& radiance,
+                       const cv::Mat& mask) {
+  if (!view.floor_xy.data) return;
+  const FloorShadow shadow = mesh_floor_shadow(content.body_mesh, content.light_dir);
+  if (shadow.cells.empty()) return;
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const cv::Vec2f f = view.floor_xy.at<cv::Vec2f>(y, x);
+      if (std::isnan(f[0]) || mask.at<uint8_t>(y, x) || !shadow.shadowed(f[0], f[1])) continue;
+      radiance.at<float>(y, x) *= static_cast<float>(1.0 - content.shadow_darkening);
+    }
+  }
 }
 
 // Takes away the coverage of pixels where the body is nearer than the sphere's front; returns the
@@ -260,10 +306,6 @@ std::optional<double> ray_ellipsoid(const Eigen::Vector3d& origin, const Eigen::
 
 RenderedView render_view(const View& view, const FrameContent& content, const ImageSpec& image,
                          uint64_t noise_seed) {
-  // The mesh's rasteriser is the next step of issue 39; until it lands, say so rather than draw
-  // an empty room where the person should be.
-  if (!content.body_mesh.empty())
-    throw std::runtime_error("the skinned human (person.model: mesh) is not drawn yet");
   RenderedView out;
   cv::Mat radiance = content.room_background
                          ? view.room.clone()
@@ -273,6 +315,10 @@ RenderedView render_view(const View& view, const FrameContent& content, const Im
   if (!content.body.empty()) {
     body_depth = paint_body(view, content, radiance, out.mask);
     paint_shadow(view, content, radiance, out.mask);
+  }
+  if (!content.body_mesh.empty()) {
+    body_depth = paint_mesh(view, content, body_depth, radiance, out.mask);
+    paint_mesh_shadow(view, content, radiance, out.mask);
   }
   for (const auto& s : content.spheres)
     out.spheres.push_back(paint_sphere(view, s, body_depth, radiance));
