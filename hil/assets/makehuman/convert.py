@@ -15,9 +15,10 @@ What it does, and why:
   facing -Y, +X the figure's left: hanim_to_world() of host/src/body/hanim_model.cpp);
 - places every node of our H-Anim skeleton (hanim_model.cpp) in the mesh as a fixed linear
   combination of mesh vertices, so that a body-shape target moves the joints with the skin.
-  MakeHuman defines each bone's head and tail as the mean of a few vertices; our joints are those
-  heads and tails (the mapping below), the vertebrae lie on the mesh's spine at the thesis'
-  height fractions, and the heel, toe tip and skull top are single surface vertices;
+  MakeHuman defines each bone's head and tail as the mean of a few vertices; our limb joints are
+  those heads and tails (the mapping below), the root and the vertebrae lie on the mesh's spine
+  (from the hips' midpoint up) at the thesis' height fractions between the hips and skullbase,
+  and the heel, toe tip and skull top are single surface vertices;
 - merges the weights of MakeHuman's 163 bones onto the H-Anim node whose orientation moves that
   part of the body (the mapping below), and keeps the four largest per vertex;
 - stores each target's offsets on the body vertices (0.1 mm; offsets under 0.05 mm dropped) and the
@@ -174,15 +175,20 @@ def extreme_vertex(vertices, weights, bones, axis, sign):
 
 def node_definitions(nodes, joints, vertices, bone_weights):
     thesis_y = {name: y for name, _, y in nodes}
-    spine = spine_polyline(joints)
-    base, top = thesis_y["vl5"], thesis_y["skullbase"]
+    # The trunk's nodes lie on the mesh's spine (the hips' midpoint, then the spine05 ... head
+    # bone heads) at the thesis' height fractions between the hips and skullbase, so that the
+    # root and the vertebrae mean what the fitted model means by them (the thesis root sits 23 %
+    # of the way from the hips to skullbase; MakeHuman's spine05 head only 3 % of the way).
+    hips = blend((0.5, joints["upperleg01.L____head"]), (0.5, joints["upperleg01.R____head"]))
+    spine = [hips] + spine_polyline(joints)
+    base = 0.5 * (thesis_y["l_hip"] + thesis_y["r_hip"])
+    top = thesis_y["skullbase"]
     defs = {}
     for name, _, y in nodes:
-        if name in ("HumanoidRoot", "HumanoidRoot2", "sacroiliac", "vl5"):
-            defs[name] = spine[0]
-        elif name == "skullbase":
+        if name == "skullbase":
             defs[name] = spine[-1]
-        elif name[0] == "v" and name[1] in "lct" and name[2:].isdigit():
+        elif name in ("HumanoidRoot", "HumanoidRoot2", "sacroiliac") or (
+                name[0] == "v" and name[1] in "lct" and name[2:].isdigit()):
             defs[name] = point_on_polyline(joints, spine, (y - base) / (top - base))
     world = to_world(vertices)
     per_vertex = bone_weights_per_vertex(bone_weights)
